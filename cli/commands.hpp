@@ -1,0 +1,24 @@
+#pragma once
+/// \file commands.hpp
+/// The subcommands of `ssid`. Each takes its arguments (after the subcommand
+/// name) and returns the process exit code: 0 success, 1 bad input or problems
+/// found, 2 usage error. Only the CLI prints; the libraries return values.
+#include <string>
+#include <vector>
+
+namespace ssid::cli {
+
+using Args = std::vector<std::string>;
+
+struct Command {
+  const char* name;
+  const char* summary;
+  int (*run)(const Args& args);
+};
+
+/// All subcommands, in the order `ssid --help` lists them.
+const std::vector<Command>& commands();
+
+int cmd_deck(const Args& args);
+
+}  // namespace ssid::cli

@@ -1,0 +1,63 @@
+/// \file main.cpp
+/// `ssid`: structural system identification. Git-style subcommands; this file
+/// only dispatches. Exceptions that escape a subcommand become a one-line error
+/// on stderr and exit code 1, never a crash.
+#include <exception>
+#include <iostream>
+
+#include "cli/cli_util.hpp"
+#include "formats/parse_error.hpp"
+
+namespace ssid::cli {
+
+const std::vector<Command>& commands() {
+  static const std::vector<Command> list = {
+      {"deck", "read, check and write NASTRAN bulk data (summary, write)", cmd_deck},
+  };
+  return list;
+}
+
+}  // namespace ssid::cli
+
+namespace {
+void print_usage(std::ostream& o) {
+  o << "usage: ssid <command> [<args>] (each command has --help)\n\n"
+       "Structural system identification: NASTRAN models, modal tests, Bayesian updating.\n\ncommands:\n";
+  for (const auto& c : ssid::cli::commands()) {
+    std::string n = c.name;
+    o << "  " << n << std::string(n.size() < 14 ? 14 - n.size() : 1, ' ') << c.summary << "\n";
+  }
+}
+}  // namespace
+
+int main(int argc, char** argv) {
+  if (argc < 2) {
+    print_usage(std::cerr);
+    return 2;
+  }
+  std::string name = argv[1];
+  if (name == "--help" || name == "-h" || name == "help") {
+    print_usage(std::cout);
+    return 0;
+  }
+  if (name == "--version") {
+    std::cout << "ssid 0.1.0\n";
+    return 0;
+  }
+  ssid::cli::Args args(argv + 2, argv + argc);
+  for (const auto& c : ssid::cli::commands()) {
+    if (name != c.name) continue;
+    try {
+      return c.run(args);
+    } catch (const ssid::formats::ParseError& e) {
+      ssid::cli::print_error(e.what());
+      return 1;
+    } catch (const std::exception& e) {
+      ssid::cli::print_error(e.what());
+      return 1;
+    }
+  }
+  std::cerr << "ssid: '" << name << "' is not a command\n";
+  print_usage(std::cerr);
+  return 2;
+}

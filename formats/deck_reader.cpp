@@ -1,0 +1,406 @@
+/// \file deck_reader.cpp
+/// Splits NASTRAN input into sections, cards, comments and INCLUDEs.
+///
+/// Field layout (NASTRAN Quick Reference Guide, "Format of Bulk Data Entries"):
+///   small field: field 1 = columns 1-8, fields 2-9 = 8 columns each (9-72),
+///                field 10 = columns 73-80 (continuation marker); columns 81+ ignored.
+///   large field: name ends in '*'; field 1 = columns 1-8, four fields of 16 columns
+///                (9-72), field 10 = columns 73-80; continuation lines start with '*'.
+///   free field:  a comma within the first 10 columns; fields separated by commas;
+///                "NAME*," makes it large (four fields per line).
+/// A line whose field 1 starts with '+' or '*', or is blank, continues the card
+/// above it. Tabs advance to the next multiple of 8 columns; '$' starts a comment.
+#include <filesystem>
+#include <fstream>
+#include <sstream>
+
+#include "formats/deck.hpp"
+#include "formats/text_util.hpp"
+
+namespace ssid::formats {
+
+namespace fs = std::filesystem;
+using detail::expand_tabs;
+using detail::iequals_prefix;
+using detail::trim;
+using detail::upper;
+
+SourceLocation Deck::location(std::uint32_t file, std::uint32_t line) const {
+  SourceLocation loc;
+  if (file < files.size()) {
+    loc.file = files[file].path;
+    std::int32_t p = files[file].parent;
+    std::uint32_t pl = files[file].parent_line;
+    while (p >= 0) {
+      loc.included_from.push_back(files[p].path + ":" + std::to_string(pl));
+      pl = files[p].parent_line;
+      p = files[p].parent;
+    }
+  }
+  loc.line = line;
+  return loc;
+}
+
+SourceLocation Deck::location(const Card& card, std::size_t field) const {
+  return location(card.file, card.line_of(field));
+}
+
+namespace {
+
+struct Line {
+  std::uint32_t begin, end;  ///< content span (without the line ending)
+  std::uint32_t next;        ///< start of the next line
+  std::uint32_t number;      ///< 1-based
+};
+
+/// Iterates the lines of a text, keeping byte offsets.
+class LineCursor {
+public:
+  explicit LineCursor(const std::string& t) : m_text(t) {}
+  bool next(Line& l) {
+    if (m_pos >= m_text.size()) return false;
+    std::size_t nl = m_text.find('\n', m_pos);
+    std::size_t stop = nl == std::string::npos ? m_text.size() : nl;
+    std::size_t content_end = stop;
+    if (content_end > m_pos && m_text[content_end - 1] == '\r') --content_end;
+    l.begin = static_cast<std::uint32_t>(m_pos);
+    l.end = static_cast<std::uint32_t>(content_end);
+    l.next = static_cast<std::uint32_t>(nl == std::string::npos ? m_text.size() : nl + 1);
+    l.number = ++m_line;
+    m_pos = l.next;
+    return true;
+  }
+
+private:
+  const std::string& m_text;
+  std::size_t m_pos = 0;
+  std::uint32_t m_line = 0;
+};
+
+/// Data part of a line: comment removed. Returns the view (not trimmed).
+std::string_view strip_comment(std::string_view s) {
+  std::size_t d = s.find('$');
+  return d == std::string_view::npos ? s : s.substr(0, d);
+}
+
+bool is_blank(std::string_view s) { return trim(s).empty(); }
+
+/// The fields of one physical line: the first field (name or continuation
+/// marker) and the data fields that follow.
+struct LineFields {
+  std::string first;                 ///< field 1, trimmed, upper case
+  std::vector<std::string> data;     ///< data fields (8 small, 4 large; free: as given)
+  bool large = false;
+  bool free = false;
+  std::string marker;                ///< field 10 (continuation marker), trimmed
+};
+
+void push_field(std::vector<std::string>& out, std::string_view raw) {
+  std::string_view t = trim(raw);
+  out.emplace_back(t);
+  for (auto& c : out.back()) c = static_cast<char>(std::toupper(static_cast<unsigned char>(c)));
+}
+
+LineFields split_line(std::string_view data) {
+  LineFields lf;
+  std::string expanded;
+  if (data.find('\t') != std::string_view::npos) {
+    expanded = expand_tabs(data);
+    data = expanded;
+  }
+  std::size_t comma = data.find(',');
+  if (comma != std::string_view::npos && comma < 10) {
+    lf.free = true;
+    std::vector<std::string> parts;
+    std::size_t start = 0;
+    while (true) {
+      std::size_t c = data.find(',', start);
+      push_field(parts, data.substr(start, c == std::string_view::npos ? std::string_view::npos : c - start));
+      if (c == std::string_view::npos) break;
+      start = c + 1;
+    }
+    lf.first = parts[0];
+    lf.large = !lf.first.empty() && (lf.first.back() == '*' || lf.first[0] == '*');
+    const std::size_t per_row = lf.large ? 4 : 8;
+    for (std::size_t i = 1; i < parts.size(); ++i) {
+      if (i == per_row + 1) { lf.marker = parts[i]; continue; }  // field 10
+      lf.data.push_back(std::move(parts[i]));
+    }
+    return lf;
+  }
+  auto col = [&](std::size_t b, std::size_t w) -> std::string_view {
+    if (b >= data.size()) return {};
+    return data.substr(b, std::min(w, data.size() - b));
+  };
+  std::string first;
+  push_field(lf.data, col(0, 8));
+  lf.first = std::move(lf.data.back());
+  lf.data.clear();
+  lf.large = !lf.first.empty() && (lf.first.back() == '*' || lf.first[0] == '*');
+  if (lf.large) {
+    for (int k = 0; k < 4; ++k) push_field(lf.data, col(8 + 16 * k, 16));
+  } else {
+    for (int k = 0; k < 8; ++k) push_field(lf.data, col(8 + 8 * k, 8));
+  }
+  lf.marker = std::string(trim(col(72, 8)));
+  return lf;
+}
+
+bool is_continuation(const LineFields& lf, std::string_view data) {
+  if (!lf.first.empty()) return lf.first[0] == '+' || lf.first[0] == '*';
+  return !is_blank(data);  // blank field 1 with data after it
+}
+
+struct Reader {
+  Deck& deck;
+  const ReadOptions& opt;
+  Section section = Section::Bulk;
+  std::vector<std::string> chain;  ///< canonical paths of files being read (cycle check)
+
+  // The card being read; continuations may follow it.
+  bool pending = false;
+  Card card;
+  std::string pending_marker;
+  std::uint32_t pending_file = 0;
+
+  [[noreturn]] void fail(std::uint32_t file, std::uint32_t line, const std::string& msg) {
+    throw ParseError(deck.location(file, line), msg);
+  }
+
+  static void check_text(Reader& r, std::uint32_t fi, const std::string& text, std::size_t max_line) {
+    if (text.empty()) r.fail(fi, 0, "empty file: expected NASTRAN bulk data");
+    std::uint32_t line = 1;
+    std::size_t line_start = 0;
+    for (std::size_t i = 0; i < text.size(); ++i) {
+      unsigned char c = static_cast<unsigned char>(text[i]);
+      if (c == '\n') {
+        if (i - line_start > max_line + 1)
+          r.fail(fi, line, "line is " + std::to_string(i - line_start) +
+                               " characters long (limit " + std::to_string(max_line) +
+                               "): not a NASTRAN deck line");
+        ++line;
+        line_start = i + 1;
+      } else if (c < 0x20 && c != '\t' && c != '\r' && c != '\f') {
+        char hex[8];
+        std::snprintf(hex, sizeof hex, "0x%02X", c);
+        r.fail(fi, line, std::string("binary data (byte ") + hex + " at column " +
+                             std::to_string(i - line_start + 1) + "): expected a NASTRAN text deck");
+      }
+    }
+    if (text.size() - line_start > max_line)
+      r.fail(fi, line, "line is " + std::to_string(text.size() - line_start) +
+                           " characters long (limit " + std::to_string(max_line) +
+                           "): not a NASTRAN deck line");
+  }
+
+  void add_rows(const LineFields& lf, std::uint32_t line_number) {
+    // Rows of the folded card are 8 fields wide; a large line fills half a row.
+    std::size_t n = card.fields.size();
+    if (!lf.large && !lf.free && (n - 1) % 8 != 0) card.fields.resize(n + (8 - (n - 1) % 8));
+    if (lf.free && !lf.large && (card.fields.size() - 1) % 8 != 0)
+      card.fields.resize(card.fields.size() + (8 - (card.fields.size() - 1) % 8));
+    card.rows.emplace_back(line_number, static_cast<std::uint32_t>(card.fields.size()));
+    std::size_t width = lf.large ? 4 : 8;
+    for (std::size_t k = 0; k < lf.data.size(); ++k) card.fields.push_back(lf.data[k]);
+    if (!lf.free || lf.data.size() < width)
+      for (std::size_t k = lf.data.size(); k < width; ++k) card.fields.emplace_back();
+  }
+
+  void finish_card(std::uint32_t fi, std::uint32_t& emitted, bool at_end) {
+    if (!pending) return;
+    pending = false;
+    if (!pending_marker.empty() && at_end) {
+      deck.problems.push_back({Problem::Severity::Error, deck.location(card.file, card.rows.back().first),
+                               card.name + " " + card.field(1) + ": unterminated continuation: field 10 holds '" +
+                                   pending_marker + "' but no continuation line follows"});
+    }
+    while (card.fields.size() > 1 && card.fields.back().empty()) card.fields.pop_back();
+    SourceFile& f = deck.files[card.file];
+    if (card.begin > emitted) f.chunks.push_back({Chunk::Kind::Verbatim, emitted, card.begin, 0});
+    f.chunks.push_back({Chunk::Kind::Card, card.begin, card.end, static_cast<std::uint32_t>(deck.cards.size())});
+    emitted = card.end;
+    deck.cards.push_back(std::move(card));
+    card = Card{};
+  }
+
+  std::uint32_t read_file(const std::string& path, const std::string& include_name, std::int32_t parent,
+                          std::uint32_t parent_line, std::string* text_in) {
+    std::uint32_t fi = static_cast<std::uint32_t>(deck.files.size());
+    deck.files.emplace_back();
+    deck.files[fi].path = path;
+    deck.files[fi].include_name = include_name;
+    deck.files[fi].parent = parent;
+    deck.files[fi].parent_line = parent_line;
+    if (text_in) {
+      deck.files[fi].text = std::move(*text_in);
+    } else {
+      std::error_code ec;
+      if (!fs::exists(path, ec)) {
+        if (parent >= 0) fail(static_cast<std::uint32_t>(parent), parent_line,
+                              "INCLUDE '" + include_name + "': file not found (looked for " + path + ")");
+        throw ParseError(SourceLocation{path, 0, {}}, "file not found");
+      }
+      if (fs::is_directory(path, ec)) fail(fi, 0, "is a directory, expected a NASTRAN deck");
+      std::ifstream in(path, std::ios::binary);
+      if (!in) fail(fi, 0, "cannot open file for reading");
+      std::ostringstream ss;
+      ss << in.rdbuf();
+      deck.files[fi].text = ss.str();
+    }
+    check_text(*this, fi, deck.files[fi].text, opt.max_line_length);
+    if (deck.files[fi].text.find("\r\n") != std::string::npos) deck.files[fi].newline = "\r\n";
+
+    std::error_code ec;
+    std::string canon = fs::weakly_canonical(path, ec).string();
+    for (const auto& c : chain)
+      if (c == canon) fail(static_cast<std::uint32_t>(parent), parent_line, "INCLUDE cycle: " + path + " includes itself");
+    if (static_cast<int>(chain.size()) >= opt.max_include_depth)
+      fail(static_cast<std::uint32_t>(parent), parent_line, "INCLUDE nested deeper than " + std::to_string(opt.max_include_depth) + " levels");
+    chain.push_back(canon);
+
+    const std::string& text = deck.files[fi].text;  // deque: stable while INCLUDEs append files
+    LineCursor cursor(text);
+    Line l;
+    std::uint32_t emitted = 0;
+    while (cursor.next(l)) {
+      std::string_view content(text.data() + l.begin, l.end - l.begin);
+      std::string_view data = strip_comment(content);
+      std::string_view tdata = trim(data);
+
+      if (section != Section::AfterEnddata && iequals_prefix(tdata, "INCLUDE") &&
+          (tdata.size() == 7 || tdata[7] == ' ' || tdata[7] == '\'' || tdata[7] == '"' || tdata[7] == '\t')) {
+        if (section == Section::Bulk) finish_card(fi, emitted, false);
+        handle_include(fi, l, cursor, emitted, text);
+        continue;
+      }
+      if (section == Section::Executive || section == Section::CaseControl) {
+        std::string u = upper(tdata);
+        if (!u.empty()) deck.statements.push_back({section, u, fi, l.number});
+        if (section == Section::Executive && u == "CEND") section = Section::CaseControl;
+        else if (u.rfind("BEGIN", 0) == 0 && u.find("BULK") != std::string::npos) section = Section::Bulk;
+        continue;
+      }
+      if (section == Section::AfterEnddata) continue;
+
+      if (tdata.empty()) continue;  // comment or blank line: verbatim, may sit inside a card
+      if (iequals_prefix(tdata, "ENDDATA") && upper(tdata).find_first_not_of(' ', 7) == std::string::npos) {
+        finish_card(fi, emitted, true);
+        section = Section::AfterEnddata;
+        continue;
+      }
+      LineFields lf = split_line(data);
+      if (is_continuation(lf, data)) {
+        if (!pending || pending_file != fi) {
+          deck.problems.push_back({Problem::Severity::Error, deck.location(fi, l.number),
+                                   "continuation line with no card before it (field 1 '" + lf.first + "'); kept verbatim"});
+          continue;
+        }
+        add_rows(lf, l.number);
+        card.end = l.next;
+        pending_marker = lf.marker;
+        continue;
+      }
+      finish_card(fi, emitted, false);
+      pending = true;
+      pending_file = fi;
+      card.file = fi;
+      card.line = l.number;
+      card.begin = l.begin;
+      card.end = l.next;
+      card.format = lf.free ? FieldFormat::Free : (lf.large ? FieldFormat::Large : FieldFormat::Small);
+      std::string name = lf.first;
+      if (!name.empty() && name.back() == '*') name.pop_back();
+      card.name = name;
+      card.fields.push_back(name);
+      add_rows(lf, l.number);
+      pending_marker = lf.marker;
+    }
+    if (section == Section::Bulk) finish_card(fi, emitted, true);
+    SourceFile& f = deck.files[fi];
+    if (emitted < f.text.size())
+      f.chunks.push_back({Chunk::Kind::Verbatim, emitted, static_cast<std::uint32_t>(f.text.size()), 0});
+    chain.pop_back();
+    return fi;
+  }
+
+  void handle_include(std::uint32_t fi, const Line& first, LineCursor& cursor, std::uint32_t& emitted,
+                      const std::string& text) {
+    // INCLUDE 'path' — the quoted path may continue over several lines.
+    std::string_view content(text.data() + first.begin, first.end - first.begin);
+    std::string_view rest = trim(content.substr(content.find_first_not_of(" \t") + 7));
+    std::string name;
+    std::uint32_t end = first.next;
+    if (!rest.empty() && (rest[0] == '\'' || rest[0] == '"')) {
+      char q = rest[0];
+      std::string_view piece = rest.substr(1);
+      Line l = first;
+      while (true) {
+        std::size_t close = piece.find(q);
+        if (close != std::string_view::npos) {
+          name += std::string(trim(piece.substr(0, close)));
+          break;
+        }
+        name += std::string(trim(piece));
+        if (!cursor.next(l))
+          fail(fi, first.number, "INCLUDE: unterminated quoted path (no closing " + std::string(1, q) + " before end of file)");
+        piece = std::string_view(text.data() + l.begin, l.end - l.begin);
+        end = l.next;
+      }
+    } else {
+      name = std::string(trim(strip_comment(rest)));
+    }
+    if (name.empty()) fail(fi, first.number, "INCLUDE: expected a file name");
+    fs::path base = fs::path(deck.files[fi].path).parent_path();
+    fs::path p = fs::path(name).is_absolute() ? fs::path(name) : base / name;
+    if (first.begin > emitted)
+      deck.files[fi].chunks.push_back({Chunk::Kind::Verbatim, emitted, first.begin, 0});
+    std::size_t chunk_pos = deck.files[fi].chunks.size();
+    deck.files[fi].chunks.push_back({Chunk::Kind::Include, first.begin, end, 0});
+    emitted = end;
+    std::uint32_t child = read_file(p.lexically_normal().string(), name, static_cast<std::int32_t>(fi), first.number, nullptr);
+    deck.files[fi].chunks[chunk_pos].index = child;
+  }
+};
+
+/// Where the main file starts: executive control if it has CEND before BEGIN BULK,
+/// case control if it has only BEGIN BULK, else bulk data only.
+Section initial_section(const std::string& text) {
+  LineCursor c(text);
+  Line l;
+  bool cend = false;
+  while (c.next(l)) {
+    std::string u = upper(trim(strip_comment(std::string_view(text.data() + l.begin, l.end - l.begin))));
+    if (u == "CEND") cend = true;
+    if (u.rfind("BEGIN", 0) == 0 && u.find("BULK") != std::string::npos)
+      return cend ? Section::Executive : Section::CaseControl;
+  }
+  return Section::Bulk;
+}
+
+Deck read_impl(std::string text, const std::string& path, const ReadOptions& options) {
+  Deck deck;
+  Reader r{deck, options, Section::Bulk, {}, false, {}, {}, 0};
+  r.section = initial_section(text);
+  deck.has_bulk_marker = r.section != Section::Bulk;
+  r.read_file(path, "", -1, 0, &text);
+  return deck;
+}
+
+}  // namespace
+
+Deck read_deck(const std::string& path, const ReadOptions& options) {
+  std::error_code ec;
+  if (!fs::exists(path, ec)) throw ParseError(SourceLocation{path, 0, {}}, "file not found");
+  if (fs::is_directory(path, ec)) throw ParseError(SourceLocation{path, 0, {}}, "is a directory, expected a NASTRAN deck");
+  std::ifstream in(path, std::ios::binary);
+  if (!in) throw ParseError(SourceLocation{path, 0, {}}, "cannot open file for reading");
+  std::ostringstream ss;
+  ss << in.rdbuf();
+  return read_impl(ss.str(), path, options);
+}
+
+Deck read_deck_text(std::string text, const std::string& name, const ReadOptions& options) {
+  return read_impl(std::move(text), name, options);
+}
+
+}  // namespace ssid::formats
