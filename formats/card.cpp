@@ -2,16 +2,11 @@
 
 namespace ssid::formats {
 
-const std::string& Card::field(std::size_t i) const {
-  static const std::string empty;
-  return i < fields.size() ? fields[i] : empty;
-}
-
 std::uint32_t Card::line_of(std::size_t i) const {
   std::uint32_t l = line;
-  for (const auto& [row_line, first] : rows) {
-    if (first > i) break;
-    l = row_line;
+  for (std::uint32_t r = 0; r < m_nrows; ++r) {
+    if (m_rows[r].second > i) break;
+    l = m_rows[r].first;
   }
   return l;
 }

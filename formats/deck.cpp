@@ -15,10 +15,15 @@ std::string value_text(const FieldValue& v) {
 
 void Deck::set_values(std::size_t card_index, std::vector<FieldValue> values) {
   Card& c = cards.at(card_index);
-  c.fields.resize(values.size());
-  for (std::size_t i = 1; i < values.size(); ++i) c.fields[i] = value_text(values[i]);
-  if (!values.empty()) values[0] = c.name;
-  if (!c.fields.empty()) c.fields[0] = c.name;
+  if (!c.modified) c.original_fields.assign(c.fields().begin(), c.fields().end());
+  auto* f = arena->make_array<std::string_view>(values.size());
+  for (std::size_t i = 1; i < values.size(); ++i) f[i] = arena->copy(value_text(values[i]));
+  if (!values.empty()) {
+    values[0] = c.name;
+    f[0] = arena->copy(c.name);
+  }
+  c.m_fields = f;
+  c.m_nfields = static_cast<std::uint32_t>(values.size());
   c.values = std::move(values);
   c.modified = true;
 }

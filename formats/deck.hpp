@@ -11,6 +11,9 @@
 #include <string>
 #include <vector>
 
+#include <memory>
+
+#include "formats/arena.hpp"
 #include "formats/card.hpp"
 #include "formats/parse_error.hpp"
 
@@ -44,6 +47,8 @@ struct Statement {
 };
 
 struct Deck {
+  /// Storage of field texts; a Deck is move-only so the cards' views stay valid.
+  std::unique_ptr<Arena> arena = std::make_unique<Arena>();
   /// files[0] is the main file; a deque so references stay valid while INCLUDEs are read.
   std::deque<SourceFile> files;
   std::vector<Card> cards;        ///< bulk data cards in reading order

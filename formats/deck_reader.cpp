@@ -10,6 +10,7 @@
 ///                "NAME*," makes it large (four fields per line).
 /// A line whose field 1 starts with '+' or '*', or is blank, continues the card
 /// above it. Tabs advance to the next multiple of 8 columns; '$' starts a comment.
+#include <algorithm>
 #include <filesystem>
 #include <fstream>
 #include <sstream>
@@ -86,64 +87,61 @@ std::string_view strip_comment(std::string_view s) {
 bool is_blank(std::string_view s) { return trim(s).empty(); }
 
 /// The fields of one physical line: the first field (name or continuation
-/// marker) and the data fields that follow.
+/// marker) and the data fields that follow (texts in the deck's arena).
 struct LineFields {
-  std::string first;                 ///< field 1, trimmed, upper case
-  std::vector<std::string> data;     ///< data fields (8 small, 4 large; free: as given)
+  std::string_view first;              ///< field 1, trimmed, upper case
+  std::vector<std::string_view> data;  ///< data fields (8 small, 4 large; free: as given)
   bool large = false;
   bool free = false;
-  std::string marker;                ///< field 10 (continuation marker), trimmed
+  std::string_view marker;             ///< field 10 (continuation marker), trimmed
 };
 
-void push_field(std::vector<std::string>& out, std::string_view raw) {
-  std::string_view t = trim(raw);
-  out.emplace_back(t);
-  for (auto& c : out.back()) c = static_cast<char>(std::toupper(static_cast<unsigned char>(c)));
-}
-
-LineFields split_line(std::string_view data) {
-  LineFields lf;
-  std::string expanded;
+/// Splits a line's data part (comment removed) into fields; `scratch` holds the
+/// tab-expanded text when the line has tabs.
+void split_line(std::string_view data, Arena& arena, LineFields& lf, std::string& scratch) {
+  lf.data.clear();
+  lf.marker = {};
   if (data.find('\t') != std::string_view::npos) {
-    expanded = expand_tabs(data);
-    data = expanded;
+    scratch = expand_tabs(data);
+    data = scratch;
   }
   std::size_t comma = data.find(',');
   if (comma != std::string_view::npos && comma < 10) {
     lf.free = true;
-    std::vector<std::string> parts;
-    std::size_t start = 0;
+    std::size_t start = 0, k = 0;
+    std::size_t per_row = 8;
     while (true) {
       std::size_t c = data.find(',', start);
-      push_field(parts, data.substr(start, c == std::string_view::npos ? std::string_view::npos : c - start));
+      std::string_view part = arena.copy_upper(
+          trim(data.substr(start, c == std::string_view::npos ? std::string_view::npos : c - start)));
+      if (k == 0) {
+        lf.first = part;
+        lf.large = !part.empty() && (part.back() == '*' || part[0] == '*');
+        per_row = lf.large ? 4 : 8;
+      } else if (k == per_row + 1) {
+        lf.marker = part;  // field 10
+      } else {
+        lf.data.push_back(part);
+      }
+      ++k;
       if (c == std::string_view::npos) break;
       start = c + 1;
     }
-    lf.first = parts[0];
-    lf.large = !lf.first.empty() && (lf.first.back() == '*' || lf.first[0] == '*');
-    const std::size_t per_row = lf.large ? 4 : 8;
-    for (std::size_t i = 1; i < parts.size(); ++i) {
-      if (i == per_row + 1) { lf.marker = parts[i]; continue; }  // field 10
-      lf.data.push_back(std::move(parts[i]));
-    }
-    return lf;
+    return;
   }
+  lf.free = false;
   auto col = [&](std::size_t b, std::size_t w) -> std::string_view {
     if (b >= data.size()) return {};
-    return data.substr(b, std::min(w, data.size() - b));
+    return trim(data.substr(b, std::min(w, data.size() - b)));
   };
-  std::string first;
-  push_field(lf.data, col(0, 8));
-  lf.first = std::move(lf.data.back());
-  lf.data.clear();
+  lf.first = arena.copy_upper(col(0, 8));
   lf.large = !lf.first.empty() && (lf.first.back() == '*' || lf.first[0] == '*');
   if (lf.large) {
-    for (int k = 0; k < 4; ++k) push_field(lf.data, col(8 + 16 * k, 16));
+    for (int k = 0; k < 4; ++k) lf.data.push_back(arena.copy_upper(col(8 + 16 * k, 16)));
   } else {
-    for (int k = 0; k < 8; ++k) push_field(lf.data, col(8 + 8 * k, 8));
+    for (int k = 0; k < 8; ++k) lf.data.push_back(arena.copy_upper(col(8 + 8 * k, 8)));
   }
-  lf.marker = std::string(trim(col(72, 8)));
-  return lf;
+  lf.marker = col(72, 8);
 }
 
 bool is_continuation(const LineFields& lf, std::string_view data) {
@@ -152,6 +150,7 @@ bool is_continuation(const LineFields& lf, std::string_view data) {
 }
 
 struct Reader {
+  Reader(Deck& d, const ReadOptions& o) : deck(d), opt(o) {}
   Deck& deck;
   const ReadOptions& opt;
   Section section = Section::Bulk;
@@ -162,6 +161,20 @@ struct Reader {
   Card card;
   std::string pending_marker;
   std::uint32_t pending_file = 0;
+  std::vector<std::string_view> fields;                   ///< fields of the pending card
+  std::vector<std::pair<std::uint32_t, std::uint32_t>> rows;  ///< its physical lines
+  LineFields lf;                                          ///< reused per line
+  std::string scratch;
+
+  std::string slurp(const std::string& path, std::uint32_t fi) {
+    std::ifstream in(path, std::ios::binary | std::ios::ate);
+    if (!in) fail(fi, 0, "cannot open file for reading");
+    std::string t(static_cast<std::size_t>(in.tellg()), '\0');
+    in.seekg(0);
+    in.read(t.data(), static_cast<std::streamsize>(t.size()));
+    if (!in) fail(fi, 0, "error reading file");
+    return t;
+  }
 
   [[noreturn]] void fail(std::uint32_t file, std::uint32_t line, const std::string& msg) {
     throw ParseError(deck.location(file, line), msg);
@@ -195,29 +208,37 @@ struct Reader {
 
   void add_rows(const LineFields& lf, std::uint32_t line_number) {
     // Rows of the folded card are 8 fields wide; a large line fills half a row.
-    std::size_t n = card.fields.size();
-    if (!lf.large && !lf.free && (n - 1) % 8 != 0) card.fields.resize(n + (8 - (n - 1) % 8));
-    if (lf.free && !lf.large && (card.fields.size() - 1) % 8 != 0)
-      card.fields.resize(card.fields.size() + (8 - (card.fields.size() - 1) % 8));
-    card.rows.emplace_back(line_number, static_cast<std::uint32_t>(card.fields.size()));
-    std::size_t width = lf.large ? 4 : 8;
-    for (std::size_t k = 0; k < lf.data.size(); ++k) card.fields.push_back(lf.data[k]);
-    if (!lf.free || lf.data.size() < width)
-      for (std::size_t k = lf.data.size(); k < width; ++k) card.fields.emplace_back();
+    if (!lf.large && (fields.size() - 1) % 8 != 0) fields.resize(fields.size() + (8 - (fields.size() - 1) % 8));
+    rows.emplace_back(line_number, static_cast<std::uint32_t>(fields.size()));
+    const std::size_t width = lf.large ? 4 : 8;
+    fields.insert(fields.end(), lf.data.begin(), lf.data.end());
+    if (lf.data.size() < width) fields.resize(fields.size() + (width - lf.data.size()));
   }
 
   void finish_card(std::uint32_t fi, std::uint32_t& emitted, bool at_end) {
     if (!pending) return;
     pending = false;
     if (!pending_marker.empty() && at_end) {
-      deck.problems.push_back({Problem::Severity::Error, deck.location(card.file, card.rows.back().first),
-                               card.name + " " + card.field(1) + ": unterminated continuation: field 10 holds '" +
-                                   pending_marker + "' but no continuation line follows"});
+      deck.problems.push_back({Problem::Severity::Error, deck.location(card.file, rows.back().first),
+                               card.name + " " + std::string(fields.size() > 1 ? fields[1] : "") +
+                                   ": unterminated continuation: field 10 holds '" + pending_marker +
+                                   "' but no continuation line follows"});
     }
-    while (card.fields.size() > 1 && card.fields.back().empty()) card.fields.pop_back();
-    SourceFile& f = deck.files[card.file];
-    if (card.begin > emitted) f.chunks.push_back({Chunk::Kind::Verbatim, emitted, card.begin, 0});
-    f.chunks.push_back({Chunk::Kind::Card, card.begin, card.end, static_cast<std::uint32_t>(deck.cards.size())});
+    while (fields.size() > 1 && fields.back().empty()) fields.pop_back();
+    Arena& a = *deck.arena;
+    auto* f = a.make_array<std::string_view>(fields.size());
+    std::copy(fields.begin(), fields.end(), f);
+    card.m_fields = f;
+    card.m_nfields = static_cast<std::uint32_t>(fields.size());
+    auto* r = a.make_array<std::pair<std::uint32_t, std::uint32_t>>(rows.size());
+    std::copy(rows.begin(), rows.end(), r);
+    card.m_rows = r;
+    card.m_nrows = static_cast<std::uint32_t>(rows.size());
+    fields.clear();
+    rows.clear();
+    SourceFile& sf = deck.files[card.file];
+    if (card.begin > emitted) sf.chunks.push_back({Chunk::Kind::Verbatim, emitted, card.begin, 0});
+    sf.chunks.push_back({Chunk::Kind::Card, card.begin, card.end, static_cast<std::uint32_t>(deck.cards.size())});
     emitted = card.end;
     deck.cards.push_back(std::move(card));
     card = Card{};
@@ -241,11 +262,7 @@ struct Reader {
         throw ParseError(SourceLocation{path, 0, {}}, "file not found");
       }
       if (fs::is_directory(path, ec)) fail(fi, 0, "is a directory, expected a NASTRAN deck");
-      std::ifstream in(path, std::ios::binary);
-      if (!in) fail(fi, 0, "cannot open file for reading");
-      std::ostringstream ss;
-      ss << in.rdbuf();
-      deck.files[fi].text = ss.str();
+      deck.files[fi].text = slurp(path, fi);
     }
     check_text(*this, fi, deck.files[fi].text, opt.max_line_length);
     if (deck.files[fi].text.find("\r\n") != std::string::npos) deck.files[fi].newline = "\r\n";
@@ -288,16 +305,17 @@ struct Reader {
         section = Section::AfterEnddata;
         continue;
       }
-      LineFields lf = split_line(data);
+      split_line(data, *deck.arena, lf, scratch);
       if (is_continuation(lf, data)) {
         if (!pending || pending_file != fi) {
           deck.problems.push_back({Problem::Severity::Error, deck.location(fi, l.number),
-                                   "continuation line with no card before it (field 1 '" + lf.first + "'); kept verbatim"});
+                                   "continuation line with no card before it (field 1 '" + std::string(lf.first) +
+                                       "'); kept verbatim"});
           continue;
         }
         add_rows(lf, l.number);
         card.end = l.next;
-        pending_marker = lf.marker;
+        pending_marker = std::string(lf.marker);
         continue;
       }
       finish_card(fi, emitted, false);
@@ -308,12 +326,12 @@ struct Reader {
       card.begin = l.begin;
       card.end = l.next;
       card.format = lf.free ? FieldFormat::Free : (lf.large ? FieldFormat::Large : FieldFormat::Small);
-      std::string name = lf.first;
-      if (!name.empty() && name.back() == '*') name.pop_back();
-      card.name = name;
-      card.fields.push_back(name);
+      std::string_view name = lf.first;
+      if (!name.empty() && name.back() == '*') name.remove_suffix(1);
+      card.name = std::string(name);
+      fields.push_back(name);
       add_rows(lf, l.number);
-      pending_marker = lf.marker;
+      pending_marker = std::string(lf.marker);
     }
     if (section == Section::Bulk) finish_card(fi, emitted, true);
     SourceFile& f = deck.files[fi];
@@ -369,7 +387,9 @@ Section initial_section(const std::string& text) {
   Line l;
   bool cend = false;
   while (c.next(l)) {
-    std::string u = upper(trim(strip_comment(std::string_view(text.data() + l.begin, l.end - l.begin))));
+    std::string_view t = trim(strip_comment(std::string_view(text.data() + l.begin, l.end - l.begin)));
+    if (t.size() < 4 || (t[0] != 'C' && t[0] != 'c' && t[0] != 'B' && t[0] != 'b')) continue;
+    std::string u = upper(t);
     if (u == "CEND") cend = true;
     if (u.rfind("BEGIN", 0) == 0 && u.find("BULK") != std::string::npos)
       return cend ? Section::Executive : Section::CaseControl;
@@ -379,9 +399,10 @@ Section initial_section(const std::string& text) {
 
 Deck read_impl(std::string text, const std::string& path, const ReadOptions& options) {
   Deck deck;
-  Reader r{deck, options, Section::Bulk, {}, false, {}, {}, 0};
+  Reader r{deck, options};
   r.section = initial_section(text);
   deck.has_bulk_marker = r.section != Section::Bulk;
+  deck.cards.reserve(static_cast<std::size_t>(std::count(text.begin(), text.end(), '\n')) + 1);
   r.read_file(path, "", -1, 0, &text);
   return deck;
 }
@@ -392,11 +413,12 @@ Deck read_deck(const std::string& path, const ReadOptions& options) {
   std::error_code ec;
   if (!fs::exists(path, ec)) throw ParseError(SourceLocation{path, 0, {}}, "file not found");
   if (fs::is_directory(path, ec)) throw ParseError(SourceLocation{path, 0, {}}, "is a directory, expected a NASTRAN deck");
-  std::ifstream in(path, std::ios::binary);
+  std::ifstream in(path, std::ios::binary | std::ios::ate);
   if (!in) throw ParseError(SourceLocation{path, 0, {}}, "cannot open file for reading");
-  std::ostringstream ss;
-  ss << in.rdbuf();
-  return read_impl(ss.str(), path, options);
+  std::string text(static_cast<std::size_t>(in.tellg()), '\0');
+  in.seekg(0);
+  in.read(text.data(), static_cast<std::streamsize>(text.size()));
+  return read_impl(std::move(text), path, options);
 }
 
 Deck read_deck_text(std::string text, const std::string& name, const ReadOptions& options) {

@@ -27,7 +27,7 @@ bool exact_text(const FieldValue& v, int width, std::string& out) {
 }
 
 /// Does the original field text already spell value `v`?
-bool same_value(const std::string& text, const FieldValue& v) {
+bool same_value(std::string_view text, const FieldValue& v) {
   if (std::holds_alternative<std::monostate>(v)) return text.empty();
   if (auto* i = std::get_if<std::int64_t>(&v)) { auto p = parse_integer(text); return p && *p == *i; }
   if (auto* d = std::get_if<double>(&v)) { auto p = parse_real(text); return p && *p == *d; }
@@ -52,9 +52,9 @@ std::string format_card(const std::string& name, const std::vector<FieldValue>& 
   auto fill = [&](int width) {
     bool ok = true;
     for (std::size_t i = 1; i < n; ++i) {
-      if (original && i < original->fields.size() && same_value(original->fields[i], values[i]) &&
-          static_cast<int>(original->fields[i].size()) <= width) {
-        text[i] = original->fields[i];
+      if (original && i < original->original_fields.size() && same_value(original->original_fields[i], values[i]) &&
+          static_cast<int>(original->original_fields[i].size()) <= width) {
+        text[i] = std::string(original->original_fields[i]);
         continue;
       }
       if (!exact_text(values[i], width, text[i])) {

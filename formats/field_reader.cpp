@@ -5,8 +5,8 @@
 namespace ssid::formats {
 
 std::string FieldReader::label() const {
-  const std::string& id = m_card.field(1);
-  return id.empty() ? m_card.name : m_card.name + " " + id;
+  std::string_view id = m_card.field(1);
+  return id.empty() ? m_card.name : m_card.name + " " + std::string(id);
 }
 
 void FieldReader::fail(std::size_t i, const char* name, const std::string& expected) const {
@@ -15,7 +15,7 @@ void FieldReader::fail(std::size_t i, const char* name, const std::string& expec
   std::size_t nfield = i == 0 ? 1 : (i - 1) % 8 + 2;
   std::string where = label() + (row > 0 ? " continuation " + std::to_string(row) : "") + " field " +
                       std::to_string(nfield) + " (" + name + ")";
-  const std::string& got = m_card.field(i);
+  std::string got(m_card.field(i));
   throw ParseError(m_deck.location(m_card, i),
                    where + ": expected " + expected + ", got " + (got.empty() ? "blank" : "\"" + got + "\""));
 }
@@ -66,15 +66,15 @@ std::optional<double> FieldReader::real_or_blank(std::size_t i, const char* name
 
 std::string FieldReader::text(std::size_t i, const char* name) const {
   if (blank(i)) fail(i, name, "a name");
-  return m_card.field(i);
+  return std::string(m_card.field(i));
 }
 
 std::string FieldReader::text_or(std::size_t i, const char* name, const std::string& d) const {
-  return blank(i) ? d : m_card.field(i);
+  return blank(i) ? d : std::string(m_card.field(i));
 }
 
 std::string FieldReader::components(std::size_t i, const char* name, bool allow_blank) const {
-  const std::string& s = m_card.field(i);
+  std::string s(m_card.field(i));
   if (s.empty()) {
     if (allow_blank) return s;
     fail(i, name, "components (digits 1-6)");

@@ -18,7 +18,7 @@ public:
   FieldReader(const Deck& deck, const Card& card) : m_deck(deck), m_card(card) {}
 
   const Card& card() const { return m_card; }
-  std::size_t size() const { return m_card.fields.size(); }
+  std::size_t size() const { return m_card.size(); }
   bool blank(std::size_t i) const { return m_card.field(i).empty(); }
 
   std::int64_t integer(std::size_t i, const char* name) const;

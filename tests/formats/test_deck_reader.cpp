@@ -1,0 +1,259 @@
+#include <catch2/catch.hpp>
+
+#include <filesystem>
+#include <fstream>
+
+#include "formats/deck.hpp"
+#include "formats/deck_writer.hpp"
+#include "formats/field_reader.hpp"
+
+using namespace ssid::formats;
+namespace fs = std::filesystem;
+
+namespace {
+fs::path scratch(const std::string& name) {
+  fs::path p = fs::temp_directory_path() / ("ssid_test_reader_" + name);
+  fs::remove_all(p);
+  fs::create_directories(p);
+  return p;
+}
+void put(const fs::path& p, const std::string& text) {
+  fs::create_directories(p.parent_path());
+  std::ofstream(p, std::ios::binary) << text;
+}
+std::string slurp(const fs::path& p) {
+  std::ifstream in(p, std::ios::binary);
+  return std::string(std::istreambuf_iterator<char>(in), {});
+}
+}  // namespace
+
+TEST_CASE("small field: columns 1-8, 9-72 in eights, 73-80 marker, 81+ ignored", "[deck]") {
+  Deck d = read_deck_text(
+      "GRID    1       2       1.5     2.5     3.5     4       123     7       +G1     ignored\n", "t.bdf");
+  REQUIRE(d.cards.size() == 1);
+  const Card& c = d.cards[0];
+  CHECK(c.name == "GRID");
+  CHECK(c.format == FieldFormat::Small);
+  REQUIRE(c.size() == 9);
+  CHECK(c.field(1) == "1");
+  CHECK(c.field(2) == "2");
+  CHECK(c.field(3) == "1.5");
+  CHECK(c.field(8) == "7");
+  CHECK(c.line == 1);
+}
+
+TEST_CASE("continuations: explicit markers, blank field 1, '+' and '*'", "[deck]") {
+  const char* text =
+      "$ comment before\n"
+      "PBAR    1       2       1.      2.      3.      4.      5.              +PB1\n"
+      "+PB1    1.      2.      3.      4.\n"
+      "$ a comment inside the card\n"
+      "        9.      8.\n"
+      "CROD    7       1       1       2\n";
+  Deck d = read_deck_text(text, "t.bdf");
+  REQUIRE(d.cards.size() == 2);
+  const Card& p = d.cards[0];
+  CHECK(p.field(7) == "5.");
+  CHECK(p.field(9) == "1.");
+  CHECK(p.field(12) == "4.");
+  CHECK(p.field(17) == "9.");
+  CHECK(p.field(18) == "8.");
+  CHECK(p.line_of(18) == 5);
+  CHECK(p.line_of(10) == 3);
+  CHECK(d.cards[1].line == 6);
+  CHECK(d.problems.empty());
+}
+
+TEST_CASE("large field: NAME* with four 16-column fields and '*' continuations", "[deck]") {
+  const char* text =
+      "GRID*                  1               0             1.5             2.5*G1\n"
+      "*G1                  3.5               0\n";
+  Deck d = read_deck_text(text, "t.bdf");
+  REQUIRE(d.cards.size() == 1);
+  const Card& c = d.cards[0];
+  CHECK(c.name == "GRID");
+  CHECK(c.format == FieldFormat::Large);
+  CHECK(c.field(1) == "1");
+  CHECK(c.field(3) == "1.5");
+  CHECK(c.field(4) == "2.5");
+  CHECK(c.field(5) == "3.5");
+  CHECK(c.field(6) == "0");
+}
+
+TEST_CASE("free field, lower case, tabs, and mixed formats in one deck", "[deck]") {
+  const char* text =
+      "grid,1,,1.,2.,3.\n"
+      "GRID\t2\t\t4.\t5.\t6.\n"
+      "cbar,5,1,1,2,0.,1.,0.,,+\n"
+      "+,,,,1.\n"
+      "GRID*,3,,7.,8.\n"
+      "*,9.\n";
+  Deck d = read_deck_text(text, "t.bdf");
+  REQUIRE(d.cards.size() == 4);
+  CHECK(d.cards[0].format == FieldFormat::Free);
+  CHECK(d.cards[0].field(3) == "1.");
+  CHECK(d.cards[1].field(3) == "4.");
+  CHECK(d.cards[1].field(5) == "6.");
+  CHECK(d.cards[2].name == "CBAR");
+  CHECK(d.cards[2].field(7) == "0.");
+  CHECK(d.cards[2].field(12) == "1.");
+  CHECK(d.cards[3].field(3) == "7.");
+  CHECK(d.cards[3].field(5) == "9.");
+}
+
+TEST_CASE("executive, case control and bulk sections; text after ENDDATA kept", "[deck]") {
+  const char* text =
+      "ID TEST\nSOL 103\nCEND\nTITLE = X\nSPC = 1\nMETHOD=10\nBEGIN BULK\n"
+      "GRID    1\nENDDATA\nafter enddata is ignored\n";
+  Deck d = read_deck_text(text, "t.bdf");
+  CHECK(d.has_bulk_marker);
+  REQUIRE(d.cards.size() == 1);
+  REQUIRE(d.statements.size() == 7);
+  CHECK(d.statements[1].text == "SOL 103");
+  CHECK(d.statements[1].section == Section::Executive);
+  CHECK(d.statements[4].text == "SPC = 1");
+  CHECK(d.statements[4].section == Section::CaseControl);
+  CHECK(render_file(d, 0) == text);
+}
+
+TEST_CASE("a deck that is bulk data only", "[deck]") {
+  Deck d = read_deck_text("GRID    1\nGRID    2\n", "t.bdf");
+  CHECK_FALSE(d.has_bulk_marker);
+  CHECK(d.cards.size() == 2);
+}
+
+TEST_CASE("INCLUDE: quoted, relative to the including file, nested, split over lines", "[deck]") {
+  fs::path dir = scratch("include");
+  put(dir / "main.bdf", "SOL 103\nCEND\nBEGIN BULK\nINCLUDE 'sub/a.bdf'\nGRID    1\nINCLUDE 'sub/\n    b.bdf'\nENDDATA\n");
+  put(dir / "sub/a.bdf", "GRID    2\ninclude \"deeper/c.bdf\"\n");
+  put(dir / "sub/deeper/c.bdf", "GRID    3\n");
+  put(dir / "sub/b.bdf", "GRID    4\n");
+  Deck d = read_deck((dir / "main.bdf").string());
+  REQUIRE(d.files.size() == 4);
+  REQUIRE(d.cards.size() == 4);
+  CHECK(d.cards[0].field(1) == "2");
+  CHECK(d.cards[1].field(1) == "3");
+  CHECK(d.cards[2].field(1) == "1");
+  CHECK(d.cards[3].field(1) == "4");
+  CHECK(d.files[3].include_name == "sub/b.bdf");
+  // Locations carry the include chain.
+  auto loc = d.location(d.cards[1], 1);
+  CHECK(loc.line == 1);
+  REQUIRE(loc.included_from.size() == 2);
+  // Round trip of all files.
+  fs::path out = dir / "out";
+  auto written = write_deck(d, (out / "main.bdf").string());
+  CHECK(written.size() == 4);
+  for (const char* f : {"main.bdf", "sub/a.bdf", "sub/deeper/c.bdf", "sub/b.bdf"})
+    CHECK(slurp(out / f) == slurp(dir / f));
+}
+
+TEST_CASE("bad input: clear errors with file and line, never a crash", "[deck][errors]") {
+  fs::path dir = scratch("errors");
+  SECTION("missing INCLUDE file names the INCLUDE line") {
+    put(dir / "m.bdf", "GRID    1\nINCLUDE 'nope.bdf'\n");
+    try {
+      read_deck((dir / "m.bdf").string());
+      FAIL("no error");
+    } catch (const ParseError& e) {
+      CHECK(e.where().line == 2);
+      CHECK_THAT(e.what(), Catch::Contains("m.bdf:2") && Catch::Contains("nope.bdf") && Catch::Contains("not found"));
+    }
+  }
+  SECTION("missing main file") {
+    CHECK_THROWS_WITH(read_deck((dir / "absent.bdf").string()), Catch::Contains("absent.bdf") && Catch::Contains("not found"));
+  }
+  SECTION("empty file") {
+    put(dir / "e.bdf", "");
+    CHECK_THROWS_WITH(read_deck((dir / "e.bdf").string()), Catch::Contains("e.bdf") && Catch::Contains("empty file"));
+  }
+  SECTION("binary garbage") {
+    std::string junk = "GRID    1\n";
+    junk += std::string("\x7f" "ELF\x02\x01\x01\x00\x00", 9);
+    put(dir / "b.bdf", junk);
+    CHECK_THROWS_WITH(read_deck((dir / "b.bdf").string()), Catch::Contains("b.bdf:2") && Catch::Contains("binary data"));
+  }
+  SECTION("10 MB line") {
+    put(dir / "l.bdf", "GRID    1\n" + std::string(10 * 1024 * 1024, 'x') + "\n");
+    CHECK_THROWS_WITH(read_deck((dir / "l.bdf").string()), Catch::Contains("l.bdf:2") && Catch::Contains("characters long"));
+  }
+  SECTION("unterminated INCLUDE quote") {
+    put(dir / "q.bdf", "INCLUDE 'abc\n   def\n");
+    CHECK_THROWS_WITH(read_deck((dir / "q.bdf").string()), Catch::Contains("q.bdf:1") && Catch::Contains("unterminated"));
+  }
+  SECTION("INCLUDE cycle") {
+    put(dir / "c1.bdf", "INCLUDE 'c2.bdf'\n");
+    put(dir / "c2.bdf", "INCLUDE 'c1.bdf'\n");
+    CHECK_THROWS_WITH(read_deck((dir / "c1.bdf").string()), Catch::Contains("cycle"));
+  }
+  SECTION("unterminated continuation at end of file is a problem") {
+    Deck d = read_deck_text("PBAR    1       2       1.                                              +P1\n", "u.bdf");
+    REQUIRE(d.problems.size() == 1);
+    CHECK_THAT(d.problems[0].str(), Catch::Contains("u.bdf:1") && Catch::Contains("unterminated continuation"));
+  }
+  SECTION("orphan continuation is reported and kept verbatim") {
+    const std::string text = "+C1     1.      2.\nGRID    1\n";
+    Deck d = read_deck_text(text, "o.bdf");
+    REQUIRE(d.problems.size() == 1);
+    CHECK_THAT(d.problems[0].str(), Catch::Contains("o.bdf:1") && Catch::Contains("continuation line with no card"));
+    CHECK(render_file(d, 0) == text);
+  }
+}
+
+TEST_CASE("typed field readers name file, line, card, field and what was expected", "[deck][errors]") {
+  Deck d = read_deck_text("$\nCROD    10      1       1.5     2\n", "truss.bdf");
+  FieldReader r(d, d.cards[0]);
+  CHECK(r.integer(1, "EID") == 10);
+  CHECK_THROWS_WITH(r.integer(3, "G1"), "truss.bdf:2: CROD 10 field 4 (G1): expected integer, got \"1.5\"");
+  CHECK_THROWS_WITH(r.real(7, "X"), "truss.bdf:2: CROD 10 field 8 (X): expected real, got blank");
+  CHECK(r.real_or(7, "X", 3.0) == 3.0);
+  Deck d2 = read_deck_text("PBAR    1       2\n        ABC\n", "p.bdf");
+  FieldReader r2(d2, d2.cards[0]);
+  CHECK_THROWS_WITH(r2.real(9, "C1"), "p.bdf:2: PBAR 1 continuation 1 field 2 (C1): expected real, got \"ABC\"");
+}
+
+TEST_CASE("writing: changed cards in their own format, unchanged fields keep their text", "[deck][writer]") {
+  const std::string text =
+      "GRID    1               1.-3    0.      0.\n"
+      "GRID*                  2                             1.5             2.5\n"
+      "*                    3.5\n"
+      "GRID,3,,1.,2.,3.\n";
+  Deck d = read_deck_text(text, "w.bdf");
+  CHECK(render_file(d, 0) == text);
+  d.set_values(0, {std::string("GRID"), std::int64_t{1}, std::monostate{}, 1e-3, 0.25, 0.0});
+  d.set_values(1, {std::string("GRID"), std::int64_t{2}, std::monostate{}, 1.5, 2.5, 4.0});
+  d.set_values(2, {std::string("GRID"), std::int64_t{3}, std::monostate{}, 1.0, 2.0, 0.123456789012});
+  const std::string expect =
+      "GRID    1               1.-3    .25     0.\n"
+      "GRID*   2                               1.5             2.5\n"
+      "*       4.\n"
+      "GRID*,3,,1.,2.\n"
+      "*,.123456789012\n";
+  CHECK(render_file(d, 0) == expect);
+  Deck back = read_deck_text(render_file(d, 0), "w2.bdf");
+  CHECK(back.cards[2].field(5) == ".123456789012");
+}
+
+TEST_CASE("writing from scratch: small field, large where precision needs it", "[deck][writer]") {
+  CHECK(format_card("GRID", {std::string("GRID"), std::int64_t{12}, std::monostate{}, 1.0, 0.5, -2.25}, FieldFormat::Small) ==
+        "GRID    12              1.      .5      -2.25\n");
+  CHECK(format_card("GRID", {std::string("GRID"), std::int64_t{12}, std::monostate{}, 0.1, 1.0 / 3.0, 0.0}, FieldFormat::Small) ==
+        "GRID*   12                              .1              .333333333333333\n*       0.\n");
+  // Continuation rows are always marked so an all-blank row cannot vanish.
+  std::vector<FieldValue> v(20);
+  v[0] = std::string("RBE3");
+  v[1] = std::int64_t{1};
+  v[17] = std::int64_t{7};
+  CHECK(format_card("RBE3", v, FieldFormat::Small) == "RBE3    1\n+\n+       7\n");
+  Deck back = read_deck_text(format_card("RBE3", v, FieldFormat::Small), "x.bdf");
+  CHECK(back.cards[0].field(17) == "7");
+}
+
+TEST_CASE("CRLF line endings round-trip and are used for rewritten cards", "[deck][writer]") {
+  const std::string text = "GRID    1               0.      0.      0.\r\nGRID    2\r\n";
+  Deck d = read_deck_text(text, "crlf.bdf");
+  CHECK(d.cards[0].field(3) == "0.");
+  CHECK(render_file(d, 0) == text);
+  d.set_values(1, {std::string("GRID"), std::int64_t{2}, std::monostate{}, 1.0});
+  CHECK(render_file(d, 0) == "GRID    1               0.      0.      0.\r\nGRID    2               1.\r\n");
+}
