@@ -35,16 +35,22 @@ bool is_supported_card(const std::string& name) { return parsers().count(name) >
 BulkModel parse_bulk(const Deck& deck) {
   BulkModel m;
   const auto& table = parsers();
+  // Decks come in runs of one card type: remember the last lookup.
+  const std::string* last_name = nullptr;
+  ParseFn fn = nullptr;
+  std::size_t* counter = nullptr;
   for (std::size_t i = 0; i < deck.cards.size(); ++i) {
     const Card& c = deck.cards[i];
-    auto it = table.find(c.name);
-    if (it == table.end()) {
-      ++m.unsupported[c.name];
-      continue;
+    if (!last_name || *last_name != c.name) {
+      auto it = table.find(c.name);
+      fn = it == table.end() ? nullptr : it->second;
+      counter = fn ? &m.supported[c.name] : &m.unsupported[c.name];
+      last_name = &c.name;
     }
-    ++m.supported[c.name];
+    ++*counter;
+    if (!fn) continue;
     try {
-      it->second(FieldReader(deck, c), i, m);
+      fn(FieldReader(deck, c), i, m);
     } catch (const ParseError& e) {
       m.problems.push_back({Problem::Severity::Error, e.where(), e.detail()});
     }
