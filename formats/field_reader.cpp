@@ -41,7 +41,8 @@ std::optional<std::int64_t> FieldReader::integer_or_blank(std::size_t i, const c
 
 std::int64_t FieldReader::id(std::size_t i, const char* name) const {
   auto v = parse_integer(m_card.field(i));
-  if (!v || *v <= 0) fail(i, name, "positive integer id");
+  if (!v) fail(i, name, "integer");
+  if (*v <= 0) fail(i, name, "positive integer (an id)");
   return *v;
 }
 
