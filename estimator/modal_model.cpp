@@ -1,0 +1,77 @@
+#include "estimator/modal_model.hpp"
+
+#include <stdexcept>
+#include <string>
+
+#include "estimator/sensitivity.hpp"
+
+namespace ssid::estimator {
+
+OperatorModel::OperatorModel(Assemble assemble, EigenSolve eigensolve, SparseMatrix sensors, int nmodes,
+                             ShapeDerivative shape_derivative)
+    : m_assemble(std::move(assemble)),
+      m_eigensolve(std::move(eigensolve)),
+      m_sensors(std::move(sensors)),
+      m_nmodes(nmodes),
+      m_shape_derivative(shape_derivative) {
+  if (m_nmodes <= 0) throw std::invalid_argument("OperatorModel: the number of modes must be positive");
+}
+
+ModalSolution OperatorModel::solve(const Eigen::VectorXd& r) {
+  m_ops = m_assemble(r);
+  if (m_ops.dK.size() != m_ops.dM.size())
+    throw std::invalid_argument("OperatorModel: as many dM as dK operators expected");
+  if (static_cast<Eigen::Index>(m_ops.dK.size()) != r.size())
+    throw std::invalid_argument("OperatorModel: " + std::to_string(r.size()) + " parameters but " +
+                                std::to_string(m_ops.dK.size()) + " operator derivatives");
+  m_parameters = static_cast<int>(r.size());
+  if (m_sensors.cols() != m_ops.K.cols())
+    throw std::invalid_argument("OperatorModel: sensor selection has " + std::to_string(m_sensors.cols()) +
+                                " columns, the model " + std::to_string(m_ops.K.cols()) + " DOFs");
+  auto [lambda, phi] = m_eigensolve(m_ops.K, m_ops.M, m_nmodes);
+  m_lambda = std::move(lambda);
+  m_phi = std::move(phi);
+  ModalSolution s;
+  s.eigenvalues = m_lambda;
+  s.sensor_shapes = m_sensors * m_phi;
+  s.tracking_shapes = m_phi;
+  return s;
+}
+
+ModeSensitivity OperatorModel::sensitivity(int i, bool shapes) {
+  if (i < 0 || i >= m_lambda.size()) throw std::out_of_range("OperatorModel: no mode " + std::to_string(i + 1));
+  const Eigen::VectorXd phi = m_phi.col(i);
+  const std::size_t p = m_ops.dK.size();
+  ModeSensitivity s;
+  s.d_eigenvalue.resize(static_cast<Eigen::Index>(p));
+  for (std::size_t j = 0; j < p; ++j)
+    s.d_eigenvalue(static_cast<Eigen::Index>(j)) = eigenvalue_derivative(m_ops.dK[j], m_ops.dM[j], m_lambda(i), phi);
+  if (!shapes) return s;
+  Eigen::MatrixXd dphi;
+  if (m_shape_derivative == ShapeDerivative::Nelson) {
+    dphi = nelson_derivatives(m_ops.K, m_ops.M, m_lambda(i), phi, m_ops.dK, m_ops.dM);
+  } else {
+    dphi.resize(phi.size(), static_cast<Eigen::Index>(p));
+    for (std::size_t j = 0; j < p; ++j)
+      dphi.col(static_cast<Eigen::Index>(j)) = modal_sum_derivative(m_phi, m_lambda, i, m_ops.dK[j], m_ops.dM[j]);
+  }
+  s.d_sensor_shape = m_sensors * dphi;
+  return s;
+}
+
+OperatorModel::Assemble taylor_operators(Operators nominal, Eigen::VectorXd r0) {
+  if (static_cast<Eigen::Index>(nominal.dK.size()) != r0.size() || nominal.dM.size() != nominal.dK.size())
+    throw std::invalid_argument("taylor_operators: one dK and one dM per parameter expected");
+  return [nominal = std::move(nominal), r0 = std::move(r0)](const Eigen::VectorXd& r) {
+    Operators ops = nominal;
+    for (Eigen::Index j = 0; j < r0.size(); ++j) {
+      const double d = r(j) - r0(j);
+      if (d == 0.0) continue;
+      ops.K += d * nominal.dK[static_cast<std::size_t>(j)];
+      ops.M += d * nominal.dM[static_cast<std::size_t>(j)];
+    }
+    return ops;
+  };
+}
+
+}  // namespace ssid::estimator

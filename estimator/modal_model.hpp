@@ -1,0 +1,88 @@
+#pragma once
+/// \file modal_model.hpp
+/// The model as the estimator sees it: parameters r in, modes at the measured
+/// DOFs and their sensitivities out.
+///
+/// OperatorModel is the general implementation: an `Assemble` callback gives
+/// K(r), M(r), ∂K/∂r_j, ∂M/∂r_j (exact re-assembly of our own deck, or the
+/// first-order Taylor model of imported operators, `taylor_operators`), an
+/// `EigenSolve` callback gives the lowest modes, and the sensitivities come from
+/// sensitivity.hpp: ∂λ exact, ∂φ by Nelson's method (exact) or the seed
+/// report's modal summation.
+#include <Eigen/Core>
+#include <Eigen/SparseCore>
+#include <functional>
+#include <utility>
+#include <vector>
+
+namespace ssid::estimator {
+
+using SparseMatrix = Eigen::SparseMatrix<double>;
+
+/// Modes of one solve.
+struct ModalSolution {
+  Eigen::VectorXd eigenvalues;      ///< λ = ω² [(rad/s)²], ascending
+  Eigen::MatrixXd sensor_shapes;    ///< n_s × m: shapes at the measured DOFs
+  Eigen::MatrixXd tracking_shapes;  ///< n_t × m: shapes used to follow modes from cycle to cycle
+};
+
+/// Sensitivities of one mode of the last solve.
+struct ModeSensitivity {
+  Eigen::VectorXd d_eigenvalue;    ///< ∂λ/∂r_j, length p
+  Eigen::MatrixXd d_sensor_shape;  ///< ∂φ_s/∂r_j, n_s × p (empty when not asked for)
+};
+
+class ModalModel {
+ public:
+  virtual ~ModalModel() = default;
+  virtual int parameter_count() const = 0;
+  /// Solves at parameters r (length p).
+  virtual ModalSolution solve(const Eigen::VectorXd& r) = 0;
+  /// Sensitivities of mode i of the last solve; shape derivatives only when asked.
+  virtual ModeSensitivity sensitivity(int i, bool shapes) = 0;
+};
+
+/// K, M and their derivatives with respect to each parameter.
+struct Operators {
+  SparseMatrix K, M;
+  std::vector<SparseMatrix> dK, dM;
+};
+
+enum class ShapeDerivative { Nelson, ModalSum };
+
+class OperatorModel : public ModalModel {
+ public:
+  using Assemble = std::function<Operators(const Eigen::VectorXd& r)>;
+  /// Returns (eigenvalues ascending, mass-normalised modes n × m) of the lowest `nmodes`.
+  using EigenSolve =
+      std::function<std::pair<Eigen::VectorXd, Eigen::MatrixXd>(const SparseMatrix& K, const SparseMatrix& M, int nmodes)>;
+
+  /// `sensors` selects (or combines) model DOFs into measured DOFs: n_s × n.
+  OperatorModel(Assemble assemble, EigenSolve eigensolve, SparseMatrix sensors, int nmodes,
+                ShapeDerivative shape_derivative = ShapeDerivative::Nelson);
+
+  int parameter_count() const override { return m_parameters; }
+  ModalSolution solve(const Eigen::VectorXd& r) override;
+  ModeSensitivity sensitivity(int i, bool shapes) override;
+
+  const Operators& operators() const { return m_ops; }
+  const Eigen::MatrixXd& modes() const { return m_phi; }
+
+ private:
+  Assemble m_assemble;
+  EigenSolve m_eigensolve;
+  SparseMatrix m_sensors;
+  int m_nmodes;
+  ShapeDerivative m_shape_derivative;
+  int m_parameters = -1;
+  Operators m_ops;
+  Eigen::VectorXd m_lambda;
+  Eigen::MatrixXd m_phi;
+};
+
+/// First-order Taylor model of imported operators about r0:
+///   K(r) = K0 + Σ_j (r_j − r0_j) ∂K/∂r_j, and the same for M,
+/// exact when K and M are linear in r (areas, E, ρ, spring rates, masses).
+OperatorModel::Assemble taylor_operators(Operators nominal, Eigen::VectorXd r0);
+
+}  // namespace ssid::estimator

@@ -1,0 +1,271 @@
+#include "estimator/updating.hpp"
+
+#include <Eigen/Dense>
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <stdexcept>
+#include <string>
+
+namespace ssid::estimator {
+
+namespace {
+
+constexpr double two_pi = 2.0 * M_PI;
+
+double hz(double lambda) { return std::sqrt(std::max(lambda, 0.0)) / two_pi; }
+
+/// z, u, T and σ of one cycle, in physical parameter units.
+struct Residuals {
+  Eigen::VectorXd z, u, sigma;
+  Eigen::MatrixXd T;
+};
+
+void fill_pair_stats(const std::vector<MeasuredMode>& test, const ModalSolution& fem, std::vector<ModePair>& pairs) {
+  for (auto& p : pairs) {
+    p.test_hz = test[static_cast<std::size_t>(p.test)].frequency_hz;
+    p.fem_hz = hz(fem.eigenvalues(p.fem));
+    p.error_pct = p.test_hz > 0 ? (p.fem_hz - p.test_hz) / p.test_hz * 100.0 : 0.0;
+    const auto& shape = test[static_cast<std::size_t>(p.test)].shape;
+    p.mac = shape.size() ? mac_matrix(shape, fem.sensor_shapes.col(p.fem))(0, 0) : 0.0;
+  }
+}
+
+/// Follows each pair's analysis mode from the previous cycle to this one by
+/// MAC on the tracking shapes; a pair whose partner cannot be followed, or whose
+/// new partner no longer matches the test shape, is dropped with a note.
+std::vector<ModePair> track_pairs(const std::vector<ModePair>& previous, const Eigen::MatrixXd& previous_shapes,
+                                  const std::vector<MeasuredMode>& test, const ModalSolution& fem,
+                                  const UpdateOptions& options, int cycle, std::vector<std::string>& notes) {
+  const Eigen::MatrixXd tmac = mac_matrix(previous_shapes, fem.tracking_shapes);
+  std::vector<ModePair> out;
+  std::vector<bool> taken(static_cast<std::size_t>(fem.eigenvalues.size()), false);
+  for (const auto& p : previous) {
+    Eigen::Index best = -1;
+    const double best_mac = tmac.row(p.fem).maxCoeff(&best);
+    const auto& t = test[static_cast<std::size_t>(p.test)];
+    std::string why;
+    if (best_mac < options.track_mac_min)
+      why = "its analysis mode " + std::to_string(p.fem + 1) + " could not be followed (tracking MAC " +
+            std::to_string(best_mac) + ")";
+    else if (taken[static_cast<std::size_t>(best)])
+      why = "analysis mode " + std::to_string(best + 1) + " is claimed by another test mode";
+    else if (t.shape.size() && mac_matrix(t.shape, fem.sensor_shapes.col(best))(0, 0) < options.mac_min)
+      why = "its partner, analysis mode " + std::to_string(best + 1) + ", no longer matches the test shape";
+    if (!why.empty()) {
+      notes.push_back("cycle " + std::to_string(cycle) + ": test mode " + std::to_string(t.id) +
+                      " left the update: " + why);
+      continue;
+    }
+    taken[static_cast<std::size_t>(best)] = true;
+    ModePair q = p;
+    q.fem = static_cast<int>(best);
+    out.push_back(q);
+  }
+  fill_pair_stats(test, fem, out);
+  return out;
+}
+
+Residuals residuals(ModalModel& model, const std::vector<MeasuredMode>& test, const ModalSolution& fem,
+                    const std::vector<ModePair>& pairs, const UpdateOptions& options) {
+  const int p = model.parameter_count();
+  std::vector<double> z, u, sigma;
+  std::vector<Eigen::VectorXd> rows;
+  for (const auto& pair : pairs) {
+    const auto& t = test[static_cast<std::size_t>(pair.test)];
+    const bool use_f = t.use_frequency && t.frequency_std_hz > 0;
+    const bool use_s = options.shape_derivatives && t.use_shape && t.shape.size() > 0 && t.shape_std > 0;
+    if (!use_f && !use_s) continue;
+    const ModeSensitivity s = model.sensitivity(pair.fem, use_s);
+    if (use_f) {
+      const double f = hz(fem.eigenvalues(pair.fem));
+      if (f <= 0) throw std::runtime_error("test mode " + std::to_string(t.id) + " is paired with a zero-frequency analysis mode");
+      z.push_back(t.frequency_hz);
+      u.push_back(f);
+      sigma.push_back(t.frequency_std_hz);
+      rows.push_back(s.d_eigenvalue / (4.0 * M_PI * M_PI * 2.0 * f));
+    }
+    if (use_s) {
+      const Eigen::VectorXd phi = fem.sensor_shapes.col(pair.fem);
+      const double n = phi.norm();
+      const Eigen::VectorXd un = phi / n;
+      Eigen::VectorXd zn = t.shape / t.shape.norm();
+      if (zn.dot(un) < 0) zn = -zn;
+      // d(φ/‖φ‖) = (I − û ûᵀ) dφ / ‖φ‖
+      const Eigen::MatrixXd d = (s.d_sensor_shape - un * (un.transpose() * s.d_sensor_shape)) / n;
+      for (Eigen::Index k = 0; k < un.size(); ++k) {
+        z.push_back(zn(k));
+        u.push_back(un(k));
+        sigma.push_back(t.shape_std);
+        rows.push_back(d.row(k).transpose());
+      }
+    }
+  }
+  Residuals r;
+  const auto m = static_cast<Eigen::Index>(z.size());
+  r.z = Eigen::Map<Eigen::VectorXd>(z.data(), m);
+  r.u = Eigen::Map<Eigen::VectorXd>(u.data(), m);
+  r.sigma = Eigen::Map<Eigen::VectorXd>(sigma.data(), m);
+  r.T.resize(m, p);
+  for (Eigen::Index k = 0; k < m; ++k) r.T.row(k) = rows[static_cast<std::size_t>(k)].transpose();
+  return r;
+}
+
+void summarise(UpdateCycle& c) {
+  double sum2 = 0, mac = 0;
+  int nmac = 0;
+  for (const auto& p : c.pairs) {
+    sum2 += p.error_pct * p.error_pct;
+    if (p.mac > 0) { mac += p.mac; ++nmac; }
+  }
+  c.freq_rms_pct = c.pairs.empty() ? 0.0 : std::sqrt(sum2 / static_cast<double>(c.pairs.size()));
+  c.mean_mac = nmac ? mac / nmac : 0.0;
+}
+
+}  // namespace
+
+Eigen::MatrixXd mac_matrix(const Eigen::Ref<const Eigen::MatrixXd>& a, const Eigen::Ref<const Eigen::MatrixXd>& b) {
+  if (a.rows() != b.rows())
+    throw std::invalid_argument("MAC: shapes of different lengths (" + std::to_string(a.rows()) + " and " +
+                                std::to_string(b.rows()) + ")");
+  const Eigen::MatrixXd cross = a.transpose() * b;
+  const Eigen::VectorXd na = a.colwise().squaredNorm().transpose();
+  const Eigen::VectorXd nb = b.colwise().squaredNorm().transpose();
+  Eigen::MatrixXd m(a.cols(), b.cols());
+  for (Eigen::Index i = 0; i < a.cols(); ++i)
+    for (Eigen::Index j = 0; j < b.cols(); ++j) {
+      const double d = na(i) * nb(j);
+      m(i, j) = d > 0 ? cross(i, j) * cross(i, j) / d : 0.0;
+    }
+  return m;
+}
+
+std::vector<ModePair> pair_modes(const std::vector<MeasuredMode>& test, const ModalSolution& fem,
+                                 const UpdateOptions& options) {
+  const auto m = fem.eigenvalues.size();
+  struct Candidate { int t, f; double mac; };
+  std::vector<Candidate> candidates;
+  for (std::size_t i = 0; i < test.size(); ++i) {
+    if (!test[i].shape.size()) continue;
+    if (test[i].shape.size() != fem.sensor_shapes.rows())
+      throw std::invalid_argument("test mode " + std::to_string(test[i].id) + " has " +
+                                  std::to_string(test[i].shape.size()) + " shape components, the sensors " +
+                                  std::to_string(fem.sensor_shapes.rows()));
+    const Eigen::MatrixXd mac = mac_matrix(test[i].shape, fem.sensor_shapes);
+    for (Eigen::Index j = 0; j < m; ++j) {
+      const double err = std::abs(hz(fem.eigenvalues(j)) - test[i].frequency_hz) / test[i].frequency_hz * 100.0;
+      if (mac(0, j) >= options.mac_min && err <= options.freq_tol_pct)
+        candidates.push_back({static_cast<int>(i), static_cast<int>(j), mac(0, j)});
+    }
+  }
+  std::stable_sort(candidates.begin(), candidates.end(), [](const Candidate& a, const Candidate& b) { return a.mac > b.mac; });
+  std::vector<bool> test_done(test.size(), false), fem_done(static_cast<std::size_t>(m), false);
+  std::vector<ModePair> pairs;
+  for (const auto& c : candidates) {
+    if (test_done[static_cast<std::size_t>(c.t)] || fem_done[static_cast<std::size_t>(c.f)]) continue;
+    test_done[static_cast<std::size_t>(c.t)] = fem_done[static_cast<std::size_t>(c.f)] = true;
+    pairs.push_back({c.t, c.f});
+  }
+  for (std::size_t i = 0; i < test.size(); ++i) {
+    if (test[i].shape.size() || test_done[i]) continue;
+    int best = -1;
+    double best_err = options.freq_tol_pct;
+    for (Eigen::Index j = 0; j < m; ++j) {
+      if (fem_done[static_cast<std::size_t>(j)]) continue;
+      const double err = std::abs(hz(fem.eigenvalues(j)) - test[i].frequency_hz) / test[i].frequency_hz * 100.0;
+      if (err <= best_err) { best_err = err; best = static_cast<int>(j); }
+    }
+    if (best >= 0) {
+      fem_done[static_cast<std::size_t>(best)] = true;
+      pairs.push_back({static_cast<int>(i), best});
+    }
+  }
+  std::sort(pairs.begin(), pairs.end(), [](const ModePair& a, const ModePair& b) { return a.test < b.test; });
+  fill_pair_stats(test, fem, pairs);
+  return pairs;
+}
+
+UpdateResult update(ModalModel& model, const std::vector<MeasuredMode>& test, const ParameterPrior& prior,
+                    const UpdateOptions& options, const Progress& progress) {
+  const auto p = prior.mean.size();
+  if (prior.cov.rows() != p || prior.cov.cols() != p || prior.lower.size() != p || prior.upper.size() != p)
+    throw std::invalid_argument("update: the prior's mean, covariance and bounds disagree in size");
+  if (model.parameter_count() >= 0 && model.parameter_count() != p)
+    throw std::invalid_argument("update: the model has " + std::to_string(model.parameter_count()) +
+                                " parameters, the prior " + std::to_string(p));
+  if (test.empty()) throw std::invalid_argument("update: no measured modes");
+
+  // Work in θ = D⁻¹ (r − r₀), D = diag(prior σ): all parameters of order one.
+  const Eigen::VectorXd d = prior.cov.diagonal().array().sqrt();
+  if ((d.array() <= 0).any()) throw std::invalid_argument("update: every parameter needs a positive prior variance");
+  const Eigen::MatrixXd cov_theta = d.asDiagonal().inverse() * prior.cov * d.asDiagonal().inverse();
+  const Eigen::VectorXd lo = ((prior.lower - prior.mean).array() / d.array()).matrix();
+  const Eigen::VectorXd hi = ((prior.upper - prior.mean).array() / d.array()).matrix();
+  const Eigen::VectorXd zero = Eigen::VectorXd::Zero(p);
+
+  UpdateResult result;
+  Eigen::VectorXd theta = Eigen::VectorXd::Zero(p);
+  std::vector<ModePair> pairs;
+  Eigen::MatrixXd tracking;
+  for (int cycle = 0;; ++cycle) {
+    const Eigen::VectorXd r = prior.mean + d.cwiseProduct(theta);
+    report(progress, "cycle " + std::to_string(cycle) + ": solving",
+           static_cast<double>(cycle) / static_cast<double>(options.max_iterations + 1));
+    const ModalSolution fem = model.solve(r);
+    if (cycle == 0) {
+      pairs = pair_modes(test, fem, options);
+      if (pairs.empty()) throw std::runtime_error("update: no test mode pairs with an analysis mode");
+      for (std::size_t i = 0; i < test.size(); ++i)
+        if (std::none_of(pairs.begin(), pairs.end(), [&](const ModePair& q) { return q.test == static_cast<int>(i); }))
+          result.notes.push_back("test mode " + std::to_string(test[i].id) + " has no analysis partner");
+    } else {
+      std::vector<ModePair> previous_tracked;
+      Eigen::MatrixXd prev(tracking.rows(), static_cast<Eigen::Index>(pairs.size()));
+      for (std::size_t k = 0; k < pairs.size(); ++k) {
+        prev.col(static_cast<Eigen::Index>(k)) = tracking.col(pairs[k].fem);
+        previous_tracked.push_back(pairs[k]);
+        previous_tracked.back().fem = static_cast<int>(k);
+      }
+      pairs = track_pairs(previous_tracked, prev, test, fem, options, cycle, result.notes);
+      if (pairs.empty()) throw std::runtime_error("update: every test mode lost its analysis partner");
+    }
+    tracking = fem.tracking_shapes;
+
+    const Residuals res = residuals(model, test, fem, pairs, options);
+    if (res.z.size() == 0) throw std::runtime_error("update: no measurement with a positive standard deviation");
+    const Eigen::MatrixXd T_theta = res.T * d.asDiagonal();
+    const BayesStep step = bayes_step(theta, zero, cov_theta, res.z, res.u, T_theta, res.sigma, lo, hi);
+
+    UpdateCycle c;
+    c.cycle = cycle;
+    c.r = r;
+    c.pairs = pairs;
+    c.objective = step.objective;
+    c.misfit = step.misfit;
+    summarise(c);
+    result.history.push_back(c);
+    result.measurements = static_cast<int>(res.z.size());
+
+    const double move = (step.r_next - theta).cwiseAbs().maxCoeff();
+    const bool last = cycle >= options.max_iterations;
+    if (move < options.tolerance || last) {
+      // The posterior is taken at this cycle's r (the mode, once converged).
+      result.converged = move < options.tolerance;
+      result.r = r;
+      result.posterior_cov = d.asDiagonal() * step.posterior_cov * d.asDiagonal();
+      result.posterior_std = result.posterior_cov.diagonal().array().sqrt();
+      result.log_evidence = laplace_log_evidence(step.objective, res.sigma, cov_theta, step.posterior_cov);
+      // (log det S* − log det S_rr is the same in θ and r: the D² factors cancel.)
+      result.identifiability = identifiability(T_theta, res.sigma, cov_theta, step.posterior_cov);
+      if (step.clipped) result.notes.push_back("a parameter bound is active at the solution");
+      if (!result.converged)
+        result.notes.push_back("not converged after " + std::to_string(options.max_iterations) +
+                               " cycles (last move " + std::to_string(move) + " prior standard deviations)");
+      report(progress, "converged", 1.0);
+      return result;
+    }
+    theta = step.r_next;
+  }
+}
+
+}  // namespace ssid::estimator
