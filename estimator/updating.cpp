@@ -164,7 +164,10 @@ std::vector<ModePair> pair_modes(const std::vector<MeasuredMode>& test, const Mo
   for (const auto& c : candidates) {
     if (test_done[static_cast<std::size_t>(c.t)] || fem_done[static_cast<std::size_t>(c.f)]) continue;
     test_done[static_cast<std::size_t>(c.t)] = fem_done[static_cast<std::size_t>(c.f)] = true;
-    pairs.push_back({c.t, c.f});
+    ModePair q;
+    q.test = c.t;
+    q.fem = c.f;
+    pairs.push_back(q);
   }
   for (std::size_t i = 0; i < test.size(); ++i) {
     if (test[i].shape.size() || test_done[i]) continue;
@@ -177,7 +180,10 @@ std::vector<ModePair> pair_modes(const std::vector<MeasuredMode>& test, const Mo
     }
     if (best >= 0) {
       fem_done[static_cast<std::size_t>(best)] = true;
-      pairs.push_back({static_cast<int>(i), best});
+      ModePair q;
+      q.test = static_cast<int>(i);
+      q.fem = best;
+      pairs.push_back(q);
     }
   }
   std::sort(pairs.begin(), pairs.end(), [](const ModePair& a, const ModePair& b) { return a.test < b.test; });
@@ -187,13 +193,34 @@ std::vector<ModePair> pair_modes(const std::vector<MeasuredMode>& test, const Mo
 
 UpdateResult update(ModalModel& model, const std::vector<MeasuredMode>& test, const ParameterPrior& prior,
                     const UpdateOptions& options, const Progress& progress) {
+  return update(std::vector<Configuration>{{"", &model, test}}, prior, options, progress);
+}
+
+ParameterPrior posterior_as_prior(const UpdateResult& result, const ParameterPrior& prior) {
+  ParameterPrior next = prior;
+  next.mean = result.r;
+  next.cov = result.posterior_cov;
+  return next;
+}
+
+UpdateResult update(const std::vector<Configuration>& configurations, const ParameterPrior& prior,
+                    const UpdateOptions& options, const Progress& progress) {
   const auto p = prior.mean.size();
   if (prior.cov.rows() != p || prior.cov.cols() != p || prior.lower.size() != p || prior.upper.size() != p)
     throw std::invalid_argument("update: the prior's mean, covariance and bounds disagree in size");
-  if (model.parameter_count() >= 0 && model.parameter_count() != p)
-    throw std::invalid_argument("update: the model has " + std::to_string(model.parameter_count()) +
-                                " parameters, the prior " + std::to_string(p));
-  if (test.empty()) throw std::invalid_argument("update: no measured modes");
+  if (configurations.empty()) throw std::invalid_argument("update: no configuration");
+  for (const auto& c : configurations) {
+    if (!c.model) throw std::invalid_argument("update: configuration '" + c.name + "' has no model");
+    if (c.model->parameter_count() >= 0 && c.model->parameter_count() != p)
+      throw std::invalid_argument("update: the model of '" + c.name + "' has " +
+                                  std::to_string(c.model->parameter_count()) + " parameters, the prior " +
+                                  std::to_string(p));
+    if (c.test.empty()) throw std::invalid_argument("update: configuration '" + c.name + "' has no measured modes");
+  }
+  const std::size_t nc = configurations.size();
+  auto label = [&](std::size_t k) {
+    return configurations[k].name.empty() ? std::string() : " of '" + configurations[k].name + "'";
+  };
 
   // Work in θ = D⁻¹ (r − r₀), D = diag(prior σ): all parameters of order one.
   const Eigen::VectorXd d = prior.cov.diagonal().array().sqrt();
@@ -205,46 +232,71 @@ UpdateResult update(ModalModel& model, const std::vector<MeasuredMode>& test, co
 
   UpdateResult result;
   Eigen::VectorXd theta = Eigen::VectorXd::Zero(p);
-  std::vector<ModePair> pairs;
-  Eigen::MatrixXd tracking;
+  std::vector<std::vector<ModePair>> pairs(nc);
+  std::vector<Eigen::MatrixXd> tracking(nc);
   for (int cycle = 0;; ++cycle) {
     const Eigen::VectorXd r = prior.mean + d.cwiseProduct(theta);
-    report(progress, "cycle " + std::to_string(cycle) + ": solving",
-           static_cast<double>(cycle) / static_cast<double>(options.max_iterations + 1));
-    const ModalSolution fem = model.solve(r);
-    if (cycle == 0) {
-      pairs = pair_modes(test, fem, options);
-      if (pairs.empty()) throw std::runtime_error("update: no test mode pairs with an analysis mode");
-      for (std::size_t i = 0; i < test.size(); ++i)
-        if (std::none_of(pairs.begin(), pairs.end(), [&](const ModePair& q) { return q.test == static_cast<int>(i); }))
-          result.notes.push_back("test mode " + std::to_string(test[i].id) + " has no analysis partner");
-    } else {
-      std::vector<ModePair> previous_tracked;
-      Eigen::MatrixXd prev(tracking.rows(), static_cast<Eigen::Index>(pairs.size()));
-      for (std::size_t k = 0; k < pairs.size(); ++k) {
-        prev.col(static_cast<Eigen::Index>(k)) = tracking.col(pairs[k].fem);
-        previous_tracked.push_back(pairs[k]);
-        previous_tracked.back().fem = static_cast<int>(k);
-      }
-      pairs = track_pairs(previous_tracked, prev, test, fem, options, cycle, result.notes);
-      if (pairs.empty()) throw std::runtime_error("update: every test mode lost its analysis partner");
-    }
-    tracking = fem.tracking_shapes;
-
-    const Residuals res = residuals(model, test, fem, pairs, options);
-    if (res.z.size() == 0) throw std::runtime_error("update: no measurement with a positive standard deviation");
-    const Eigen::MatrixXd T_theta = res.T * d.asDiagonal();
-    const BayesStep step = bayes_step(theta, zero, cov_theta, res.z, res.u, T_theta, res.sigma, lo, hi);
-
+    std::vector<Residuals> parts;
     UpdateCycle c;
     c.cycle = cycle;
     c.r = r;
-    c.pairs = pairs;
+    for (std::size_t k = 0; k < nc; ++k) {
+      const auto& conf = configurations[k];
+      report(progress, "cycle " + std::to_string(cycle) + ": solving" + label(k),
+             static_cast<double>(cycle) / static_cast<double>(options.max_iterations + 1));
+      const ModalSolution fem = conf.model->solve(r);
+      if (cycle == 0) {
+        pairs[k] = pair_modes(conf.test, fem, options);
+        if (pairs[k].empty()) throw std::runtime_error("update: no test mode" + label(k) + " pairs with an analysis mode");
+        for (std::size_t i = 0; i < conf.test.size(); ++i)
+          if (std::none_of(pairs[k].begin(), pairs[k].end(), [&](const ModePair& q) { return q.test == static_cast<int>(i); }))
+            result.notes.push_back("test mode " + std::to_string(conf.test[i].id) + label(k) + " has no analysis partner");
+      } else {
+        std::vector<ModePair> previous;
+        Eigen::MatrixXd prev(tracking[k].rows(), static_cast<Eigen::Index>(pairs[k].size()));
+        for (std::size_t q = 0; q < pairs[k].size(); ++q) {
+          prev.col(static_cast<Eigen::Index>(q)) = tracking[k].col(pairs[k][q].fem);
+          previous.push_back(pairs[k][q]);
+          previous.back().fem = static_cast<int>(q);
+        }
+        pairs[k] = track_pairs(previous, prev, conf.test, fem, options, cycle, result.notes);
+        if (pairs[k].empty()) throw std::runtime_error("update: every test mode" + label(k) + " lost its analysis partner");
+      }
+      for (auto& q : pairs[k]) q.config = static_cast<int>(k);
+      tracking[k] = fem.tracking_shapes;
+      parts.push_back(residuals(*conf.model, conf.test, fem, pairs[k], options));
+      c.pairs.insert(c.pairs.end(), pairs[k].begin(), pairs[k].end());
+    }
+    Residuals res;
+    Eigen::Index m = 0;
+    for (const auto& part : parts) m += part.z.size();
+    res.z.resize(m);
+    res.u.resize(m);
+    res.sigma.resize(m);
+    res.T.resize(m, p);
+    Eigen::Index at = 0;
+    for (const auto& part : parts) {
+      const auto len = part.z.size();
+      res.z.segment(at, len) = part.z;
+      res.u.segment(at, len) = part.u;
+      res.sigma.segment(at, len) = part.sigma;
+      res.T.middleRows(at, len) = part.T;
+      at += len;
+    }
+    if (m == 0) throw std::runtime_error("update: no measurement with a positive standard deviation");
+    const Eigen::MatrixXd T_theta = res.T * d.asDiagonal();
+    const BayesStep step = bayes_step(theta, zero, cov_theta, res.z, res.u, T_theta, res.sigma, lo, hi);
+
     c.objective = step.objective;
     c.misfit = step.misfit;
+    c.clipped = step.clipped;
     summarise(c);
     result.history.push_back(c);
-    result.measurements = static_cast<int>(res.z.size());
+    result.measurements = static_cast<int>(m);
+    report(progress,
+           "cycle " + std::to_string(cycle) + ": J = " + std::to_string(step.objective) + ", frequency RMS error " +
+               std::to_string(c.freq_rms_pct) + " %, " + std::to_string(c.pairs.size()) + " pairs",
+           static_cast<double>(cycle + 1) / static_cast<double>(options.max_iterations + 1));
 
     const double move = (step.r_next - theta).cwiseAbs().maxCoeff();
     const bool last = cycle >= options.max_iterations;
@@ -254,14 +306,13 @@ UpdateResult update(ModalModel& model, const std::vector<MeasuredMode>& test, co
       result.r = r;
       result.posterior_cov = d.asDiagonal() * step.posterior_cov * d.asDiagonal();
       result.posterior_std = result.posterior_cov.diagonal().array().sqrt();
+      // log det S* − log det S_rr is the same in θ and r: the D² factors cancel.
       result.log_evidence = laplace_log_evidence(step.objective, res.sigma, cov_theta, step.posterior_cov);
-      // (log det S* − log det S_rr is the same in θ and r: the D² factors cancel.)
       result.identifiability = identifiability(T_theta, res.sigma, cov_theta, step.posterior_cov);
       if (step.clipped) result.notes.push_back("a parameter bound is active at the solution");
       if (!result.converged)
         result.notes.push_back("not converged after " + std::to_string(options.max_iterations) +
                                " cycles (last move " + std::to_string(move) + " prior standard deviations)");
-      report(progress, "converged", 1.0);
       return result;
     }
     theta = step.r_next;

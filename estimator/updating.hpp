@@ -59,6 +59,7 @@ struct UpdateOptions {
 
 /// One test–analysis pair.
 struct ModePair {
+  int config = 0;         ///< configuration index
   int test = -1;          ///< index into the measured modes
   int fem = -1;           ///< analysis mode index (0-based)
   double mac = 0;
@@ -98,7 +99,24 @@ Eigen::MatrixXd mac_matrix(const Eigen::Ref<const Eigen::MatrixXd>& a, const Eig
 std::vector<ModePair> pair_modes(const std::vector<MeasuredMode>& test, const ModalSolution& fem,
                                  const UpdateOptions& options);
 
+/// One tested configuration (bare, with added mass, …): its model and its
+/// measured modes. All configurations share the parameter vector.
+struct Configuration {
+  std::string name;
+  ModalModel* model = nullptr;
+  std::vector<MeasuredMode> test;
+};
+
+/// Estimates the parameters from all configurations together.
+UpdateResult update(const std::vector<Configuration>& configurations, const ParameterPrior& prior,
+                    const UpdateOptions& options = {}, const Progress& progress = {});
+
+/// One configuration.
 UpdateResult update(ModalModel& model, const std::vector<MeasuredMode>& test, const ParameterPrior& prior,
                     const UpdateOptions& options = {}, const Progress& progress = {});
+
+/// Recursive estimation: the posterior of one test is the prior of the next
+/// (same names and bounds; mean and covariance from the result).
+ParameterPrior posterior_as_prior(const UpdateResult& result, const ParameterPrior& prior);
 
 }  // namespace ssid::estimator

@@ -255,3 +255,60 @@ TEST_CASE("modes that swap order during the update stay with their test partner"
   CHECK(res.history.back().pairs[1].fem == 1);
   CHECK(res.notes.empty());
 }
+
+TEST_CASE("a second configuration makes an unidentifiable parameter identifiable", "[estimator][updating]") {
+  // r0 scales every spring, r1 every mass: bare-structure frequencies inform only
+  // r0/r1. A known added mass (not scaled by r1) separates the two.
+  auto make = [](double added) {
+    return [added](const Eigen::VectorXd& r) {
+      Eigen::MatrixXd K = Eigen::MatrixXd::Zero(n, n), M0 = Eigen::MatrixXd::Zero(n, n);
+      for (int i = 0; i < n; ++i) {
+        const double k = 1000.0 * (1.0 + 0.1 * i);
+        K(i, i) += k;
+        if (i > 0) { K(i - 1, i - 1) += k; K(i - 1, i) -= k; K(i, i - 1) -= k; }
+        M0(i, i) = 1.0 + 0.05 * i;
+      }
+      Eigen::MatrixXd Madd = Eigen::MatrixXd::Zero(n, n);
+      Madd(n - 1, n - 1) = added;
+      Operators ops;
+      ops.K = (r(0) * K).sparseView();
+      ops.M = (r(1) * M0 + Madd).sparseView();
+      ops.dK = {K.sparseView(), SparseMatrix(n, n)};
+      ops.dM = {SparseMatrix(n, n), M0.sparseView()};
+      return ops;
+    };
+  };
+  const Eigen::VectorXd truth = (Eigen::VectorXd(2) << 1.2, 0.9).finished();
+  const SparseMatrix S = sensors({0, 1, 3, 4, 6, 7});
+  auto frequencies_of = [&](double added) {
+    const Operators ops = make(added)(truth);
+    auto [lambda, phi] = dense_solve(ops.K, ops.M, 3);
+    std::vector<MeasuredMode> test;
+    for (int i = 0; i < 3; ++i) {
+      MeasuredMode m;
+      m.id = i + 1;
+      m.frequency_hz = std::sqrt(lambda(i)) / (2 * M_PI);
+      m.frequency_std_hz = 1e-3 * m.frequency_hz;
+      test.push_back(m);
+    }
+    return test;
+  };
+  const ParameterPrior prior = prior_of(Eigen::VectorXd::Ones(2), 0.3);
+  OperatorModel bare(make(0.0), dense_solve, S, 4), loaded(make(3.0), dense_solve, S, 4);
+  const auto one = update(bare, frequencies_of(0.0), prior);
+  CHECK(one.identifiability.rank == 1);
+  CHECK(one.r(0) / one.r(1) == Approx(truth(0) / truth(1)).epsilon(1e-3));  // the ratio is found
+  CHECK(one.identifiability.std_ratio.maxCoeff() > 0.5);  // but each alone stays near its prior
+
+  const auto both = update({{"bare", &bare, frequencies_of(0.0)}, {"tip mass", &loaded, frequencies_of(3.0)}}, prior);
+  REQUIRE(both.converged);
+  CHECK(both.identifiability.rank == 2);
+  CHECK(both.r(0) == Approx(truth(0)).epsilon(5e-3));
+  CHECK(both.r(1) == Approx(truth(1)).epsilon(5e-3));
+  CHECK(both.history.back().pairs.size() == 6);
+
+  // Recursive: bare first, its posterior the prior of the loaded test, ends near the joint answer.
+  const auto second = update(loaded, frequencies_of(3.0), posterior_as_prior(one, prior));
+  CHECK(second.r(0) == Approx(both.r(0)).epsilon(1e-2));
+  CHECK(second.r(1) == Approx(both.r(1)).epsilon(1e-2));
+}
