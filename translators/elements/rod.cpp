@@ -39,8 +39,8 @@ void rod_basic(const GridPair& g, const T& a, const T& j, const T& nsm, const T&
   }
 }
 
-ElementMatrices eval(const GridPair& g, const RodSection& s, const Material& mat, MassKind mass,
-                     const RodSection& ds, const Material& dmat, bool derivative) {
+ElementMatrices eval_raw(const GridPair& g, const RodSection& s, const Material& mat, MassKind mass,
+                         const RodSection& ds, const Material& dmat, bool derivative) {
   const Matrix12d T = detail::grid_frames(g.ta, g.tb);
   ElementMatrices out;
   if (!derivative) {
@@ -56,6 +56,15 @@ ElementMatrices eval(const GridPair& g, const RodSection& s, const Material& mat
                      mat.rho + h * dmat.rho, mass, k, m);
   out.k = T.transpose() * (k.imag() / detail::kComplexStep) * T;
   out.m = T.transpose() * (m.imag() / detail::kComplexStep) * T;
+  return out;
+}
+
+ElementMatrices eval(const GridPair& g, const RodSection& s, const Material& mat, MassKind mass,
+                     const RodSection& ds, const Material& dmat, bool derivative) {
+  ElementMatrices out = eval_raw(g, s, mat, mass, ds, dmat, derivative);
+  // Exact symmetry (Tᵀ K T is symmetric only to rounding).
+  out.k = (0.5 * (out.k + out.k.transpose())).eval();
+  out.m = (0.5 * (out.m + out.m.transpose())).eval();
   return out;
 }
 }  // namespace
