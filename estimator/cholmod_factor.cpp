@@ -1,0 +1,249 @@
+#include "estimator/cholmod_factor.hpp"
+
+#include <cholmod.h>
+
+#include <algorithm>
+#include <cstring>
+#include <stdexcept>
+
+namespace ssid::estimator {
+
+namespace detail {
+
+/// Owns one cholmod_common and everything allocated through it. Objects are
+/// freed before cholmod_l_finish, in the destructor only.
+struct CholmodState {
+  cholmod_common cm{};
+  cholmod_factor* L = nullptr;
+  // Workspaces of cholmod_l_solve2, kept between solves so that a Lanczos run
+  // allocates nothing per iteration.
+  mutable cholmod_dense* X = nullptr;
+  mutable cholmod_dense* Y = nullptr;
+  mutable cholmod_dense* E = nullptr;
+  mutable long solves = 0;
+  // The analysed pattern in CHOLMOD's 64-bit index type; values are borrowed.
+  std::vector<SuiteSparse_long> p, i;
+  cholmod_sparse A{};
+  long n = 0;
+
+  CholmodState() {
+    cholmod_l_start(&cm);
+    cm.print = 0;  // the library never prints; failures come back as statuses
+    cm.error_handler = nullptr;
+  }
+  ~CholmodState() {
+    if (L) cholmod_l_free_factor(&L, &cm);
+    if (X) cholmod_l_free_dense(&X, &cm);
+    if (Y) cholmod_l_free_dense(&Y, &cm);
+    if (E) cholmod_l_free_dense(&E, &cm);
+    cholmod_l_finish(&cm);
+  }
+  CholmodState(const CholmodState&) = delete;
+  CholmodState& operator=(const CholmodState&) = delete;
+};
+
+}  // namespace detail
+
+namespace {
+
+int cholmod_supernodal_flag(FactorKind k) {
+  switch (k) {
+    case FactorKind::Supernodal: return CHOLMOD_SUPERNODAL;
+    case FactorKind::Simplicial: return CHOLMOD_SIMPLICIAL;
+    case FactorKind::Auto: break;
+  }
+  return CHOLMOD_AUTO;
+}
+
+/// A header describing tril(A) for CHOLMOD: pattern from `p`, `i`, values borrowed.
+cholmod_sparse sparse_header(long n, std::vector<SuiteSparse_long>& p, std::vector<SuiteSparse_long>& i,
+                             const double* x) {
+  cholmod_sparse A{};
+  A.nrow = static_cast<size_t>(n);
+  A.ncol = static_cast<size_t>(n);
+  A.nzmax = i.size();
+  A.p = p.data();
+  A.i = i.data();
+  A.nz = nullptr;
+  A.x = const_cast<double*>(x);  // CHOLMOD reads A; its API is not const-correct
+  A.z = nullptr;
+  A.stype = -1;  // symmetric, lower triangle stored
+  A.itype = CHOLMOD_LONG;
+  A.xtype = CHOLMOD_REAL;
+  A.dtype = CHOLMOD_DOUBLE;
+  A.sorted = 1;
+  A.packed = 1;
+  return A;
+}
+
+void copy_pattern(const Eigen::SparseMatrix<double>& A, std::vector<SuiteSparse_long>& p,
+                  std::vector<SuiteSparse_long>& i) {
+  p.assign(A.outerIndexPtr(), A.outerIndexPtr() + A.cols() + 1);
+  i.assign(A.innerIndexPtr(), A.innerIndexPtr() + A.nonZeros());
+}
+
+bool is_lower_compressed(const Eigen::SparseMatrix<double>& A) {
+  if (!A.isCompressed()) return false;
+  for (Eigen::Index c = 0; c < A.outerSize(); ++c) {
+    const int b = A.outerIndexPtr()[c], e = A.outerIndexPtr()[c + 1];
+    if (b < e && A.innerIndexPtr()[b] < c) return false;  // rows sorted: first one is the smallest
+  }
+  return true;
+}
+
+void require_square(const Eigen::SparseMatrix<double>& A, const char* who) {
+  if (A.rows() != A.cols())
+    throw std::invalid_argument(std::string(who) + ": matrix is " + std::to_string(A.rows()) + " x " +
+                                std::to_string(A.cols()) + ", expected square");
+}
+
+}  // namespace
+
+Eigen::SparseMatrix<double> lower_triangle(const Eigen::SparseMatrix<double>& A) {
+  Eigen::SparseMatrix<double> L = A.triangularView<Eigen::Lower>();
+  L.makeCompressed();
+  return L;
+}
+
+CholmodFactor::CholmodFactor(FactorKind kind)
+    : m_state(std::make_unique<detail::CholmodState>()), m_kind(kind) {
+  m_state->cm.supernodal = cholmod_supernodal_flag(kind);
+  m_state->cm.final_ll = 1;
+}
+CholmodFactor::~CholmodFactor() = default;
+CholmodFactor::CholmodFactor(CholmodFactor&&) noexcept = default;
+CholmodFactor& CholmodFactor::operator=(CholmodFactor&&) noexcept = default;
+
+bool CholmodFactor::same_pattern(const SparseMatrix& lower) const {
+  const auto& s = *m_state;
+  if (!s.L || s.n != lower.rows() || s.i.size() != static_cast<size_t>(lower.nonZeros())) return false;
+  return std::equal(s.p.begin(), s.p.end(), lower.outerIndexPtr()) &&
+         std::equal(s.i.begin(), s.i.end(), lower.innerIndexPtr());
+}
+
+void CholmodFactor::analyze(const SparseMatrix& A) {
+  require_square(A, "CholmodFactor::analyze");
+  auto& s = *m_state;
+  const SparseMatrix lower = is_lower_compressed(A) ? SparseMatrix() : lower_triangle(A);
+  const SparseMatrix& low = lower.size() ? lower : A;
+  s.n = low.rows();
+  copy_pattern(low, s.p, s.i);
+  s.A = sparse_header(s.n, s.p, s.i, low.valuePtr());
+  if (s.L) cholmod_l_free_factor(&s.L, &s.cm);
+  s.L = cholmod_l_analyze(&s.A, &s.cm);
+  if (!s.L) throw std::runtime_error("CHOLMOD analysis failed (status " + std::to_string(s.cm.status) + ")");
+  ++m_analyses;
+}
+
+FactorStatus CholmodFactor::factorize(const SparseMatrix& A, double near_singular_rcond) {
+  require_square(A, "CholmodFactor::factorize");
+  // Borrow A's values when it is already lower triangular and compressed;
+  // otherwise build tril(A) once here.
+  const bool borrow = is_lower_compressed(A);
+  const SparseMatrix lower = borrow ? SparseMatrix() : lower_triangle(A);
+  const SparseMatrix& low = borrow ? A : lower;
+  if (!same_pattern(low)) analyze(low);
+  auto& s = *m_state;
+  s.A = sparse_header(s.n, s.p, s.i, low.valuePtr());
+  FactorStatus st;
+  const int ok = cholmod_l_factorize(&s.A, s.L, &s.cm);
+  ++m_factorizations;
+  if (!ok || (s.cm.status != CHOLMOD_OK && s.cm.status != CHOLMOD_NOT_POSDEF)) {
+    st.code = FactorStatus::Code::Failed;
+    st.message = "CHOLMOD factorisation failed (status " + std::to_string(s.cm.status) +
+                 (s.cm.status == CHOLMOD_OUT_OF_MEMORY ? ": out of memory)" : ")");
+    return st;
+  }
+  if (s.cm.status == CHOLMOD_NOT_POSDEF || s.L->minor < s.L->n) {
+    const auto k = static_cast<long>(s.L->minor);
+    const auto* perm = static_cast<const SuiteSparse_long*>(s.L->Perm);
+    st.code = FactorStatus::Code::NotPositiveDefinite;
+    st.column = perm ? static_cast<long>(perm[k]) : k;
+    st.message = "matrix is not positive definite: non-positive pivot at row/column " +
+                 std::to_string(st.column) + " (elimination step " + std::to_string(k) + " of " +
+                 std::to_string(s.n) + ")";
+    return st;
+  }
+  st.rcond = cholmod_l_rcond(s.L, &s.cm);
+  if (!(st.rcond >= near_singular_rcond)) {
+    st.code = FactorStatus::Code::NearSingular;
+    st.message = "matrix is nearly singular: reciprocal condition estimate " + std::to_string(st.rcond) +
+                 " below " + std::to_string(near_singular_rcond);
+  }
+  return st;
+}
+
+void CholmodFactor::solve(const double* b, double* x, long ncols) const {
+  auto& s = *m_state;
+  if (!factorized()) throw std::logic_error("CholmodFactor::solve before a successful factorize");
+  cholmod_dense B{};
+  B.nrow = static_cast<size_t>(s.n);
+  B.ncol = static_cast<size_t>(ncols);
+  B.nzmax = B.nrow * B.ncol;
+  B.d = B.nrow;
+  B.x = const_cast<double*>(b);  // read only by cholmod_l_solve2
+  B.xtype = CHOLMOD_REAL;
+  B.dtype = CHOLMOD_DOUBLE;
+  auto& cm = const_cast<cholmod_common&>(s.cm);
+  if (!cholmod_l_solve2(CHOLMOD_A, s.L, &B, nullptr, &s.X, nullptr, &s.Y, &s.E, &cm))
+    throw std::runtime_error("CHOLMOD solve failed (status " + std::to_string(cm.status) + ")");
+  std::memcpy(x, s.X->x, sizeof(double) * B.nzmax);
+  s.solves += ncols;
+}
+
+Eigen::MatrixXd CholmodFactor::solve(const Eigen::Ref<const Eigen::MatrixXd>& B) const {
+  if (B.rows() != rows()) throw std::invalid_argument("CholmodFactor::solve: right-hand side has wrong row count");
+  const Eigen::MatrixXd Bc = B;  // contiguous, column-major
+  Eigen::MatrixXd X(B.rows(), B.cols());
+  if (B.cols() > 0) solve(Bc.data(), X.data(), static_cast<long>(B.cols()));
+  return X;
+}
+
+long CholmodFactor::rows() const { return m_state->n; }
+bool CholmodFactor::factorized() const {
+  const auto* L = m_state->L;
+  return L && L->minor == L->n && (L->is_super || L->xtype != CHOLMOD_PATTERN);
+}
+long CholmodFactor::solve_count() const { return m_state->solves; }
+double CholmodFactor::factor_nnz() const { return m_state->cm.lnz; }
+double CholmodFactor::factor_flops() const { return m_state->cm.fl; }
+bool CholmodFactor::supernodal() const { return m_state->L && m_state->L->is_super; }
+
+std::string CholmodFactor::ordering() const {
+  if (!m_state->L) return "none";
+  switch (m_state->L->ordering) {
+    case CHOLMOD_NATURAL: return "natural";
+    case CHOLMOD_GIVEN: return "given";
+    case CHOLMOD_AMD: return "AMD";
+    case CHOLMOD_METIS: return "METIS";
+    case CHOLMOD_NESDIS: return "NESDIS";
+    case CHOLMOD_COLAMD: return "COLAMD";
+    case CHOLMOD_POSTORDERED: return "postordered";
+    default: return "unknown";
+  }
+}
+
+long count_negative_pivots(const Eigen::SparseMatrix<double>& A) {
+  require_square(A, "count_negative_pivots");
+  detail::CholmodState s;
+  s.cm.supernodal = CHOLMOD_SIMPLICIAL;  // LDLᵀ exposes D; supernodal is LLᵀ only
+  s.cm.final_ll = 0;
+  const Eigen::SparseMatrix<double> low = lower_triangle(A);
+  s.n = low.rows();
+  copy_pattern(low, s.p, s.i);
+  s.A = sparse_header(s.n, s.p, s.i, low.valuePtr());
+  s.L = cholmod_l_analyze(&s.A, &s.cm);
+  if (!s.L) throw std::runtime_error("CHOLMOD analysis failed (status " + std::to_string(s.cm.status) + ")");
+  cholmod_l_factorize(&s.A, s.L, &s.cm);
+  if (s.cm.status < CHOLMOD_OK)
+    throw std::runtime_error("CHOLMOD LDL' factorisation failed (status " + std::to_string(s.cm.status) + ")");
+  if (s.L->minor < s.L->n) return -1;  // zero pivot
+  const auto* p = static_cast<const SuiteSparse_long*>(s.L->p);
+  const auto* x = static_cast<const double*>(s.L->x);
+  long neg = 0;
+  for (long j = 0; j < s.n; ++j)
+    if (x[p[j]] < 0.0) ++neg;  // simplicial LDLᵀ keeps D(j,j) in L's diagonal slot
+  return neg;
+}
+
+}  // namespace ssid::estimator

@@ -1,0 +1,120 @@
+#pragma once
+/// \file cholmod_factor.hpp
+/// RAII wrapper of a CHOLMOD sparse Cholesky factorisation A = P Lᵀ L Pᵀ of a
+/// symmetric positive definite matrix, with the symbolic analysis (fill-reducing
+/// ordering, supernode structure) kept apart from the numeric factorisation.
+///
+/// Why: in model updating the sparsity of K(r) − σM(r) never changes while its
+/// values do, so the analysis (the ordering is the expensive, sequential part for
+/// large models) is done once per pattern and every parameter update only
+/// refactors. `factorize` re-analyses by itself when the pattern it is given
+/// differs from the analysed one; `analysis_count()` says how often that happened.
+///
+/// The 64-bit CHOLMOD interface (cholmod_l_*) is used so that factors of
+/// million-DOF models (more than 2³¹ entries in L) fit.
+#include <Eigen/SparseCore>
+#include <cstddef>
+#include <memory>
+#include <string>
+#include <vector>
+
+namespace ssid::estimator {
+
+/// Outcome of a numeric factorisation: a numerical outcome the caller acts on,
+/// not an exception (bad input, such as a non-square matrix, throws).
+struct FactorStatus {
+  enum class Code { Ok, NotPositiveDefinite, NearSingular, Failed };
+  Code code = Code::Ok;
+  /// For NotPositiveDefinite: the row/column index of the input matrix (original
+  /// ordering) where the factorisation met a non-positive pivot; −1 otherwise.
+  /// Supernodal factorisations report the first column of the failing supernode,
+  /// so the culprit is this DOF or one eliminated together with it.
+  long column = -1;
+  /// Reciprocal condition estimate (min/max of diag(L))², CHOLMOD's cholmod_rcond.
+  double rcond = 0.0;
+  std::string message;
+  bool ok() const { return code == Code::Ok; }
+};
+
+/// Which factorisation CHOLMOD builds.
+enum class FactorKind {
+  Supernodal,  ///< supernodal LLᵀ (BLAS-3 dense kernels; what large models need)
+  Auto,        ///< let CHOLMOD choose simplicial or supernodal from the flop count
+  Simplicial   ///< simplicial LLᵀ
+};
+
+namespace detail {
+struct CholmodState;  // cholmod_common + factor + workspaces, defined in the .cpp
+}
+
+/// Sparse Cholesky factorisation of a symmetric matrix given by its lower
+/// triangle (entries above the diagonal are ignored). Non-copyable, movable.
+class CholmodFactor {
+ public:
+  using SparseMatrix = Eigen::SparseMatrix<double>;
+
+  explicit CholmodFactor(FactorKind kind = FactorKind::Supernodal);
+  ~CholmodFactor();
+  CholmodFactor(CholmodFactor&&) noexcept;
+  CholmodFactor& operator=(CholmodFactor&&) noexcept;
+  CholmodFactor(const CholmodFactor&) = delete;
+  CholmodFactor& operator=(const CholmodFactor&) = delete;
+
+  /// Symbolic analysis of the pattern of tril(A): ordering (CHOLMOD tries AMD
+  /// and, when fill is high, METIS/nested dissection, and keeps the best) and
+  /// the supernodal structure. Throws std::invalid_argument when A is not square.
+  void analyze(const SparseMatrix& A);
+
+  /// Numeric factorisation of A (lower triangle used). Analyses first when no
+  /// pattern was analysed or A's pattern differs from it. The input values are
+  /// passed to CHOLMOD without a copy when A is compressed and lower triangular.
+  /// `near_singular_rcond`: below this reciprocal condition estimate the status is
+  /// NearSingular (the factor is still usable).
+  FactorStatus factorize(const SparseMatrix& A, double near_singular_rcond = 1e-14);
+
+  /// Solves A X = B for `ncols` right-hand sides stored column-major with leading
+  /// dimension rows(); x and b may not alias. Requires a successful factorize.
+  /// Several columns at once let CHOLMOD use BLAS-3 on each supernode and read L
+  /// once for all of them.
+  void solve(const double* b, double* x, long ncols = 1) const;
+
+  Eigen::MatrixXd solve(const Eigen::Ref<const Eigen::MatrixXd>& B) const;
+
+  long rows() const;
+  bool factorized() const;
+  /// Number of symbolic analyses done so far (the reuse test counts them).
+  int analysis_count() const { return m_analyses; }
+  /// Number of numeric factorisations done so far.
+  int factorization_count() const { return m_factorizations; }
+  /// Number of right-hand-side columns solved so far.
+  long solve_count() const;
+  /// Entries of L (including supernodal padding) and the factorisation's flop
+  /// count from the last analysis, as CHOLMOD reports them.
+  double factor_nnz() const;
+  double factor_flops() const;
+  /// "AMD", "METIS", "NESDIS", ... : the ordering CHOLMOD kept.
+  std::string ordering() const;
+  bool supernodal() const;
+
+ private:
+  bool same_pattern(const SparseMatrix& lower) const;
+  void wrap(const SparseMatrix& lower);
+
+  std::unique_ptr<detail::CholmodState> m_state;
+  FactorKind m_kind;
+  int m_analyses = 0;
+  int m_factorizations = 0;
+};
+
+/// Lower triangle of A, compressed, as CHOLMOD reads it.
+Eigen::SparseMatrix<double> lower_triangle(const Eigen::SparseMatrix<double>& A);
+
+/// Inertia count by a simplicial LDLᵀ factorisation (no pivoting) of tril(A):
+/// the number of negative entries of D. By Sylvester's law this equals the number
+/// of negative eigenvalues of A. Used as the Sturm-sequence count: with A = K − sM
+/// (M positive definite on the DOFs with mass) it is the number of eigenvalues of
+/// K φ = λ M φ below s. Returns −1 when a zero pivot stops the factorisation
+/// (s is an eigenvalue of a leading block: move s slightly and count again).
+long count_negative_pivots(const Eigen::SparseMatrix<double>& A);
+
+}  // namespace ssid::estimator
