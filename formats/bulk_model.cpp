@@ -19,6 +19,15 @@ void add(const FieldReader& r, std::size_t card, BulkModel& m) {
   (m.*Member).push_back(std::move(v));
 }
 
+/// Cards holding several entries (PELAS, PMASS).
+template <typename T, std::vector<T> (*Parse)(const FieldReader&), std::vector<T> BulkModel::*Member>
+void add_many(const FieldReader& r, std::size_t card, BulkModel& m) {
+  for (T& v : Parse(r)) {
+    v.card = card;
+    (m.*Member).push_back(std::move(v));
+  }
+}
+
 /// Cards counted as supported but parsed elsewhere (DMIG: formats/dmig.*).
 void skip(const FieldReader&, std::size_t, BulkModel&) {}
 
@@ -37,6 +46,16 @@ const std::unordered_map<std::string, ParseFn>& parsers() {
       {"PBEAM", add<Pbeam, parse_pbeam, &BulkModel::pbeams>},
       {"PBEAML", add<Pbeaml, parse_pbeaml, &BulkModel::pbeamls>},
       {"MAT1", add<Mat1, parse_mat1, &BulkModel::mat1s>},
+      {"SPOINT", add<Spoint, parse_spoint, &BulkModel::spoints>},
+      {"CONM2", add<Conm2, parse_conm2, &BulkModel::conm2s>},
+      {"CMASS1", add<Cmass1, parse_cmass1, &BulkModel::cmass1s>},
+      {"CMASS2", add<Cmass2, parse_cmass2, &BulkModel::cmass2s>},
+      {"PMASS", add_many<Pmass, parse_pmass, &BulkModel::pmasses>},
+      {"CELAS1", add<Celas1, parse_celas1, &BulkModel::celas1s>},
+      {"CELAS2", add<Celas2, parse_celas2, &BulkModel::celas2s>},
+      {"PELAS", add_many<Pelas, parse_pelas, &BulkModel::pelases>},
+      {"CBUSH", add<Cbush, parse_cbush, &BulkModel::cbushes>},
+      {"PBUSH", add<Pbush, parse_pbush, &BulkModel::pbushes>},
       {"DMIG", skip},
   };
   return table;
@@ -140,6 +159,16 @@ std::map<std::size_t, std::vector<FieldValue>> write_bulk(const BulkModel& m) {
   write_all(m.pbeams, write_pbeam, out);
   write_all(m.pbeamls, write_pbeaml, out);
   write_all(m.mat1s, write_mat1, out);
+  write_all(m.spoints, write_spoint, out);
+  write_all(m.conm2s, write_conm2, out);
+  write_all(m.cmass1s, write_cmass1, out);
+  write_all(m.cmass2s, write_cmass2, out);
+  write_all(m.pmasses, write_pmass, out);
+  write_all(m.celas1s, write_celas1, out);
+  write_all(m.celas2s, write_celas2, out);
+  write_all(m.pelases, write_pelas, out);
+  write_all(m.cbushes, write_cbush, out);
+  write_all(m.pbushes, write_pbush, out);
   return out;
 }
 
@@ -221,14 +250,23 @@ void resolve(const Deck& deck, BulkModel& m) {
   std::vector<Problem>& out = m.problems;
 
   // --- id spaces ------------------------------------------------------------
-  IdSpace grids(deck, out, "GRID");
+  IdSpace grids(deck, out, "grid or scalar point");
   for (const Grid& g : m.grids) grids.define(g.id, g.card);
+  for (const Spoint& s : m.spoints)
+    for (std::int64_t id : s.ids) grids.define(id, s.card);
+  grids.define_verbatim({"EPOINT"});
 
   IdSpace elements(deck, out, "element");
   for (const auto& e : m.crods) elements.define(e.eid, e.card);
   for (const auto& e : m.conrods) elements.define(e.eid, e.card);
   for (const auto& e : m.cbars) elements.define(e.eid, e.card);
   for (const auto& e : m.cbeams) elements.define(e.eid, e.card);
+  for (const auto& e : m.conm2s) elements.define(e.eid, e.card);
+  for (const auto& e : m.cmass1s) elements.define(e.eid, e.card);
+  for (const auto& e : m.cmass2s) elements.define(e.eid, e.card);
+  for (const auto& e : m.celas1s) elements.define(e.eid, e.card);
+  for (const auto& e : m.celas2s) elements.define(e.eid, e.card);
+  for (const auto& e : m.cbushes) elements.define(e.eid, e.card);
   // Element cards kept verbatim share the id space.
   elements.define_verbatim({"CQUAD4", "CQUAD8", "CQUADR", "CTRIA3", "CTRIA6", "CTRIAR", "CSHEAR", "CHEXA", "CPENTA",
                             "CTETRA", "CPYRAM", "CTUBE", "CBEND", "CGAP", "CDAMP1", "CDAMP2", "CDAMP3", "CDAMP4",
@@ -241,6 +279,9 @@ void resolve(const Deck& deck, BulkModel& m) {
   for (const auto& p : m.pbarls) properties.define(p.pid, p.card);
   for (const auto& p : m.pbeams) properties.define(p.pid, p.card);
   for (const auto& p : m.pbeamls) properties.define(p.pid, p.card);
+  for (const auto& p : m.pmasses) properties.define(p.pid, p.card);
+  for (const auto& p : m.pelases) properties.define(p.pid, p.card);
+  for (const auto& p : m.pbushes) properties.define(p.pid, p.card);
   properties.define_verbatim({"PSHELL", "PCOMP", "PCOMPG", "PSOLID", "PSHEAR", "PTUBE", "PBEND", "PGAP", "PDAMP",
                               "PVISC", "PBUSH1D", "PBCOMP", "PFAST", "PWELD"});
 
@@ -250,27 +291,67 @@ void resolve(const Deck& deck, BulkModel& m) {
 
   // --- element -> grid, element -> property, property -> material -----------
   for (const Crod& c : m.crods) {
-    grids.need(c.g1, {}, c.card, 3, "G1");
-    grids.need(c.g2, {}, c.card, 4, "G2");
+    grids.need(c.g1, {"GRID"}, c.card, 3, "G1");
+    grids.need(c.g2, {"GRID"}, c.card, 4, "G2");
     properties.need(c.pid, {"PROD"}, c.card, 2, "PID");
   }
   for (const Conrod& c : m.conrods) {
-    grids.need(c.g1, {}, c.card, 2, "G1");
-    grids.need(c.g2, {}, c.card, 3, "G2");
+    grids.need(c.g1, {"GRID"}, c.card, 2, "G1");
+    grids.need(c.g2, {"GRID"}, c.card, 3, "G2");
     materials.need(c.mid, {"MAT1"}, c.card, 4, "MID");
   }
   for (const Cbar& c : m.cbars) {
     properties.need(c.pid, {"PBAR", "PBARL"}, c.card, 2, "PID");
-    grids.need(c.ga, {}, c.card, 3, "GA");
-    grids.need(c.gb, {}, c.card, 4, "GB");
-    if (c.g0 > 0) grids.need(c.g0, {}, c.card, 5, "G0");
+    grids.need(c.ga, {"GRID"}, c.card, 3, "GA");
+    grids.need(c.gb, {"GRID"}, c.card, 4, "GB");
+    if (c.g0 > 0) grids.need(c.g0, {"GRID"}, c.card, 5, "G0");
   }
   for (const Cbeam& c : m.cbeams) {
     properties.need(c.pid, {"PBEAM", "PBEAML"}, c.card, 2, "PID");
-    grids.need(c.ga, {}, c.card, 3, "GA");
-    grids.need(c.gb, {}, c.card, 4, "GB");
-    if (c.g0 > 0) grids.need(c.g0, {}, c.card, 5, "G0");
+    grids.need(c.ga, {"GRID"}, c.card, 3, "GA");
+    grids.need(c.gb, {"GRID"}, c.card, 4, "GB");
+    if (c.g0 > 0) grids.need(c.g0, {"GRID"}, c.card, 5, "G0");
+    if (c.sa > 0) grids.need(c.sa, {"SPOINT"}, c.card, 17, "SA");
+    if (c.sb > 0) grids.need(c.sb, {"SPOINT"}, c.card, 18, "SB");
   }
+  // Scalar elements: each end a grid (component 1-6) or a scalar point (component 0).
+  auto scalar_end = [&](std::int64_t g, std::int64_t c, std::size_t card, std::size_t field, const char* gname) {
+    if (g == 0) return;
+    grids.need(g, {}, card, field, gname);
+    const IdSpace::Def* d = grids.find(g);
+    if (!d) return;
+    bool is_spoint = *d->type != "GRID";
+    if (is_spoint && c > 0)
+      out.push_back(error_at(deck, deck.cards[card], field + 1,
+                             label(deck, card) + ": " + gname + " " + std::to_string(g) + " is a scalar point (" +
+                                 *d->type + "), its component must be 0 or blank, got " + std::to_string(c)));
+    if (!is_spoint && c == 0)
+      out.push_back(error_at(deck, deck.cards[card], field + 1,
+                             label(deck, card) + ": " + gname + " " + std::to_string(g) +
+                                 " is a GRID, its component must be 1-6, got blank or 0"));
+  };
+  auto scalar_ends = [&](const auto& e) {
+    scalar_end(e.g1, e.c1, e.card, 3, "G1");
+    scalar_end(e.g2, e.c2, e.card, 5, "G2");
+  };
+  for (const auto& e : m.cmass1s) {
+    properties.need(e.pid, {"PMASS"}, e.card, 2, "PID");
+    scalar_ends(e);
+  }
+  for (const auto& e : m.celas1s) {
+    properties.need(e.pid, {"PELAS"}, e.card, 2, "PID");
+    scalar_ends(e);
+  }
+  for (const auto& e : m.cmass2s) scalar_ends(e);
+  for (const auto& e : m.celas2s) scalar_ends(e);
+  for (const auto& e : m.conm2s) grids.need(e.g, {"GRID"}, e.card, 2, "G");
+  for (const auto& e : m.cbushes) {
+    properties.need(e.pid, {"PBUSH"}, e.card, 2, "PID");
+    grids.need(e.ga, {"GRID"}, e.card, 3, "GA");
+    if (e.gb > 0) grids.need(e.gb, {"GRID"}, e.card, 4, "GB");
+    if (e.g0 > 0) grids.need(e.g0, {"GRID"}, e.card, 5, "G0");
+  }
+
   for (const auto& p : m.prods) materials.need(p.mid, {"MAT1"}, p.card, 2, "MID");
   for (const auto& p : m.pbars) materials.need(p.mid, {"MAT1"}, p.card, 2, "MID");
   for (const auto& p : m.pbarls) {

@@ -9,10 +9,12 @@
 
 #include "formats/cards/bar.hpp"
 #include "formats/cards/beam.hpp"
+#include "formats/cards/bush.hpp"
 #include "formats/cards/crod.hpp"
 #include "formats/cards/grid.hpp"
 #include "formats/cards/mat1.hpp"
 #include "formats/cards/rod.hpp"
+#include "formats/cards/scalar.hpp"
 #include "formats/cards/section.hpp"
 #include "formats/deck.hpp"
 
@@ -20,6 +22,7 @@ namespace ssid::formats {
 
 struct BulkModel {
   std::vector<Grid> grids;
+  std::vector<Spoint> spoints;
   // Elements and their properties.
   std::vector<Crod> crods;
   std::vector<Conrod> conrods;
@@ -32,6 +35,16 @@ struct BulkModel {
   std::vector<Beamor> beamors;  ///< at most one; applied to cbeams
   std::vector<Pbeam> pbeams;
   std::vector<Pbeaml> pbeamls;
+  // Masses, springs, bushes.
+  std::vector<Conm2> conm2s;
+  std::vector<Cmass1> cmass1s;
+  std::vector<Cmass2> cmass2s;
+  std::vector<Pmass> pmasses;  ///< one per property (a PMASS card holds up to four)
+  std::vector<Celas1> celas1s;
+  std::vector<Celas2> celas2s;
+  std::vector<Pelas> pelases;  ///< one per property (a PELAS card holds up to two)
+  std::vector<Cbush> cbushes;
+  std::vector<Pbush> pbushes;
   // Materials.
   std::vector<Mat1> mat1s;
 
