@@ -1,5 +1,8 @@
 #include "formats/bulk_model.hpp"
 
+#include "formats/nastran_number.hpp"
+
+#include <cmath>
 #include <functional>
 #include <unordered_map>
 
@@ -16,16 +19,83 @@ void add(const FieldReader& r, std::size_t card, BulkModel& m) {
   (m.*Member).push_back(std::move(v));
 }
 
+/// Cards holding several entries (PELAS, PMASS).
+template <typename T, std::vector<T> (*Parse)(const FieldReader&), std::vector<T> BulkModel::*Member>
+void add_many(const FieldReader& r, std::size_t card, BulkModel& m) {
+  for (T& v : Parse(r)) {
+    v.card = card;
+    (m.*Member).push_back(std::move(v));
+  }
+}
+
+/// Cards counted as supported but parsed elsewhere (DMIG: formats/dmig.*).
+void skip(const FieldReader&, std::size_t, BulkModel&) {}
+
 const std::unordered_map<std::string, ParseFn>& parsers() {
   static const std::unordered_map<std::string, ParseFn> table = {
       {"GRID", add<Grid, parse_grid, &BulkModel::grids>},
       {"CROD", add<Crod, parse_crod, &BulkModel::crods>},
+      {"CONROD", add<Conrod, parse_conrod, &BulkModel::conrods>},
+      {"PROD", add<Prod, parse_prod, &BulkModel::prods>},
+      {"CBAR", add<Cbar, parse_cbar, &BulkModel::cbars>},
+      {"BAROR", add<Baror, parse_baror, &BulkModel::barors>},
+      {"PBAR", add<Pbar, parse_pbar, &BulkModel::pbars>},
+      {"PBARL", add<Pbarl, parse_pbarl, &BulkModel::pbarls>},
+      {"CBEAM", add<Cbeam, parse_cbeam, &BulkModel::cbeams>},
+      {"BEAMOR", add<Beamor, parse_beamor, &BulkModel::beamors>},
+      {"PBEAM", add<Pbeam, parse_pbeam, &BulkModel::pbeams>},
+      {"PBEAML", add<Pbeaml, parse_pbeaml, &BulkModel::pbeamls>},
+      {"MAT1", add<Mat1, parse_mat1, &BulkModel::mat1s>},
+      {"SPOINT", add<Spoint, parse_spoint, &BulkModel::spoints>},
+      {"CONM2", add<Conm2, parse_conm2, &BulkModel::conm2s>},
+      {"CMASS1", add<Cmass1, parse_cmass1, &BulkModel::cmass1s>},
+      {"CMASS2", add<Cmass2, parse_cmass2, &BulkModel::cmass2s>},
+      {"PMASS", add_many<Pmass, parse_pmass, &BulkModel::pmasses>},
+      {"CELAS1", add<Celas1, parse_celas1, &BulkModel::celas1s>},
+      {"CELAS2", add<Celas2, parse_celas2, &BulkModel::celas2s>},
+      {"PELAS", add_many<Pelas, parse_pelas, &BulkModel::pelases>},
+      {"CBUSH", add<Cbush, parse_cbush, &BulkModel::cbushes>},
+      {"PBUSH", add<Pbush, parse_pbush, &BulkModel::pbushes>},
+      {"DMIG", skip},
   };
   return table;
 }
 
 Problem error_at(const Deck& deck, const Card& card, std::size_t field, const std::string& msg) {
   return {Problem::Severity::Error, deck.location(card, field), msg};
+}
+Problem warning_at(const Deck& deck, const Card& card, std::size_t field, const std::string& msg) {
+  return {Problem::Severity::Warning, deck.location(card, field), msg};
+}
+
+/// "CBAR 10": the card's name and first field, as written.
+std::string label(const Deck& deck, std::size_t card) {
+  const Card& c = deck.cards[card];
+  std::string_view id = c.field(1);
+  return id.empty() ? c.name : c.name + " " + std::string(id);
+}
+
+/// Only one BAROR/BEAMOR (GRDSET) is allowed; returns the first, reports the others.
+template <typename T>
+const T* single(const Deck& deck, const std::vector<T>& v, const char* name, std::vector<Problem>& problems) {
+  for (std::size_t k = 1; k < v.size(); ++k)
+    problems.push_back(error_at(deck, deck.cards[v[k].card], 0,
+                                std::string("more than one ") + name + " (first at " +
+                                    deck.location(deck.cards[v[0].card]).str() + ")"));
+  return v.empty() ? nullptr : &v[0];
+}
+
+void apply_defaults(const Deck& deck, BulkModel& m) {
+  const Baror* baror = single(deck, m.barors, "BAROR", m.problems);
+  for (Cbar& c : m.cbars)
+    if (!apply_baror(c, baror))
+      m.problems.push_back(error_at(deck, deck.cards[c.card], 5,
+                                    label(deck, c.card) + ": orientation (fields 6-8) blank and no BAROR gives one"));
+  const Beamor* beamor = single(deck, m.beamors, "BEAMOR", m.problems);
+  for (Cbeam& c : m.cbeams)
+    if (!apply_beamor(c, beamor))
+      m.problems.push_back(error_at(deck, deck.cards[c.card], 5,
+                                    label(deck, c.card) + ": orientation (fields 6-8) blank and no BEAMOR gives one"));
 }
 
 }  // namespace
@@ -55,27 +125,261 @@ BulkModel parse_bulk(const Deck& deck) {
       m.problems.push_back({Problem::Severity::Error, e.where(), e.detail()});
     }
   }
+  apply_defaults(deck, m);
   return m;
 }
 
-void resolve(const Deck& deck, BulkModel& m) {
-  std::unordered_map<std::int64_t, std::size_t> grid_index;
-  for (const Grid& g : m.grids) {
-    auto [it, fresh] = grid_index.emplace(g.id, g.card);
-    if (!fresh)
-      m.problems.push_back(error_at(deck, deck.cards[g.card], 1,
-                                    "duplicate GRID " + std::to_string(g.id) + " (first defined at " +
-                                        deck.location(deck.cards[it->second]).str() + ")"));
+namespace {
+
+template <typename T>
+void write_all(const std::vector<T>& v, std::vector<FieldValue> (*write)(const T&),
+               std::map<std::size_t, std::vector<FieldValue>>& out) {
+  for (const T& x : v) {
+    std::vector<FieldValue> values = write(x);
+    auto [it, fresh] = out.emplace(x.card, values);
+    // A card holding several entries (PELAS, PMASS): append this entry's fields.
+    if (!fresh) it->second.insert(it->second.end(), values.begin() + 1, values.end());
   }
-  auto need_grid = [&](std::int64_t gid, const Card& by, std::size_t field, const std::string& by_label) {
-    if (!grid_index.count(gid))
-      m.problems.push_back(error_at(deck, by, field, "GRID " + std::to_string(gid) + " required by " + by_label + " does not exist"));
+}
+
+}  // namespace
+
+std::map<std::size_t, std::vector<FieldValue>> write_bulk(const BulkModel& m) {
+  std::map<std::size_t, std::vector<FieldValue>> out;
+  write_all(m.grids, write_grid, out);
+  write_all(m.crods, write_crod, out);
+  write_all(m.conrods, write_conrod, out);
+  write_all(m.prods, write_prod, out);
+  write_all(m.cbars, write_cbar, out);
+  write_all(m.barors, write_baror, out);
+  write_all(m.pbars, write_pbar, out);
+  write_all(m.pbarls, write_pbarl, out);
+  write_all(m.cbeams, write_cbeam, out);
+  write_all(m.beamors, write_beamor, out);
+  write_all(m.pbeams, write_pbeam, out);
+  write_all(m.pbeamls, write_pbeaml, out);
+  write_all(m.mat1s, write_mat1, out);
+  write_all(m.spoints, write_spoint, out);
+  write_all(m.conm2s, write_conm2, out);
+  write_all(m.cmass1s, write_cmass1, out);
+  write_all(m.cmass2s, write_cmass2, out);
+  write_all(m.pmasses, write_pmass, out);
+  write_all(m.celas1s, write_celas1, out);
+  write_all(m.celas2s, write_celas2, out);
+  write_all(m.pelases, write_pelas, out);
+  write_all(m.cbushes, write_cbush, out);
+  write_all(m.pbushes, write_pbush, out);
+  return out;
+}
+
+namespace {
+
+/// One id space (grids, elements, properties, ...): every definition, by id.
+class IdSpace {
+public:
+  struct Def {
+    std::size_t card;  ///< index in Deck::cards
+    const std::string* type;  ///< card name
   };
+
+  IdSpace(const Deck& deck, std::vector<Problem>& problems, std::string noun)
+      : m_deck(deck), m_problems(problems), m_noun(std::move(noun)) {}
+
+  /// Adds `id` defined by card `card` (field `field`); a second definition is a problem.
+  void define(std::int64_t id, std::size_t card, std::size_t field = 1) {
+    const Card& c = m_deck.cards[card];
+    auto [it, fresh] = m_defs.emplace(id, Def{card, &c.name});
+    if (fresh) return;
+    const Card& first = m_deck.cards[it->second.card];
+    m_problems.push_back(error_at(m_deck, c, field,
+                                  "duplicate " + m_noun + " " + std::to_string(id) + " (" + c.name +
+                                      "; first defined by " + first.name + " at " + m_deck.location(first).str() +
+                                      ")"));
+  }
+
+  const Def* find(std::int64_t id) const {
+    auto it = m_defs.find(id);
+    return it == m_defs.end() ? nullptr : &it->second;
+  }
+
+  /// Checks that `id` exists and, when `types` is not empty, is one of them.
+  /// Messages: "PROD 3 required by CROD 10 does not exist";
+  /// "CROD 10 refers to PID 3, which is a PBAR, expected PROD".
+  void need(std::int64_t id, std::initializer_list<const char*> types, std::size_t by, std::size_t field,
+            const char* field_name) const {
+    std::string expect;
+    for (const char* t : types) expect += (expect.empty() ? "" : "/") + std::string(t);
+    const Card& c = m_deck.cards[by];
+    const Def* d = find(id);
+    if (!d) {
+      m_problems.push_back(error_at(m_deck, c, field,
+                                    (expect.empty() ? m_noun : expect) + " " + std::to_string(id) + " required by " +
+                                        label(m_deck, by) + " does not exist"));
+      return;
+    }
+    if (types.size() == 0) return;
+    for (const char* t : types)
+      if (*d->type == t) return;
+    m_problems.push_back(error_at(m_deck, c, field,
+                                  label(m_deck, by) + " refers to " + field_name + " " + std::to_string(id) +
+                                      ", which is a " + *d->type + ", expected " + expect));
+  }
+
+  /// Defines the ids in field 1 of cards kept verbatim whose name is in `names`.
+  void define_verbatim(const std::initializer_list<const char*>& names) {
+    for (std::size_t i = 0; i < m_deck.cards.size(); ++i) {
+      const Card& c = m_deck.cards[i];
+      for (const char* n : names)
+        if (c.name == n) {
+          if (auto id = parse_integer(c.field(1))) define(*id, i);
+          break;
+        }
+    }
+  }
+
+private:
+  const Deck& m_deck;
+  std::vector<Problem>& m_problems;
+  std::string m_noun;
+  std::unordered_map<std::int64_t, Def> m_defs;
+};
+
+}  // namespace
+
+void resolve(const Deck& deck, BulkModel& m) {
+  std::vector<Problem>& out = m.problems;
+
+  // --- id spaces ------------------------------------------------------------
+  IdSpace grids(deck, out, "grid or scalar point");
+  for (const Grid& g : m.grids) grids.define(g.id, g.card);
+  for (const Spoint& s : m.spoints)
+    for (std::int64_t id : s.ids) grids.define(id, s.card);
+  grids.define_verbatim({"EPOINT"});
+
+  IdSpace elements(deck, out, "element");
+  for (const auto& e : m.crods) elements.define(e.eid, e.card);
+  for (const auto& e : m.conrods) elements.define(e.eid, e.card);
+  for (const auto& e : m.cbars) elements.define(e.eid, e.card);
+  for (const auto& e : m.cbeams) elements.define(e.eid, e.card);
+  for (const auto& e : m.conm2s) elements.define(e.eid, e.card);
+  for (const auto& e : m.cmass1s) elements.define(e.eid, e.card);
+  for (const auto& e : m.cmass2s) elements.define(e.eid, e.card);
+  for (const auto& e : m.celas1s) elements.define(e.eid, e.card);
+  for (const auto& e : m.celas2s) elements.define(e.eid, e.card);
+  for (const auto& e : m.cbushes) elements.define(e.eid, e.card);
+  // Element cards kept verbatim share the id space.
+  elements.define_verbatim({"CQUAD4", "CQUAD8", "CQUADR", "CTRIA3", "CTRIA6", "CTRIAR", "CSHEAR", "CHEXA", "CPENTA",
+                            "CTETRA", "CPYRAM", "CTUBE", "CBEND", "CGAP", "CDAMP1", "CDAMP2", "CDAMP3", "CDAMP4",
+                            "CVISC", "CELAS3", "CELAS4", "CMASS3", "CMASS4", "CONM1", "CBUSH1D", "CFAST", "CWELD",
+                            "RBE1", "RROD", "RSPLINE", "PLOTEL"});
+
+  IdSpace properties(deck, out, "property");
+  for (const auto& p : m.prods) properties.define(p.pid, p.card);
+  for (const auto& p : m.pbars) properties.define(p.pid, p.card);
+  for (const auto& p : m.pbarls) properties.define(p.pid, p.card);
+  for (const auto& p : m.pbeams) properties.define(p.pid, p.card);
+  for (const auto& p : m.pbeamls) properties.define(p.pid, p.card);
+  for (const auto& p : m.pmasses) properties.define(p.pid, p.card);
+  for (const auto& p : m.pelases) properties.define(p.pid, p.card);
+  for (const auto& p : m.pbushes) properties.define(p.pid, p.card);
+  properties.define_verbatim({"PSHELL", "PCOMP", "PCOMPG", "PSOLID", "PSHEAR", "PTUBE", "PBEND", "PGAP", "PDAMP",
+                              "PVISC", "PBUSH1D", "PBCOMP", "PFAST", "PWELD"});
+
+  IdSpace materials(deck, out, "material");
+  for (const auto& mt : m.mat1s) materials.define(mt.mid, mt.card);
+  materials.define_verbatim({"MAT2", "MAT3", "MAT8", "MAT9", "MAT10"});
+
+  // --- element -> grid, element -> property, property -> material -----------
   for (const Crod& c : m.crods) {
-    const Card& card = deck.cards[c.card];
-    std::string lbl = "CROD " + std::to_string(c.eid);
-    need_grid(c.g1, card, 3, lbl);
-    need_grid(c.g2, card, 4, lbl);
+    grids.need(c.g1, {"GRID"}, c.card, 3, "G1");
+    grids.need(c.g2, {"GRID"}, c.card, 4, "G2");
+    properties.need(c.pid, {"PROD"}, c.card, 2, "PID");
+  }
+  for (const Conrod& c : m.conrods) {
+    grids.need(c.g1, {"GRID"}, c.card, 2, "G1");
+    grids.need(c.g2, {"GRID"}, c.card, 3, "G2");
+    materials.need(c.mid, {"MAT1"}, c.card, 4, "MID");
+  }
+  for (const Cbar& c : m.cbars) {
+    properties.need(c.pid, {"PBAR", "PBARL"}, c.card, 2, "PID");
+    grids.need(c.ga, {"GRID"}, c.card, 3, "GA");
+    grids.need(c.gb, {"GRID"}, c.card, 4, "GB");
+    if (c.g0 > 0) grids.need(c.g0, {"GRID"}, c.card, 5, "G0");
+  }
+  for (const Cbeam& c : m.cbeams) {
+    properties.need(c.pid, {"PBEAM", "PBEAML"}, c.card, 2, "PID");
+    grids.need(c.ga, {"GRID"}, c.card, 3, "GA");
+    grids.need(c.gb, {"GRID"}, c.card, 4, "GB");
+    if (c.g0 > 0) grids.need(c.g0, {"GRID"}, c.card, 5, "G0");
+    if (c.sa > 0) grids.need(c.sa, {"SPOINT"}, c.card, 17, "SA");
+    if (c.sb > 0) grids.need(c.sb, {"SPOINT"}, c.card, 18, "SB");
+  }
+  // Scalar elements: each end a grid (component 1-6) or a scalar point (component 0).
+  auto scalar_end = [&](std::int64_t g, std::int64_t c, std::size_t card, std::size_t field, const char* gname) {
+    if (g == 0) return;
+    grids.need(g, {}, card, field, gname);
+    const IdSpace::Def* d = grids.find(g);
+    if (!d) return;
+    bool is_spoint = *d->type != "GRID";
+    if (is_spoint && c > 0)
+      out.push_back(error_at(deck, deck.cards[card], field + 1,
+                             label(deck, card) + ": " + gname + " " + std::to_string(g) + " is a scalar point (" +
+                                 *d->type + "), its component must be 0 or blank, got " + std::to_string(c)));
+    if (!is_spoint && c == 0)
+      out.push_back(error_at(deck, deck.cards[card], field + 1,
+                             label(deck, card) + ": " + gname + " " + std::to_string(g) +
+                                 " is a GRID, its component must be 1-6, got blank or 0"));
+  };
+  auto scalar_ends = [&](const auto& e) {
+    scalar_end(e.g1, e.c1, e.card, 3, "G1");
+    scalar_end(e.g2, e.c2, e.card, 5, "G2");
+  };
+  for (const auto& e : m.cmass1s) {
+    properties.need(e.pid, {"PMASS"}, e.card, 2, "PID");
+    scalar_ends(e);
+  }
+  for (const auto& e : m.celas1s) {
+    properties.need(e.pid, {"PELAS"}, e.card, 2, "PID");
+    scalar_ends(e);
+  }
+  for (const auto& e : m.cmass2s) scalar_ends(e);
+  for (const auto& e : m.celas2s) scalar_ends(e);
+  for (const auto& e : m.conm2s) grids.need(e.g, {"GRID"}, e.card, 2, "G");
+  for (const auto& e : m.cbushes) {
+    properties.need(e.pid, {"PBUSH"}, e.card, 2, "PID");
+    grids.need(e.ga, {"GRID"}, e.card, 3, "GA");
+    if (e.gb > 0) grids.need(e.gb, {"GRID"}, e.card, 4, "GB");
+    if (e.g0 > 0) grids.need(e.g0, {"GRID"}, e.card, 5, "G0");
+  }
+
+  for (const auto& p : m.prods) materials.need(p.mid, {"MAT1"}, p.card, 2, "MID");
+  for (const auto& p : m.pbars) materials.need(p.mid, {"MAT1"}, p.card, 2, "MID");
+  for (const auto& p : m.pbarls) {
+    materials.need(p.mid, {"MAT1"}, p.card, 2, "MID");
+    if (!pbarl_type_sectioned(p.type))
+      out.push_back(warning_at(deck, deck.cards[p.card], 4,
+                               label(deck, p.card) + ": TYPE " + p.type +
+                                   " is kept with its dimensions but not sectioned (ssid sections ROD, TUBE, BAR, BOX, I)"));
+  }
+  for (const auto& p : m.pbeams) materials.need(p.mid, {"MAT1"}, p.card, 2, "MID");
+  for (const auto& p : m.pbeamls) {
+    materials.need(p.mid, {"MAT1"}, p.card, 2, "MID");
+    if (!pbarl_type_sectioned(p.type))
+      out.push_back(warning_at(deck, deck.cards[p.card], 4,
+                               label(deck, p.card) + ": TYPE " + p.type +
+                                   " is kept with its dimensions but not sectioned (ssid sections ROD, TUBE, BAR, BOX, I)"));
+  }
+
+  // --- material consistency -------------------------------------------------
+  for (const Mat1& mt : m.mat1s) {
+    // NASTRAN warns when the three given values disagree by more than 1 %.
+    if (mt.e_given && mt.g_given && mt.nu_given && mt.g > 0.0) {
+      double ratio = mt.e / (2.0 * (1.0 + mt.nu) * mt.g);
+      if (std::abs(1.0 - ratio) > 0.01)
+        out.push_back(warning_at(deck, deck.cards[mt.card], 2,
+                                 label(deck, mt.card) + ": E, G and NU are not related by E = 2(1+NU)G (E/(2(1+NU)G) = " +
+                                     std::to_string(ratio) + ")"));
+    }
   }
 }
 

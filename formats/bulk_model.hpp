@@ -3,18 +3,50 @@
 /// The typed view of a deck's bulk data: one vector per supported card type,
 /// the count of cards kept verbatim, and every problem found, all at once.
 #include <map>
+#include <optional>
 #include <string>
 #include <vector>
 
+#include "formats/cards/bar.hpp"
+#include "formats/cards/beam.hpp"
+#include "formats/cards/bush.hpp"
 #include "formats/cards/crod.hpp"
 #include "formats/cards/grid.hpp"
+#include "formats/cards/mat1.hpp"
+#include "formats/cards/rod.hpp"
+#include "formats/cards/scalar.hpp"
+#include "formats/cards/section.hpp"
 #include "formats/deck.hpp"
 
 namespace ssid::formats {
 
 struct BulkModel {
   std::vector<Grid> grids;
+  std::vector<Spoint> spoints;
+  // Elements and their properties.
   std::vector<Crod> crods;
+  std::vector<Conrod> conrods;
+  std::vector<Prod> prods;
+  std::vector<Cbar> cbars;
+  std::vector<Baror> barors;  ///< at most one (more is a problem); its defaults are applied to cbars
+  std::vector<Pbar> pbars;
+  std::vector<Pbarl> pbarls;
+  std::vector<Cbeam> cbeams;
+  std::vector<Beamor> beamors;  ///< at most one; applied to cbeams
+  std::vector<Pbeam> pbeams;
+  std::vector<Pbeaml> pbeamls;
+  // Masses, springs, bushes.
+  std::vector<Conm2> conm2s;
+  std::vector<Cmass1> cmass1s;
+  std::vector<Cmass2> cmass2s;
+  std::vector<Pmass> pmasses;  ///< one per property (a PMASS card holds up to four)
+  std::vector<Celas1> celas1s;
+  std::vector<Celas2> celas2s;
+  std::vector<Pelas> pelases;  ///< one per property (a PELAS card holds up to two)
+  std::vector<Cbush> cbushes;
+  std::vector<Pbush> pbushes;
+  // Materials.
+  std::vector<Mat1> mat1s;
 
   /// Cards with no typed parser, by name: kept verbatim in the deck, written back unchanged.
   std::map<std::string, std::size_t> unsupported;
@@ -25,12 +57,19 @@ struct BulkModel {
 };
 
 /// Parses every card with a typed parser; field errors are collected, not thrown.
+/// Then applies the deck-wide defaults (BAROR to CBAR, BEAMOR to CBEAM).
 BulkModel parse_bulk(const Deck& deck);
 
 /// Checks the model as a whole — duplicate ids, dangling references ("GRID 12
 /// required by CROD 10"), properties of the wrong type — and appends every
 /// problem found to model.problems.
 void resolve(const Deck& deck, BulkModel& model);
+
+/// The values of every typed card as its write_xxx renders them, by card index
+/// (cards holding several entries, such as PELAS, get their entries in order).
+/// Deck::set_values with these leaves every value of the deck unchanged; the
+/// deck updater changes some of them first.
+std::map<std::size_t, std::vector<FieldValue>> write_bulk(const BulkModel& model);
 
 /// True when a card of this name has a typed parser.
 bool is_supported_card(const std::string& name);

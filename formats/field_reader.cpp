@@ -89,6 +89,28 @@ std::string FieldReader::components(std::size_t i, const char* name, bool allow_
   return s;
 }
 
+std::string FieldReader::choice(std::size_t i, const char* name, std::initializer_list<const char*> allowed,
+                                const char* dflt) const {
+  if (blank(i)) {
+    if (dflt) return dflt;
+  } else {
+    for (const char* a : allowed)
+      if (m_card.field(i) == a) return a;
+  }
+  std::string list;
+  for (const char* a : allowed) list += (list.empty() ? "" : ", ") + std::string(a);
+  fail(i, name, "one of " + list);
+}
+
+void FieldReader::at_most(std::size_t n) const {
+  if (m_card.size() > n)
+    fail_card("too many fields (" + m_card.name + " has " + std::to_string(n - 1) + " data fields)", n);
+}
+
+bool FieldReader::is_real(std::size_t i) const {
+  return !blank(i) && !is_integer(i) && parse_real(m_card.field(i)).has_value();
+}
+
 bool FieldReader::is_integer(std::size_t i) const { return parse_integer(m_card.field(i)).has_value(); }
 
 }  // namespace ssid::formats

@@ -6,6 +6,7 @@
 /// the first line) and the NASTRAN field name, so every error explains itself:
 /// `truss.bdf:120: CROD 10 field 4 (G1): expected integer, got "1.5"`.
 #include <cstdint>
+#include <initializer_list>
 #include <optional>
 #include <string>
 
@@ -38,6 +39,16 @@ public:
 
   /// NASTRAN component list ("123456" digits, each once, 0 allowed alone); returned as given.
   std::string components(std::size_t i, const char* name, bool allow_blank = false) const;
+
+  /// One of the `allowed` words (upper case); `dflt` when blank (nullptr: required).
+  std::string choice(std::size_t i, const char* name, std::initializer_list<const char*> allowed,
+                     const char* dflt) const;
+
+  /// Throws "too many fields" when the card has fields at index >= n.
+  void at_most(std::size_t n) const;
+
+  /// True when field i holds a real (not an integer, not text).
+  bool is_real(std::size_t i) const;
 
   /// True when field i holds an integer (e.g. CBAR field 6: G0 rather than X1).
   bool is_integer(std::size_t i) const;

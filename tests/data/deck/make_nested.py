@@ -54,7 +54,8 @@ for i in range(nfiles):
     lines=[]
     if i==0:
         lines += ['ID NESTED,TEST','SOL 103','TIME 10','CEND','TITLE = THIRTY FILE NESTED DECK','SUBCASE 1','  METHOD = 1','  SPC = 1','BEGIN BULK',
-                  small('GRID',[1,'','0.','0.','0.']), small('GRID',[2,'','1.','0.','0.'])]
+                  small('GRID',[1,'','0.','0.','0.']), small('GRID',[2,'','1.','0.','0.']),
+                  small('MAT1',[1,'2.1+11','','.3','7800.']), small('PROD',[1,1,'1.-4'])]
         gid[0]=3
     lines.append(f"$ file {i}: {fname(i)} ----------------------------------")
     kids=list(children[i])
