@@ -199,7 +199,9 @@ public:
 
 private:
   [[noreturn]] void fail(const std::string& msg, std::uint32_t line = 0) const {
-    throw ParseError(SourceLocation{m_file, line ? line : m_line, {}}, m_context + msg);
+    const bool name_column = m_col > 0 && msg.compare(0, 7, "column ") != 0;
+    throw ParseError(SourceLocation{m_file, line ? line : m_line, {}},
+                     m_context + (name_column ? "column " + std::to_string(m_col) + ": " : std::string()) + msg);
   }
 
   bool next_line(std::string_view& line) {
@@ -300,6 +302,7 @@ private:
   Op4Matrix read_matrix(std::string_view header) {
     const std::uint32_t header_line = m_line;
     m_context.clear();
+    m_col = 0;
     std::int64_t h[4];
     std::string_view rest;
     {
@@ -378,16 +381,13 @@ private:
       if (row0 < 1 || row0 + terms - 1 > m.rows)
         fail("column " + std::to_string(col) + ": rows " + std::to_string(row0) + ".." + std::to_string(row0 + terms - 1) +
              " lie outside 1.." + std::to_string(m.rows));
+      // Single precision: the value NASTRAN holds is the float nearest the text.
+      // (Rounded in place first: g++ 12 -O2 mis-vectorised the per-pair rounding.)
+      if (single)
+        for (std::size_t k = 0; k < n; ++k) vals[k] = static_cast<double>(static_cast<float>(vals[k]));
       for (std::int64_t t = 0; t < terms; ++t) {
-        if (cx) {
-          double re = vals[2 * t], im = vals[2 * t + 1];
-          if (single) { re = static_cast<float>(re); im = static_cast<float>(im); }
-          b.add(row0 - 1 + t, re, im);
-        } else {
-          double re = vals[t];
-          if (single) re = static_cast<float>(re);
-          b.add(row0 - 1 + t, re);
-        }
+        if (cx) b.add(row0 - 1 + t, vals[2 * t], vals[2 * t + 1]);
+        else b.add(row0 - 1 + t, vals[t]);
       }
     };
 
@@ -408,6 +408,7 @@ private:
       if (icol <= last_col) fail("column " + std::to_string(icol) + " follows column " + std::to_string(last_col));
       if (nw < 0) fail("column " + std::to_string(icol) + ": negative word count NW=" + std::to_string(nw));
       last_col = icol;
+      m_col = icol;
       b.begin_column(icol - 1);
       const std::uint32_t col_line = m_line;
       if (irow > 0) {
@@ -471,6 +472,7 @@ private:
   const std::string& m_file;
   const Op4ReadOptions& m_opt;
   std::uint32_t m_line = 0;
+  std::int64_t m_col = 0;  ///< column being read, for messages
   std::string m_context;
 };
 
@@ -705,8 +707,8 @@ bool detect_binary(const unsigned char* d, std::size_t size, Op4FileInfo& info) 
 bool looks_like_text(const char* d, std::size_t size) {
   const std::size_t n = std::min<std::size_t>(size, 32);
   for (std::size_t i = 0; i < n; ++i) {
-    const char c = d[i];
-    if (!(c == ' ' || c == '\t' || c == '\r' || c == '\n' || c == '-' || c == '+' || (c >= '0' && c <= '9'))) return false;
+    const unsigned char c = static_cast<unsigned char>(d[i]);
+    if (!(c == '\t' || c == '\r' || c == '\n' || (c >= 0x20 && c < 0x7f))) return false;
   }
   return n > 0;
 }

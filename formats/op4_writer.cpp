@@ -137,16 +137,23 @@ private:
       std::memcpy(p, &u, 8);
     }
   }
-  /// Writes `n` numbers at p (bpn bytes each).
+  /// A value rounded to single precision; one beyond its range is refused, not written as infinity.
+  static double to_single(double v) {
+    const float f = static_cast<float>(v);
+    if (std::isinf(f) && std::isfinite(v))
+      throw std::invalid_argument("OP4 value " + fmt::format("{:.17g}", v) + " overflows single precision");
+    return f;
+  }
+  /// Writes one number at p (bpn bytes).
   void put_number(char* p, double v) const {
     if (m_l.bpn == 4) {
-      const float f = static_cast<float>(v);
+      const float f = static_cast<float>(to_single(v));
       std::uint32_t u;
       std::memcpy(&u, &f, 4);
       if (m_swap) u = __builtin_bswap32(u);
       std::memcpy(p, &u, 4);
     } else {
-      const double d = m_l.single ? static_cast<double>(static_cast<float>(v)) : v;
+      const double d = m_l.single ? to_single(v) : v;
       std::uint64_t u;
       std::memcpy(&u, &d, 8);
       if (m_swap) u = __builtin_bswap64(u);
@@ -176,17 +183,15 @@ private:
   // -- ASCII primitives
   void number_text(char* p, double v) {
     if (!std::isfinite(v)) throw std::invalid_argument("OP4 ASCII cannot hold the value " + std::to_string(v));
-    if (m_l.single) v = static_cast<float>(v);
+    if (m_l.single) v = to_single(v);
     char buf[64];
     auto r = fmt::format_to_n(buf, sizeof buf - 1, "{:.{}E}", v, m_digits);
     std::size_t n = r.size;
-    if (n > static_cast<std::size_t>(m_width)) {
-      // 3-digit exponent: Fortran drops the 'E' to keep the field width.
-      char* e = static_cast<char*>(std::memchr(buf, 'E', n));
-      if (e) {
-        std::memmove(e, e + 1, n - static_cast<std::size_t>(e - buf) - 1);
-        --n;
-      }
+    // A 3-digit exponent: Fortran drops the 'E' ("1.5-100") to keep the field width.
+    char* e = static_cast<char*>(std::memchr(buf, 'E', n));
+    if (e && buf + n - e == 5) {
+      std::memmove(e, e + 1, static_cast<std::size_t>(buf + n - e - 1));
+      --n;
     }
     const std::size_t pad = static_cast<std::size_t>(m_width) > n ? m_width - n : 0;
     std::memset(p, ' ', pad);
