@@ -46,6 +46,10 @@ const std::unordered_map<std::string, ParseFn>& parsers() {
       {"PBEAM", add<Pbeam, parse_pbeam, &BulkModel::pbeams>},
       {"PBEAML", add<Pbeaml, parse_pbeaml, &BulkModel::pbeamls>},
       {"MAT1", add<Mat1, parse_mat1, &BulkModel::mat1s>},
+      {"GRDSET", add<Grdset, parse_grdset, &BulkModel::grdsets>},
+      {"CORD2R", add<Cord2, parse_cord2, &BulkModel::cord2s>},
+      {"CORD2C", add<Cord2, parse_cord2, &BulkModel::cord2s>},
+      {"CORD2S", add<Cord2, parse_cord2, &BulkModel::cord2s>},
       {"SPOINT", add<Spoint, parse_spoint, &BulkModel::spoints>},
       {"CONM2", add<Conm2, parse_conm2, &BulkModel::conm2s>},
       {"CMASS1", add<Cmass1, parse_cmass1, &BulkModel::cmass1s>},
@@ -86,6 +90,8 @@ const T* single(const Deck& deck, const std::vector<T>& v, const char* name, std
 }
 
 void apply_defaults(const Deck& deck, BulkModel& m) {
+  if (const Grdset* grdset = single(deck, m.grdsets, "GRDSET", m.problems))
+    for (Grid& g : m.grids) apply_grdset(g, *grdset);
   const Baror* baror = single(deck, m.barors, "BAROR", m.problems);
   for (Cbar& c : m.cbars)
     if (!apply_baror(c, baror))
@@ -160,6 +166,8 @@ std::map<std::size_t, std::vector<FieldValue>> write_bulk(const BulkModel& m) {
   write_all(m.pbeamls, write_pbeaml, out);
   write_all(m.mat1s, write_mat1, out);
   write_all(m.spoints, write_spoint, out);
+  write_all(m.grdsets, write_grdset, out);
+  write_all(m.cord2s, write_cord2, out);
   write_all(m.conm2s, write_conm2, out);
   write_all(m.cmass1s, write_cmass1, out);
   write_all(m.cmass2s, write_cmass2, out);
@@ -288,6 +296,47 @@ void resolve(const Deck& deck, BulkModel& m) {
   IdSpace materials(deck, out, "material");
   for (const auto& mt : m.mat1s) materials.define(mt.mid, mt.card);
   materials.define_verbatim({"MAT2", "MAT3", "MAT8", "MAT9", "MAT10"});
+
+  IdSpace coords(deck, out, "coordinate system");
+  for (const auto& c : m.cord2s) coords.define(c.cid, c.card);
+  coords.define_verbatim({"CORD1R", "CORD1C", "CORD1S", "CORD3G", "CORD3R"});
+
+  // --- coordinate systems: RID chains end in the basic system ----------------
+  {
+    std::unordered_map<std::int64_t, const Cord2*> by_cid;
+    for (const auto& c : m.cord2s) by_cid.emplace(c.cid, &c);
+    for (const auto& c : m.cord2s) {
+      if (c.rid == 0) continue;
+      coords.need(c.rid, {}, c.card, 2, "RID");
+      // Follow the chain; a cycle is reported once, at its smallest CID.
+      std::string path = std::to_string(c.cid);
+      const Cord2* at = &c;
+      for (std::size_t steps = 0; steps <= by_cid.size(); ++steps) {
+        auto it = by_cid.find(at->rid);
+        if (at->rid == 0 || it == by_cid.end()) break;
+        at = it->second;
+        path += " -> " + std::to_string(at->cid);
+        if (at->cid < c.cid) break;  // reported (or not a cycle) from a smaller CID
+        if (at == &c) {
+          out.push_back(error_at(deck, deck.cards[c.card], 2,
+                                 label(deck, c.card) + ": RID chain " + path + " is a cycle (it must end in the basic system)"));
+          break;
+        }
+      }
+    }
+  }
+  auto need_coord = [&](std::int64_t cid, std::size_t card, std::size_t field, const char* name) {
+    if (cid > 0) coords.need(cid, {}, card, field, name);
+  };
+  for (const Grid& g : m.grids) {
+    need_coord(g.cp, g.card, 2, "CP");
+    need_coord(g.cd, g.card, 6, "CD");
+  }
+  for (const auto& e : m.conm2s) need_coord(e.cid, e.card, 3, "CID");
+  for (const auto& e : m.cbushes) {
+    need_coord(e.cid, e.card, 8, "CID");
+    need_coord(e.ocid, e.card, 10, "OCID");
+  }
 
   // --- element -> grid, element -> property, property -> material -----------
   for (const Crod& c : m.crods) {

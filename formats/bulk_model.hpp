@@ -10,6 +10,7 @@
 #include "formats/cards/bar.hpp"
 #include "formats/cards/beam.hpp"
 #include "formats/cards/bush.hpp"
+#include "formats/cards/coord.hpp"
 #include "formats/cards/crod.hpp"
 #include "formats/cards/grid.hpp"
 #include "formats/cards/mat1.hpp"
@@ -23,6 +24,8 @@ namespace ssid::formats {
 struct BulkModel {
   std::vector<Grid> grids;
   std::vector<Spoint> spoints;
+  std::vector<Grdset> grdsets;  ///< at most one; applied to grids
+  std::vector<Cord2> cord2s;    ///< CORD2R, CORD2C, CORD2S
   // Elements and their properties.
   std::vector<Crod> crods;
   std::vector<Conrod> conrods;
@@ -57,7 +60,7 @@ struct BulkModel {
 };
 
 /// Parses every card with a typed parser; field errors are collected, not thrown.
-/// Then applies the deck-wide defaults (BAROR to CBAR, BEAMOR to CBEAM).
+/// Then applies the deck-wide defaults (GRDSET to GRID, BAROR to CBAR, BEAMOR to CBEAM).
 BulkModel parse_bulk(const Deck& deck);
 
 /// Checks the model as a whole — duplicate ids, dangling references ("GRID 12

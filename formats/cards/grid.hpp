@@ -7,7 +7,7 @@
 /// | GRID | ID | CP | X1 | X2 | X3 | CD | PS | SEID |
 ///
 /// ID > 0. CP, CD: coordinate system ids, blank = 0 (basic); NASTRAN's GRDSET
-/// defaults are applied by the caller when a GRDSET card is present.
+/// defaults are applied by parse_bulk when a GRDSET card is present (coord.hpp).
 /// X1-X3: location in CP, blank = 0.0. PS: permanent single-point constraints
 /// (components), blank = none. SEID: superelement id, blank = 0.
 #include <array>
@@ -28,7 +28,7 @@ struct Grid {
   std::string ps;
   std::int64_t seid = 0;
   /// Whether CP/CD were blank (GRDSET defaults apply to blank fields only).
-  bool cp_blank = true, cd_blank = true, ps_blank = true;
+  bool cp_blank = true, cd_blank = true, ps_blank = true, seid_blank = true;
   std::size_t card = 0;  ///< index in Deck::cards
 };
 
