@@ -89,13 +89,23 @@ SparseMatrix reduce(const SparseMatrix& A, const Reduction& r) {
   return out;
 }
 
+namespace {
+Eigen::Matrix<double, 6, 6> six(const Eigen::Matrix3d& t) {
+  Eigen::Matrix<double, 6, 6> T = Eigen::Matrix<double, 6, 6>::Zero();
+  T.topLeftCorner<3, 3>() = t;
+  T.bottomRightCorner<3, 3>() = t;
+  return T;
+}
+}  // namespace
+
 std::vector<MpcEquation> rigid_equations(const std::vector<RigidGrid>& grids, const std::string& source) {
   if (grids.empty()) return {};
   const Eigen::Vector3d x0 = grids.front().x;
   std::vector<Eigen::Matrix<double, 1, 6>> ind_rows, dep_rows;
   std::vector<std::size_t> ind_g, dep_g;
   for (const RigidGrid& p : grids) {
-    auto R = rigid_body_rows(p.x, x0);
+    // Rows in the grid's displacement components: u_cd = frameᵀ u_basic.
+    const Eigen::Matrix<double, 6, 6> R = six(p.frame).transpose() * rigid_body_rows(p.x, x0);
     for (char c : p.independent) {
       ind_rows.push_back(R.row(c - '1'));
       ind_g.push_back(p.g[static_cast<std::size_t>(c - '1')]);
@@ -129,7 +139,7 @@ std::vector<MpcEquation> rigid_equations(const std::vector<RigidGrid>& grids, co
 
 std::vector<MpcEquation> rbe3_equations(const Eigen::Vector3d& xref, const std::array<std::size_t, 6>& gref,
                                         const std::string& refc, const std::vector<Rbe3Group>& groups,
-                                        const std::string& source) {
+                                        const std::string& source, const Eigen::Matrix3d& ref_frame) {
   double lsum = 0;
   std::size_t count = 0;
   for (const auto& grp : groups)
@@ -144,8 +154,10 @@ std::vector<MpcEquation> rbe3_equations(const Eigen::Vector3d& xref, const std::
   std::vector<double> w;
   std::vector<std::size_t> gi;
   for (const auto& grp : groups)
-    for (const auto& [x, g] : grp.grids) {
-      auto R = rigid_body_rows(x, xref);
+    for (std::size_t q = 0; q < grp.grids.size(); ++q) {
+      const auto& [x, g] = grp.grids[q];
+      const Eigen::Matrix3d f = grp.frames.empty() ? Eigen::Matrix3d::Identity() : grp.frames.at(q);
+      const Eigen::Matrix<double, 6, 6> R = six(f).transpose() * rigid_body_rows(x, xref);
       for (char c : grp.components) {
         int k = c - '1';
         rows.push_back(R.row(k));
@@ -170,12 +182,15 @@ std::vector<MpcEquation> rbe3_equations(const Eigen::Vector3d& xref, const std::
     Eigen::CompleteOrthogonalDecomposition<Eigen::MatrixXd> cod(A);
     G = cod.solve(Eigen::MatrixXd(S.transpose() * W.asDiagonal()));
     // A rigid-body component in the null space of A cannot be interpolated.
-    Eigen::MatrixXd N = lu.kernel();
+    Eigen::MatrixXd N = six(ref_frame).transpose() * lu.kernel();
     for (char c : refc)
       if (N.row(c - '1').cwiseAbs().maxCoeff() > 1e-9)
         throw std::invalid_argument(source + ": reference component " + std::string(1, c) +
                                     " is not determined by the independent grids and components");
   }
+  // G gives the reference's rigid-body motion in basic; its components in the
+  // reference's displacement frame are six(ref_frame)ᵀ G.
+  G = six(ref_frame).transpose() * G;
   std::vector<MpcEquation> eqs;
   for (char c : refc) {
     int k = c - '1';

@@ -64,6 +64,9 @@ struct RigidGrid {
   std::array<std::size_t, 6> g;     ///< g-set index of components 1..6
   std::string independent;          ///< component digits
   std::string dependent;            ///< component digits
+  /// Displacement frame (GRID CD) in basic: the components above are along its
+  /// columns, u_basic = frame · u_cd.
+  Eigen::Matrix3d frame = Eigen::Matrix3d::Identity();
 };
 std::vector<MpcEquation> rigid_equations(const std::vector<RigidGrid>& grids, const std::string& source);
 
@@ -77,10 +80,13 @@ struct Rbe3Group {
   double weight = 1.0;
   std::string components;
   std::vector<std::pair<Eigen::Vector3d, std::array<std::size_t, 6>>> grids;
+  /// Displacement frames of `grids` (same order); empty: all basic.
+  std::vector<Eigen::Matrix3d> frames;
 };
 std::vector<MpcEquation> rbe3_equations(const Eigen::Vector3d& xref, const std::array<std::size_t, 6>& gref,
                                         const std::string& refc, const std::vector<Rbe3Group>& groups,
-                                        const std::string& source);
+                                        const std::string& source,
+                                        const Eigen::Matrix3d& ref_frame = Eigen::Matrix3d::Identity());
 
 /// AUTOSPC: DOFs that have no stiffness. For each grid, the 3x3 translational and
 /// rotational blocks of K_n (the stiffness after MPC elimination) are examined;

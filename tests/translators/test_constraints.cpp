@@ -163,3 +163,48 @@ TEST_CASE("AUTOSPC finds the rotations and the out-of-plane translation of a pla
     for (std::size_t c : {2, 3, 4, 5}) expect.push_back(6 * g + c);
   CHECK(s == expect);
 }
+
+TEST_CASE("rigid elements in rotated displacement frames (GRID CD)", "[constraints][rigid]") {
+  // The same rigid-body motion, written in each grid's own displacement frame,
+  // must satisfy RBE2 and RBE3 equations built with those frames.
+  const Eigen::Vector3d xa(0.3, -1.2, 2.0), xb(1.7, 0.4, -0.5), xc(-0.8, 2.2, 1.1);
+  const Eigen::Matrix3d ta = Eigen::AngleAxisd(0.7, Eigen::Vector3d(1, 2, 3).normalized()).toRotationMatrix();
+  const Eigen::Matrix3d tb = Eigen::AngleAxisd(-1.1, Eigen::Vector3d(0, 1, 1).normalized()).toRotationMatrix();
+  const Eigen::Matrix3d tc = Eigen::AngleAxisd(2.0, Eigen::Vector3d(1, 0, 0)).toRotationMatrix();
+  auto local = [](const Eigen::Matrix<double, 6, 1>& u, const Eigen::Matrix3d& t) {
+    Eigen::Matrix<double, 6, 1> out;
+    out.head<3>() = t.transpose() * u.head<3>();
+    out.tail<3>() = t.transpose() * u.tail<3>();
+    return out;
+  };
+  std::mt19937 rng(5);
+  std::uniform_real_distribution<double> u(-1, 1);
+  Eigen::Matrix<double, 6, 1> q;
+  for (int i = 0; i < 6; ++i) q(i) = u(rng);
+  Eigen::VectorXd ug(18);
+  ug.segment<6>(0) = local(rigid_motion(q, xa, xa), ta);
+  ug.segment<6>(6) = local(rigid_motion(q, xb, xa), tb);
+  ug.segment<6>(12) = local(rigid_motion(q, xc, xa), tc);
+  SECTION("RBE2") {
+    RigidGrid a{xa, block(0), "123456", "", ta}, b{xb, block(6), "", "123456", tb}, c{xc, block(12), "", "1236", tc};
+    const auto eqs = rigid_equations({a, b, c}, "RBE2 7");
+    CHECK(eqs.size() == 10);
+    CHECK(check_equations(eqs, ug) < 1e-12);
+    // Without the frames the same equations are violated: the test can fail.
+    RigidGrid a0{xa, block(0), "123456", ""}, b0{xb, block(6), "", "123456"}, c0{xc, block(12), "", "1236"};
+    CHECK(check_equations(rigid_equations({a0, b0, c0}, "RBE2 7"), ug) > 1e-3);
+  }
+  SECTION("RBE3 reference in a rotated frame") {
+    Rbe3Group grp;
+    grp.components = "123";
+    grp.grids = {{xb, block(6)}, {xc, block(12)}, {Eigen::Vector3d(2.0, -1.0, 0.5), block(18)}};
+    const Eigen::Matrix3d td = Eigen::AngleAxisd(0.4, Eigen::Vector3d(0, 0, 1)).toRotationMatrix();
+    grp.frames = {tb, tc, td};
+    Eigen::VectorXd ug4(24);
+    ug4.head<18>() = ug;
+    ug4.segment<6>(18) = local(rigid_motion(q, Eigen::Vector3d(2.0, -1.0, 0.5), xa), td);
+    const auto eqs = rbe3_equations(xa, block(0), "123456", {grp}, "RBE3 8", ta);
+    CHECK(eqs.size() == 6);
+    CHECK(check_equations(eqs, ug4) < 1e-12);  // a rigid motion is interpolated exactly
+  }
+}
