@@ -2,7 +2,9 @@
 
 #include "formats/nastran_number.hpp"
 
+#include <array>
 #include <cmath>
+#include <unordered_set>
 #include <functional>
 #include <unordered_map>
 
@@ -60,6 +62,19 @@ const std::unordered_map<std::string, ParseFn>& parsers() {
       {"PELAS", add_many<Pelas, parse_pelas, &BulkModel::pelases>},
       {"CBUSH", add<Cbush, parse_cbush, &BulkModel::cbushes>},
       {"PBUSH", add<Pbush, parse_pbush, &BulkModel::pbushes>},
+      {"RBAR", add<Rbar, parse_rbar, &BulkModel::rbars>},
+      {"RBE2", add<Rbe2, parse_rbe2, &BulkModel::rbe2s>},
+      {"RBE3", add<Rbe3, parse_rbe3, &BulkModel::rbe3s>},
+      {"SPC", add<Spc, parse_spc, &BulkModel::spcs>},
+      {"SPC1", add<Spc1, parse_spc1, &BulkModel::spc1s>},
+      {"SPCADD", add<Spcadd, parse_spcadd, &BulkModel::spcadds>},
+      {"MPC", add<Mpc, parse_mpc, &BulkModel::mpcs>},
+      {"EIGRL", add<Eigrl, parse_eigrl, &BulkModel::eigrls>},
+      {"EIGR", add<Eigr, parse_eigr, &BulkModel::eigrs>},
+      {"PARAM", add<Param, parse_param, &BulkModel::params>},
+      {"DESVAR", add<Desvar, parse_desvar, &BulkModel::desvars>},
+      {"DVPREL1", add<Dvprel1, parse_dvprel1, &BulkModel::dvprel1s>},
+      {"DVMREL1", add<Dvmrel1, parse_dvmrel1, &BulkModel::dvmrel1s>},
       {"DMIG", skip},
   };
   return table;
@@ -177,6 +192,19 @@ std::map<std::size_t, std::vector<FieldValue>> write_bulk(const BulkModel& m) {
   write_all(m.pelases, write_pelas, out);
   write_all(m.cbushes, write_cbush, out);
   write_all(m.pbushes, write_pbush, out);
+  write_all(m.rbars, write_rbar, out);
+  write_all(m.rbe2s, write_rbe2, out);
+  write_all(m.rbe3s, write_rbe3, out);
+  write_all(m.spcs, write_spc, out);
+  write_all(m.spc1s, write_spc1, out);
+  write_all(m.spcadds, write_spcadd, out);
+  write_all(m.mpcs, write_mpc, out);
+  write_all(m.eigrls, write_eigrl, out);
+  write_all(m.eigrs, write_eigr, out);
+  write_all(m.params, write_param, out);
+  write_all(m.desvars, write_desvar, out);
+  write_all(m.dvprel1s, write_dvprel1, out);
+  write_all(m.dvmrel1s, write_dvmrel1, out);
   return out;
 }
 
@@ -215,8 +243,17 @@ public:
   /// "CROD 10 refers to PID 3, which is a PBAR, expected PROD".
   void need(std::int64_t id, std::initializer_list<const char*> types, std::size_t by, std::size_t field,
             const char* field_name) const {
+    need_of(id, types, by, field, field_name);
+  }
+  /// The same with the expected card type known only at run time (DVPREL1 TYPE).
+  void need(std::int64_t id, const std::string& type, std::size_t by, std::size_t field, const char* field_name) const {
+    need_of(id, std::array<std::string, 1>{type}, by, field, field_name);
+  }
+
+  template <typename Types>
+  void need_of(std::int64_t id, const Types& types, std::size_t by, std::size_t field, const char* field_name) const {
     std::string expect;
-    for (const char* t : types) expect += (expect.empty() ? "" : "/") + std::string(t);
+    for (const auto& t : types) expect += (expect.empty() ? "" : "/") + std::string(t);
     const Card& c = m_deck.cards[by];
     const Def* d = find(id);
     if (!d) {
@@ -226,7 +263,7 @@ public:
       return;
     }
     if (types.size() == 0) return;
-    for (const char* t : types)
+    for (const auto& t : types)
       if (*d->type == t) return;
     m_problems.push_back(error_at(m_deck, c, field,
                                   label(m_deck, by) + " refers to " + field_name + " " + std::to_string(id) +
@@ -275,6 +312,9 @@ void resolve(const Deck& deck, BulkModel& m) {
   for (const auto& e : m.celas1s) elements.define(e.eid, e.card);
   for (const auto& e : m.celas2s) elements.define(e.eid, e.card);
   for (const auto& e : m.cbushes) elements.define(e.eid, e.card);
+  for (const auto& e : m.rbars) elements.define(e.eid, e.card);
+  for (const auto& e : m.rbe2s) elements.define(e.eid, e.card);
+  for (const auto& e : m.rbe3s) elements.define(e.eid, e.card);
   // Element cards kept verbatim share the id space.
   elements.define_verbatim({"CQUAD4", "CQUAD8", "CQUADR", "CTRIA3", "CTRIA6", "CTRIAR", "CSHEAR", "CHEXA", "CPENTA",
                             "CTETRA", "CPYRAM", "CTUBE", "CBEND", "CGAP", "CDAMP1", "CDAMP2", "CDAMP3", "CDAMP4",
@@ -417,6 +457,77 @@ void resolve(const Deck& deck, BulkModel& m) {
       out.push_back(warning_at(deck, deck.cards[p.card], 4,
                                label(deck, p.card) + ": TYPE " + p.type +
                                    " is kept with its dimensions but not sectioned (ssid sections ROD, TUBE, BAR, BOX, I)"));
+  }
+
+  // --- rigid elements --------------------------------------------------------
+  for (const Rbar& e : m.rbars) {
+    grids.need(e.ga, {"GRID"}, e.card, 2, "GA");
+    grids.need(e.gb, {"GRID"}, e.card, 3, "GB");
+  }
+  for (const Rbe2& e : m.rbe2s) {
+    grids.need(e.gn, {"GRID"}, e.card, 2, "GN");
+    for (std::int64_t g : e.gm) grids.need(g, {"GRID"}, e.card, 0, "GM");
+  }
+  for (const Rbe3& e : m.rbe3s) {
+    grids.need(e.refgrid, {"GRID"}, e.card, 3, "REFGRID");
+    for (const auto& grp : e.groups)
+      for (std::int64_t g : grp.grids) grids.need(g, {"GRID"}, e.card, 0, "Gi,j");
+    for (const auto& [g, c] : e.um) grids.need(g, {"GRID"}, e.card, 0, "GM");
+  }
+
+  // --- constraints ------------------------------------------------------------
+  std::unordered_set<std::int64_t> spc_sets;
+  for (const Spc& s : m.spcs) {
+    spc_sets.insert(s.sid);
+    for (std::size_t k = 0; k < s.entries.size(); ++k) grids.need(s.entries[k].g, {}, s.card, 2 + 3 * k, "G");
+  }
+  for (const Spc1& s : m.spc1s) {
+    spc_sets.insert(s.sid);
+    for (std::int64_t g : s.grids) grids.need(g, {}, s.card, 0, "G");
+  }
+  IdSpace spcadd_ids(deck, out, "SPCADD set");
+  for (const Spcadd& s : m.spcadds) {
+    spcadd_ids.define(s.sid, s.card);
+    for (std::int64_t set : s.sets)
+      if (!spc_sets.count(set))
+        out.push_back(error_at(deck, deck.cards[s.card], 0,
+                               "SPC set " + std::to_string(set) + " required by " + label(deck, s.card) +
+                                   " does not exist (no SPC or SPC1 with that SID)"));
+  }
+  for (const Mpc& mp : m.mpcs)
+    for (const MpcTerm& t : mp.terms) scalar_end(t.g, t.c, mp.card, 0, "Gj");
+
+  // --- eigenvalue methods, parameters -------------------------------------------
+  IdSpace methods(deck, out, "eigenvalue method (EIGRL/EIGR SID)");
+  for (const auto& e : m.eigrls) methods.define(e.sid, e.card);
+  for (const auto& e : m.eigrs) methods.define(e.sid, e.card);
+  {
+    std::unordered_map<std::string, std::size_t> seen;
+    for (const Param& p : m.params) {
+      auto [it, fresh] = seen.emplace(p.name, p.card);
+      if (!fresh)
+        out.push_back(warning_at(deck, deck.cards[p.card], 1,
+                                 "PARAM " + p.name + " given again (first at " +
+                                     deck.location(deck.cards[it->second]).str() + ")"));
+    }
+  }
+
+  // --- design model -------------------------------------------------------------
+  IdSpace desvars(deck, out, "DESVAR");
+  for (const auto& d : m.desvars) desvars.define(d.id, d.card);
+  IdSpace dvprels(deck, out, "DVPREL");
+  for (const auto& d : m.dvprel1s) dvprels.define(d.id, d.card);
+  dvprels.define_verbatim({"DVPREL2"});
+  IdSpace dvmrels(deck, out, "DVMREL");
+  for (const auto& d : m.dvmrel1s) dvmrels.define(d.id, d.card);
+  dvmrels.define_verbatim({"DVMREL2"});
+  for (const auto& d : m.dvprel1s) {
+    properties.need(d.pid, d.type, d.card, 3, "PID");
+    for (const auto& [dvid, coef] : d.terms) desvars.need(dvid, {}, d.card, 9, "DVID");
+  }
+  for (const auto& d : m.dvmrel1s) {
+    materials.need(d.mid, d.type, d.card, 3, "MID");
+    for (const auto& [dvid, coef] : d.terms) desvars.need(dvid, {}, d.card, 9, "DVID");
   }
 
   // --- material consistency -------------------------------------------------

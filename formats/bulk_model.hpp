@@ -12,11 +12,16 @@
 #include "formats/cards/bush.hpp"
 #include "formats/cards/coord.hpp"
 #include "formats/cards/crod.hpp"
+#include "formats/cards/design.hpp"
+#include "formats/cards/eigen.hpp"
 #include "formats/cards/grid.hpp"
 #include "formats/cards/mat1.hpp"
+#include "formats/cards/param.hpp"
+#include "formats/cards/rigid.hpp"
 #include "formats/cards/rod.hpp"
 #include "formats/cards/scalar.hpp"
 #include "formats/cards/section.hpp"
+#include "formats/cards/spc.hpp"
 #include "formats/deck.hpp"
 
 namespace ssid::formats {
@@ -50,6 +55,22 @@ struct BulkModel {
   std::vector<Pbush> pbushes;
   // Materials.
   std::vector<Mat1> mat1s;
+  // Rigid elements and constraints.
+  std::vector<Rbar> rbars;
+  std::vector<Rbe2> rbe2s;
+  std::vector<Rbe3> rbe3s;
+  std::vector<Spc> spcs;
+  std::vector<Spc1> spc1s;
+  std::vector<Spcadd> spcadds;
+  std::vector<Mpc> mpcs;
+  // Solution requests and parameters.
+  std::vector<Eigrl> eigrls;
+  std::vector<Eigr> eigrs;
+  std::vector<Param> params;
+  // Design model (the updating parameters).
+  std::vector<Desvar> desvars;
+  std::vector<Dvprel1> dvprel1s;
+  std::vector<Dvmrel1> dvmrel1s;
 
   /// Cards with no typed parser, by name: kept verbatim in the deck, written back unchanged.
   std::map<std::string, std::size_t> unsupported;
