@@ -474,3 +474,51 @@ TEST_CASE("bar: lumped mass at offset points, total mass and geometry errors", "
   bad.pa = 7;
   CHECK_THROWS_WITH(bar_matrices(bad, s, mat, MassKind::Lumped), Contains("digit 7"));
 }
+
+#include "translators/elements/section.hpp"
+
+TEST_CASE("bar: PBARL dimension derivatives by the chain rule match central differences", "[bar][derivative][section]") {
+  std::mt19937 rng(17);
+  const BarGeometry g = random_bar(rng, true, 0, 6);
+  const std::vector<double> dims = {12.0, 8.0, 4.0, 0.6, 1.2, 0.8};  // I section
+  auto section = [](const std::vector<double>& d) {
+    const SectionProperties p = section_properties(SectionShape::I, d);
+    return BarSection{p.a, p.i1, p.i2, p.i12, p.j, 0.1, 0.8, 0.7};
+  };
+  const auto jac = section_jacobian(SectionShape::I, dims);
+  for (MassKind mk : {MassKind::Lumped, MassKind::Coupled})
+    for (std::size_t k = 0; k < dims.size(); ++k) {
+      BarSection ds{jac(0, k), jac(1, k), jac(2, k), jac(3, k), jac(4, k), 0, 0, 0};
+      const ElementMatrices d = beam_directional_derivative(g, section(dims), kMat, mk, ds, Material{0, 0, 0, 0});
+      const double h = 1e-6 * dims[k];
+      auto dp = dims, dm = dims;
+      dp[k] += h, dm[k] -= h;
+      const ElementMatrices p = beam_matrices(g, section(dp), kMat, mk), m = beam_matrices(g, section(dm), kMat, mk);
+      INFO("DIM" << k + 1);
+      CHECK(rel_err(d.k, (p.k - m.k) / (2 * h)) < 1e-6);
+      CHECK(rel_err(d.m, (p.m - m.m) / (2 * h)) < 1e-6);
+    }
+}
+
+TEST_CASE("bar/beam/rod: a free 3D frame has exactly six zero eigenvalues", "[bar][frequency]") {
+  // A non-planar frame of bars and beams in random CD frames, coupled mass.
+  std::mt19937 rng(23);
+  const std::vector<Vector3d> x = {{0, 0, 0}, {1, 0, 0}, {1, 1, 0}, {0, 1, 0.3}, {0.5, 0.5, 1}};
+  std::vector<Eigen::Matrix3d> t;
+  for (std::size_t i = 0; i < x.size(); ++i) t.push_back(random_rotation(rng));
+  const int members[][2] = {{0, 1}, {1, 2}, {2, 3}, {3, 0}, {0, 4}, {1, 4}, {2, 4}, {3, 4}};
+  Dense d(static_cast<int>(x.size()));
+  int e = 0;
+  for (auto [a, b] : members) {
+    BarGeometry g;
+    g.grids = {x[a], x[b], t[a], t[b]};
+    g.v = Vector3d(0.3, -0.2, 1.0).cross(x[b] - x[a]) + Vector3d(0.1, 0.2, 0.3);
+    g.wa = Vector3d(0.01, -0.02, 0.03);
+    const ElementMatrices em = (e++ % 2) ? bar_matrices(g, kSec, kMat, MassKind::Coupled)
+                                          : beam_matrices(g, kSec, kMat, MassKind::Coupled);
+    d.add(em.k, em.m, a, b);
+  }
+  const Eigen::VectorXd ev = d.eigenvalues({});
+  for (int i = 0; i < 6; ++i) CHECK(std::abs(ev(i)) < 1e-9 * ev(6));
+  CHECK(ev(6) > 1e-6 * ev(ev.size() - 1));  // the seventh is a real elastic mode
+}
