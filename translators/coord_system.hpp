@@ -49,6 +49,9 @@ struct CoordSystem {
 };
 
 /// A CORD2R/C/S definition as read from the deck (plain values, no card struct).
+/// CORD1R/C/S (three grids) map onto it with rid = 0 and a, b, c the grids'
+/// basic positions — which the caller resolves first, since those grids may
+/// themselves be located in (other) coordinate systems.
 struct CoordDefinition {
   long cid = 0;
   long rid = 0;

@@ -1,5 +1,6 @@
 #include "translators/elements/bar.hpp"
 
+#include <Eigen/Geometry>
 #include <Eigen/LU>
 #include <stdexcept>
 #include <vector>

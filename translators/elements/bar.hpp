@@ -30,10 +30,14 @@
 ///   Coupled: consistent matrices of the same shape functions: axial μL/6
 ///     [2 1; 1 2], transverse μL/420 [156 22L 54 −13L; …] in both planes
 ///     (Euler–Bernoulli shape functions, no rotary inertia of the section, also
-///     when φ > 0), torsion ρ(I1+I2)L/6 [2 1; 1 2]. With pin flags the coupled
+///     when φ > 0 — frequencies then still converge to the shear-beam closed
+///     form, but O(h²) instead of O(h⁴), see the tests), torsion
+///     ρ(I1+I2)L/6 [2 1; 1 2]. With pin flags the coupled
 ///     mass is reduced with the same condensation (Guyan) transformation.
-///   NASTRAN's exact CBAR coupled-mass terms are not published in the QRG;
-///   this is the standard consistent mass it is documented to use.
+///   Sources: PARAM COUPMASS and PARAM BARMASS in the MSC QRG as we read them
+///   (the BARMASS wording could not be re-checked against a stored copy while
+///   writing this); NASTRAN's exact CBAR coupled-mass terms are not published
+///   in the QRG, so the coupled matrix is the standard consistent one.
 /// Derivatives: exact via the complex step (see complex_step.hpp), which
 /// carries φ and the condensation exactly.
 #include <string>

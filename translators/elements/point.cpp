@@ -1,5 +1,6 @@
 #include "translators/elements/point.hpp"
 
+#include <Eigen/Geometry>
 #include <stdexcept>
 
 #include "translators/elements/transform.hpp"

@@ -68,3 +68,31 @@ inline double nearest(const Eigen::VectorXd& ev, double target) {
 }
 
 }  // namespace element_test
+
+namespace element_test {
+
+/// Sorted eigenvalues of (k, m) after statically condensing the DOFs that
+/// carry no mass (exact for massless DOFs; needed for lumped mass without
+/// rotational inertia, whose M is singular).
+inline Eigen::VectorXd eig_condensed(const Eigen::MatrixXd& k, const Eigen::MatrixXd& m) {
+  std::vector<int> r, c;
+  for (int i = 0; i < k.rows(); ++i) (m.row(i).cwiseAbs().maxCoeff() > 0 ? r : c).push_back(i);
+  auto sub = [](const Eigen::MatrixXd& a, const std::vector<int>& rows, const std::vector<int>& cols) {
+    Eigen::MatrixXd s(rows.size(), cols.size());
+    for (std::size_t i = 0; i < rows.size(); ++i)
+      for (std::size_t j = 0; j < cols.size(); ++j) s(i, j) = a(rows[i], cols[j]);
+    return s;
+  };
+  Eigen::MatrixXd kr = sub(k, r, r);
+  if (!c.empty()) kr -= sub(k, r, c) * sub(k, c, c).ldlt().solve(sub(k, c, r));
+  Eigen::GeneralizedSelfAdjointEigenSolver<Eigen::MatrixXd> es(kr, sub(m, r, r));
+  return es.eigenvalues();
+}
+
+/// Columns selecting, for each listed grid, the given basic direction of its
+/// translation (rot = false) or rotation (rot = true).
+inline void add_projection(Eigen::MatrixXd& P, int& col, int grid, const Eigen::Vector3d& dir, bool rot) {
+  P.block<3, 1>(6 * grid + (rot ? 3 : 0), col++) = dir;
+}
+
+}  // namespace element_test
