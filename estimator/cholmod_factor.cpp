@@ -3,6 +3,7 @@
 #include <cholmod.h>
 
 #include <algorithm>
+#include <chrono>
 #include <cstring>
 #include <stdexcept>
 
@@ -130,7 +131,9 @@ void CholmodFactor::analyze(const SparseMatrix& A) {
   copy_pattern(low, s.p, s.i);
   s.A = sparse_header(s.n, s.p, s.i, low.valuePtr());
   if (s.L) cholmod_l_free_factor(&s.L, &s.cm);
+  const auto t0 = std::chrono::steady_clock::now();
   s.L = cholmod_l_analyze(&s.A, &s.cm);
+  m_analyze_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
   if (!s.L) throw std::runtime_error("CHOLMOD analysis failed (status " + std::to_string(s.cm.status) + ")");
   ++m_analyses;
 }
@@ -146,7 +149,9 @@ FactorStatus CholmodFactor::factorize(const SparseMatrix& A, double near_singula
   auto& s = *m_state;
   s.A = sparse_header(s.n, s.p, s.i, low.valuePtr());
   FactorStatus st;
+  const auto t0 = std::chrono::steady_clock::now();
   const int ok = cholmod_l_factorize(&s.A, s.L, &s.cm);
+  m_factorize_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
   ++m_factorizations;
   if (!ok || (s.cm.status != CHOLMOD_OK && s.cm.status != CHOLMOD_NOT_POSDEF)) {
     st.code = FactorStatus::Code::Failed;

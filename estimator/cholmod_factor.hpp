@@ -92,6 +92,9 @@ class CholmodFactor {
   /// count from the last analysis, as CHOLMOD reports them.
   double factor_nnz() const;
   double factor_flops() const;
+  /// Wall-clock seconds of the last analysis and the last numeric factorisation.
+  double last_analyze_seconds() const { return m_analyze_s; }
+  double last_factorize_seconds() const { return m_factorize_s; }
   /// "AMD", "METIS", "NESDIS", ... : the ordering CHOLMOD kept.
   std::string ordering() const;
   bool supernodal() const;
@@ -104,6 +107,7 @@ class CholmodFactor {
   FactorKind m_kind;
   int m_analyses = 0;
   int m_factorizations = 0;
+  double m_analyze_s = 0.0, m_factorize_s = 0.0;
 };
 
 /// Lower triangle of A, compressed, as CHOLMOD reads it.

@@ -1,5 +1,7 @@
 #include "estimator/eigen_solver.hpp"
 
+#include "estimator/block_lanczos.hpp"
+
 #include <Eigen/Eigenvalues>
 #include <Spectra/SymGEigsShiftSolver.h>
 
@@ -116,6 +118,31 @@ LanczosRun run_lanczos(const CholmodFactor& factor, const MassOp& mass, double s
   run.iterations = eigs.num_iterations();
   run.values = eigs.eigenvalues();
   run.vectors = eigs.eigenvectors();
+  return run;
+}
+
+LanczosRun run_block_lanczos(const CholmodFactor& factor, const MassOp& mass, double sigma, int nev,
+                             const EigenOptions& o) {
+  BlockLanczosOptions bo;
+  bo.nev = nev;
+  bo.block = o.block;
+  bo.tol = o.tol;
+  bo.seed = o.seed;
+  bo.progress = o.progress;
+  if (o.ncv > 0) bo.max_basis = o.ncv;
+  const long n = factor.rows();
+  auto solve = [&factor, n](const Eigen::MatrixXd& X) {
+    Eigen::MatrixXd Y(n, X.cols());
+    factor.solve(X.data(), Y.data(), static_cast<long>(X.cols()));
+    return Y;
+  };
+  auto apply_mass = [&mass](const Eigen::MatrixXd& X) { return mass.apply(X); };
+  const BlockLanczosResult b = block_lanczos(solve, apply_mass, n, sigma, bo);
+  LanczosRun run;
+  run.converged = b.converged;
+  run.iterations = b.block_solves;
+  run.values = b.lambda;
+  run.vectors = b.vectors;
   return run;
 }
 
@@ -269,6 +296,7 @@ EigenResult EigenSolver::solve(const SparseMatrix& K, const SparseMatrix& M) {
     const FactorStatus fs = m_factor.factorize(A, o.near_singular_rcond);
     res.factor_seconds = seconds_since(tf);
     res.analyses = m_factor.analysis_count() - analyses_before;
+    res.analyze_seconds = res.analyses ? m_factor.last_analyze_seconds() : 0.0;
     res.factor_nnz = m_factor.factor_nnz();
     res.factor_flops = m_factor.factor_flops();
     res.ordering = m_factor.ordering();
@@ -307,6 +335,8 @@ EigenResult EigenSolver::solve(const SparseMatrix& K, const SparseMatrix& M) {
   if (has_high && res.sturm_count >= 0) nev = std::max<long>(nev, res.sturm_count + 1);
   if (has_high && o.nd > 0 && res.sturm_count >= 0) nev = std::max<long>(o.nd, std::min<long>(nev, res.sturm_count + 1));
 
+  const bool use_block = o.method == EigenMethod::BlockLanczos || (o.method == EigenMethod::Auto && n >= 5000);
+  res.method = use_block ? "BlockLanczos" : "Spectra";
   const auto tl = Clock::now();
   const long solves_before = m_factor.solve_count();
   LanczosRun run;
@@ -316,8 +346,11 @@ EigenResult EigenSolver::solve(const SparseMatrix& K, const SparseMatrix& M) {
                                : std::min<long>(n, std::max<long>(2 * nev + 1, nev + 20));
     res.nev = static_cast<int>(nev);
     res.ncv = static_cast<int>(ncv);
-    report(o.progress, "Lanczos: nev " + std::to_string(nev) + ", ncv " + std::to_string(ncv), 0.4);
-    run = run_lanczos(m_factor, mass, sigma, static_cast<int>(nev), static_cast<int>(ncv), o);
+    report(o.progress, res.method + ": nev " + std::to_string(nev), 0.4);
+    if (use_block)
+      run = run_block_lanczos(m_factor, mass, sigma, static_cast<int>(nev), o);
+    else
+      run = run_lanczos(m_factor, mass, sigma, static_cast<int>(nev), static_cast<int>(ncv), o);
     ++res.lanczos_runs;
     res.iterations += run.iterations;
     if (!run.converged) break;

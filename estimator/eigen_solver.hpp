@@ -41,6 +41,13 @@ enum class ModeNormalization {
   Max    ///< largest |component| = 1 (NORM=MAX)
 };
 
+/// The Krylov iteration on (K − σM)⁻¹M.
+enum class EigenMethod {
+  Auto,          ///< BlockLanczos for n ≥ 5000, Spectra below
+  Spectra,       ///< Spectra's SymGEigsShiftSolver (implicitly restarted Lanczos, one vector)
+  BlockLanczos   ///< block Lanczos (block_lanczos.hpp): b solves per factor pass
+};
+
 /// What to extract. Bounds are frequencies in Hz (as EIGRL V1, V2 and EIGR F1, F2
 /// give them); a NaN bound is absent. Field meanings follow NASTRAN:
 /// - lowest `nd` modes when only nd is given;
@@ -58,7 +65,9 @@ struct EigenOptions {
   /// node-level frequencies, so rigid-body modes converge first and elastic ones
   /// at the speed of a zero shift). K − σM must be positive definite.
   double shift = std::numeric_limits<double>::quiet_NaN();
-  int ncv = 0;            ///< Lanczos basis size; 0: automatic (about 2 nev + 20, ≤ n)
+  EigenMethod method = EigenMethod::Auto;
+  int block = 8;          ///< block size for BlockLanczos (≥ the largest multiplicity helps)
+  int ncv = 0;            ///< Spectra: Lanczos basis size; 0: automatic (2 nev + 1 or nev + 20, ≤ n)
   double tol = 1e-10;     ///< Spectra's relative tolerance on the Ritz values ν
   int maxit = 1000;       ///< Spectra's restart limit
   bool sturm_check = true;  ///< verify band completeness by an inertia count
@@ -102,11 +111,12 @@ struct EigenResult {
   // How the solve went.
   double shift = 0.0;
   int nev = 0, ncv = 0, lanczos_runs = 0;
-  long iterations = 0;   ///< Spectra restarts, summed over runs
+  std::string method;    ///< "Spectra" or "BlockLanczos"
+  long iterations = 0;   ///< Spectra restarts or block Lanczos block solves, summed over runs
   long solves = 0;       ///< right-hand-side columns solved with the factor
   long sturm_count = -1; ///< eigenvalues below the band top by inertia; −1 when not counted
   int analyses = 0;      ///< symbolic analyses done by this solve (0 when reused)
-  double analyze_seconds = 0, factor_seconds = 0, lanczos_seconds = 0, total_seconds = 0;
+  double analyze_seconds = 0, factor_seconds = 0 /* analysis included */, lanczos_seconds = 0, total_seconds = 0;
   double factor_nnz = 0, factor_flops = 0;
   std::string ordering;
 

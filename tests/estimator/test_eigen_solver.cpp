@@ -38,15 +38,22 @@ void check_modes(const SpMat& K, const SpMat& M, const EigenResult& r, double ze
   for (int j = 1; j < r.size(); ++j) CHECK(r.eigenvalues(j) >= r.eigenvalues(j - 1));
 }
 
-EigenOptions lowest(int nd) {
+EigenOptions lowest(int nd, EigenMethod method = EigenMethod::Auto) {
   EigenOptions o;
   o.nd = nd;
+  o.method = method;
   return o;
 }
+
+// Every numerical test runs with both Krylov iterations.
+#define BOTH_METHODS() \
+  const EigenMethod method = GENERATE(EigenMethod::Spectra, EigenMethod::BlockLanczos); \
+  CAPTURE(method == EigenMethod::Spectra ? "Spectra" : "BlockLanczos")
 
 }  // namespace
 
 TEST_CASE("Eigen-solver matches the dense generalised solver on random SPD pencils", "[eigen]") {
+  BOTH_METHODS();
   for (int n : {30, 80, 150}) {
     for (unsigned seed : {11u, 12u}) {
       const auto [K, M] = random_pencil(n, seed + static_cast<unsigned>(n));
@@ -54,7 +61,7 @@ TEST_CASE("Eigen-solver matches the dense generalised solver on random SPD penci
                                         Eigen::MatrixXd(K), Eigen::MatrixXd(M))
                                         .eigenvalues();
       const int nd = std::min(12, n / 3);
-      const EigenResult r = solve_modes(K, M, lowest(nd));
+      const EigenResult r = solve_modes(K, M, lowest(nd, method));
       check_modes(K, M, r);
       REQUIRE(r.size() == nd);
       for (int j = 0; j < nd; ++j) CHECK(r.eigenvalues(j) == Approx(dense(j)).epsilon(1e-10));
@@ -63,11 +70,12 @@ TEST_CASE("Eigen-solver matches the dense generalised solver on random SPD penci
 }
 
 TEST_CASE("Fixed-fixed spring-mass chain: closed-form eigenvalues", "[eigen]") {
+  BOTH_METHODS();
   const int n = 200;
   const double k = 1000.0, m = 2.0;
   const SpMat K = chain_stiffness(n, k, true);
   const SpMat M = diagonal(Eigen::VectorXd::Constant(n, m));
-  const EigenResult r = solve_modes(K, M, lowest(10));
+  const EigenResult r = solve_modes(K, M, lowest(10, method));
   check_modes(K, M, r);
   REQUIRE(r.size() == 10);
   for (int j = 1; j <= 10; ++j) {
@@ -77,11 +85,12 @@ TEST_CASE("Fixed-fixed spring-mass chain: closed-form eigenvalues", "[eigen]") {
 }
 
 TEST_CASE("Free-free chain: exactly one zero mode, then the closed form", "[eigen]") {
+  BOTH_METHODS();
   const int n = 150;
   const double k = 50.0, m = 0.5;
   const SpMat K = chain_stiffness(n, k, false);
   const SpMat M = diagonal(Eigen::VectorXd::Constant(n, m));
-  const EigenResult r = solve_modes(K, M, lowest(8));
+  const EigenResult r = solve_modes(K, M, lowest(8, method));
   check_modes(K, M, r, 1e-8);
   REQUIRE(r.size() == 8);
   CHECK(r.shift < 0.0);
@@ -96,11 +105,12 @@ TEST_CASE("Free-free chain: exactly one zero mode, then the closed form", "[eige
 }
 
 TEST_CASE("Free 3D truss: exactly six rigid-body modes", "[eigen]") {
+  BOTH_METHODS();
   const auto [K, M] = free_box_truss();
   const Eigen::VectorXd dense = Eigen::GeneralizedSelfAdjointEigenSolver<Eigen::MatrixXd>(
                                     Eigen::MatrixXd(K), Eigen::MatrixXd(M))
                                     .eigenvalues();
-  const EigenResult r = solve_modes(K, M, lowest(10));
+  const EigenResult r = solve_modes(K, M, lowest(10, method));
   check_modes(K, M, r, 1e-6);
   REQUIRE(r.size() == 10);
   int zeros = 0;
@@ -111,6 +121,7 @@ TEST_CASE("Free 3D truss: exactly six rigid-body modes", "[eigen]") {
 }
 
 TEST_CASE("Lumped mass with massless DOFs: a massless midpoint halves the spring", "[eigen]") {
+  BOTH_METHODS();
   // 2n+1 DOFs: masses at even indices, massless nodes at odd ones between two
   // springs k. Condensing the massless nodes gives a chain of springs k/2.
   const int n = 60;
@@ -123,7 +134,7 @@ TEST_CASE("Lumped mass with massless DOFs: a massless midpoint halves the spring
   Eigen::VectorXd md = Eigen::VectorXd::Zero(2 * n - 1);
   for (int i = 0; i < 2 * n - 1; i += 2) md(i) = m;
   const SpMat M = diagonal(md);
-  const EigenResult r = solve_modes(K, M, lowest(12));
+  const EigenResult r = solve_modes(K, M, lowest(12, method));
   check_modes(K, M, r);
   for (int j = 1; j <= 12; ++j) {
     const double s = std::sin(j * kPi / (2.0 * (n + 1)));
@@ -136,8 +147,9 @@ TEST_CASE("Lumped mass with massless DOFs: a massless midpoint halves the spring
 }
 
 TEST_CASE("Value-only changes reuse the symbolic analysis", "[eigen]") {
+  BOTH_METHODS();
   const auto [K, M] = random_pencil(120, 99u);
-  EigenSolver solver(lowest(6));
+  EigenSolver solver(lowest(6, method));
   const EigenResult r1 = solver.solve(K, M);
   check_modes(K, M, r1);
   CHECK(r1.analyses == 1);
@@ -153,6 +165,7 @@ TEST_CASE("Value-only changes reuse the symbolic analysis", "[eigen]") {
 }
 
 TEST_CASE("Band requests find every mode in [V1, V2], multiple ones included", "[eigen]") {
+  BOTH_METHODS();
   // Two identical free-free chains side by side: every eigenvalue is double, the
   // zero one too; a band with 2 x 17 modes, more than the first Lanczos run asks.
   const int n = 100;
@@ -171,6 +184,7 @@ TEST_CASE("Band requests find every mode in [V1, V2], multiple ones included", "
   const double f2 = eigenvalue_to_hz(0.5 * (lam(20) + lam(21)));
   for (bool sturm : {true, false}) {
     EigenOptions o = eigrl_options(f1, f2, 0);
+    o.method = method;
     o.sturm_check = sturm;
     const EigenResult r = solve_modes(K, M, o);
     check_modes(K, M, r);
@@ -181,21 +195,26 @@ TEST_CASE("Band requests find every mode in [V1, V2], multiple ones included", "
     CHECK(r.warnings.empty());
   }
   // EIGRL with ND: the lowest ND inside the band.
-  const EigenResult r5 = solve_modes(K, M, eigrl_options(f1, f2, 5));
+  EigenOptions o5 = eigrl_options(f1, f2, 5);
+  o5.method = method;
+  const EigenResult r5 = solve_modes(K, M, o5);
   check_modes(K, M, r5);
   REQUIRE(r5.size() == 5);
   CHECK(r5.eigenvalues(0) == Approx(lam(4)).epsilon(1e-9));
   CHECK(r5.eigenvalues(4) == Approx(lam(6)).epsilon(1e-9));
   // EIGR F1, F2 with NE: all roots in the band as well.
-  const EigenResult re = solve_modes(K, M, eigr_options(f1, f2, 30, 0));
+  EigenOptions oe = eigr_options(f1, f2, 30, 0);
+  oe.method = method;
+  const EigenResult re = solve_modes(K, M, oe);
   check_modes(K, M, re);
   CHECK(re.size() == 34);
 }
 
 TEST_CASE("NORM=MAX scales the largest component to one", "[eigen]") {
+  BOTH_METHODS();
   const SpMat K = chain_stiffness(50, 10.0, true);
   const SpMat M = diagonal(Eigen::VectorXd::Constant(50, 1.0));
-  EigenOptions o = lowest(4);
+  EigenOptions o = lowest(4, method);
   o.norm = ModeNormalization::Max;
   const EigenResult r = solve_modes(K, M, o);
   REQUIRE(r.ok());
@@ -206,6 +225,7 @@ TEST_CASE("NORM=MAX scales the largest component to one", "[eigen]") {
 }
 
 TEST_CASE("A mechanism is reported with its DOF index", "[eigen]") {
+  BOTH_METHODS();
   // DOF 5 of a chain is massless and attached to nothing: K − σM is singular there.
   const int n = 20;
   Triplets t;
@@ -216,7 +236,7 @@ TEST_CASE("A mechanism is reported with its DOF index", "[eigen]") {
   const SpMat K = from_triplets(n, t);
   Eigen::VectorXd md = Eigen::VectorXd::Ones(n);
   md(5) = 0.0;
-  const EigenResult r = solve_modes(K, diagonal(md), lowest(3));
+  const EigenResult r = solve_modes(K, diagonal(md), lowest(3, method));
   CHECK(r.status == EigenResult::Status::NotPositiveDefinite);
   CHECK(r.failed_dof == 5);
   CHECK(r.message.find("DOF index 5") != std::string::npos);
@@ -224,6 +244,7 @@ TEST_CASE("A mechanism is reported with its DOF index", "[eigen]") {
 }
 
 TEST_CASE("A near-mechanism is reported as near-singular", "[eigen]") {
+  BOTH_METHODS();
   const int n = 20;
   SpMat K = chain_stiffness(n, 10.0, true);
   Eigen::VectorXd md = Eigen::VectorXd::Ones(n);
@@ -234,23 +255,25 @@ TEST_CASE("A near-mechanism is reported as near-singular", "[eigen]") {
   }
   K.coeffRef(n - 2, n - 2) = 10.0;
   K.coeffRef(n - 1, n - 1) = 1e-19;
-  const EigenResult r = solve_modes(K, diagonal(md), lowest(3));
+  const EigenResult r = solve_modes(K, diagonal(md), lowest(3, method));
   CHECK(r.status == EigenResult::Status::NearSingular);
   CHECK(r.message.find("nearly singular") != std::string::npos);
 }
 
 TEST_CASE("Bad requests throw", "[eigen]") {
+  BOTH_METHODS();
   const SpMat K = chain_stiffness(10, 1.0, true);
   const SpMat M = diagonal(Eigen::VectorXd::Ones(10));
   CHECK_THROWS_AS(solve_modes(K, M, EigenOptions{}), std::invalid_argument);  // nothing requested
-  CHECK_THROWS_AS(solve_modes(K, diagonal(Eigen::VectorXd::Ones(9)), lowest(2)), std::invalid_argument);
+  CHECK_THROWS_AS(solve_modes(K, diagonal(Eigen::VectorXd::Ones(9)), lowest(2, method)), std::invalid_argument);
   CHECK_THROWS_AS(solve_modes(K, M, eigrl_options(5.0, 1.0, 0)), std::invalid_argument);
 }
 
 TEST_CASE("Progress is reported", "[eigen]") {
+  BOTH_METHODS();
   const SpMat K = chain_stiffness(400, 1.0, true);
   const SpMat M = diagonal(Eigen::VectorXd::Ones(400));
-  EigenOptions o = lowest(20);
+  EigenOptions o = lowest(20, method);
   int calls = 0;
   double last = -1.0;
   o.progress = [&](const std::string&, double f) {

@@ -1,0 +1,144 @@
+#include "estimator/block_lanczos.hpp"
+
+#include <Eigen/Eigenvalues>
+
+#include <algorithm>
+#include <cmath>
+#include <random>
+#include <stdexcept>
+#include <string>
+
+namespace ssid::estimator {
+
+namespace {
+
+using Eigen::MatrixXd;
+using Eigen::VectorXd;
+
+MatrixXd random_block(long n, int b, std::mt19937& rng) {
+  std::uniform_real_distribution<double> u(-1.0, 1.0);
+  MatrixXd R(n, b);
+  for (long j = 0; j < b; ++j)
+    for (long i = 0; i < n; ++i) R(i, j) = u(rng);
+  return R;
+}
+
+}  // namespace
+
+BlockLanczosResult block_lanczos(const std::function<MatrixXd(const MatrixXd&)>& shift_invert,
+                                 const std::function<MatrixXd(const MatrixXd&)>& mass, long n, double sigma,
+                                 const BlockLanczosOptions& o) {
+  if (o.nev < 1 || o.block < 1) throw std::invalid_argument("block_lanczos: nev and block must be positive");
+  const long b = std::min<long>(o.block, n);
+  long cap = o.max_basis > 0 ? o.max_basis : std::max<long>(20L * o.nev, 200);
+  cap = std::max(std::min(cap, n), b);
+  BlockLanczosResult res;
+  std::mt19937 rng(o.seed);
+  auto S = [&](const MatrixXd& X) {
+    ++res.block_solves;
+    return shift_invert(mass(X));
+  };
+
+  MatrixXd V(n, std::min<long>(cap, 2L * o.nev + 4L * b));
+  MatrixXd H = MatrixXd::Zero(V.cols(), V.cols());
+  long m = 0;  // columns in the basis
+
+  // M-orthonormalises W against V[:, 0:m] (classical Gram–Schmidt twice) and
+  // within itself (modified Gram–Schmidt twice), dropping columns that vanish:
+  // the block shrinks (deflation) where the Krylov space stops growing, which is
+  // how an exhausted space (small n, or M of low rank) ends the iteration.
+  // Returns R (kept x W.cols()) with W_in = V C + W_out R; C goes into H's
+  // columns [col0, col0 + W.cols()) when col0 >= 0.
+  auto orthonormalise = [&](MatrixXd& W, long col0) -> MatrixXd {
+    const long act = m;
+    for (int pass = 0; pass < 2 && act > 0; ++pass) {
+      const MatrixXd C = V.leftCols(act).transpose() * mass(W);
+      W.noalias() -= V.leftCols(act) * C;
+      if (col0 >= 0) H.block(0, col0, act, W.cols()) += C;
+    }
+    MatrixXd R = MatrixXd::Zero(W.cols(), W.cols());
+    const MatrixXd MW0 = mass(W);
+    long kept = 0;
+    for (long c = 0; c < W.cols(); ++c) {
+      VectorXd w = W.col(c);
+      const double before = std::sqrt(std::max(0.0, w.dot(MW0.col(c))));
+      for (int pass = 0; pass < 2; ++pass) {
+        const VectorXd Mw = mass(w).col(0);
+        for (long k = 0; k < kept; ++k) {
+          const double r = W.col(k).dot(Mw);
+          w -= r * W.col(k);
+          R(k, c) += r;
+        }
+      }
+      const double nrm = std::sqrt(std::max(0.0, w.dot(mass(w).col(0))));
+      if (nrm > 1e-8 * before && nrm > 0.0) {
+        R(kept, c) = nrm;
+        W.col(kept) = w / nrm;
+        ++kept;
+      }
+    }
+    W.conservativeResize(Eigen::NoChange, kept);
+    return R.topRows(kept);
+  };
+
+  // Start block inside range(S).
+  {
+    MatrixXd W = S(random_block(n, static_cast<int>(b), rng));
+    orthonormalise(W, -1);
+    if (W.cols() == 0) throw std::invalid_argument("block_lanczos: M is zero");
+    V.leftCols(W.cols()) = W;
+    m = W.cols();
+  }
+  long j0 = 0, bj = m;  // the newest block: columns [j0, j0 + bj)
+  for (;;) {
+    MatrixXd W = S(V.middleCols(j0, bj));
+    const MatrixXd R = orthonormalise(W, j0);  // H columns of block j are now complete
+    const long kept = W.cols();
+    const bool room = m + kept <= cap;
+    if (room && kept > 0) {
+      if (m + kept > V.cols()) {  // grow the storage
+        const long old = V.cols();
+        const long nc = std::min(cap, std::max(old + old / 2, m + kept));
+        V.conservativeResize(Eigen::NoChange, nc);
+        H.conservativeResize(nc, nc);
+        H.rightCols(nc - old).setZero();
+        H.bottomRows(nc - old).setZero();
+      }
+      V.middleCols(m, kept) = W;
+      H.block(m, j0, kept, bj) = R;
+    }
+
+    // Rayleigh–Ritz on the first k = m columns (T complete there); the residual
+    // of a Ritz vector V y is ‖R y_j‖ with y_j its rows of block j.
+    const long k = m;
+    const MatrixXd T = 0.5 * (H.topLeftCorner(k, k) + H.topLeftCorner(k, k).transpose());
+    Eigen::SelfAdjointEigenSolver<MatrixXd> es(T);
+    const VectorXd& theta = es.eigenvalues();  // ascending; the largest are wanted
+    const long want = std::min<long>(o.nev, k);
+    long conv = 0;
+    for (long i = k - 1; i >= k - want; --i) {
+      const double r = kept > 0 ? (R * es.eigenvectors().block(j0, i, bj, 1)).norm() : 0.0;
+      if (r <= o.tol * std::max(std::abs(theta(i)), 1e-300)) ++conv;
+      else break;
+    }
+    report(o.progress, "block Lanczos: basis " + std::to_string(k) + ", converged " + std::to_string(conv) + " of " +
+                           std::to_string(o.nev));
+    const bool exhausted = kept == 0;  // span(V) is invariant: every Ritz pair is exact
+    if (conv >= want && (conv >= o.nev || exhausted)) {
+      res.converged = true;
+    } else if (room && !exhausted) {
+      j0 = m;
+      bj = kept;
+      m += kept;
+      continue;
+    }
+    const long take = conv;
+    res.lambda.resize(take);
+    res.vectors = V.leftCols(k) * es.eigenvectors().rightCols(take).rowwise().reverse();
+    for (long i = 0; i < take; ++i) res.lambda(i) = sigma + 1.0 / theta(k - 1 - i);
+    res.basis = k;
+    return res;
+  }
+}
+
+}  // namespace ssid::estimator
