@@ -352,4 +352,7 @@ TEST_CASE("UFF: delimiter recognition", "[uff]") {
   UffFile g = parse_uff("    -1   \n    82   \nx\n    -1      \n\n    -1\n    18\n    -1\n", "d.unv");
   CHECK(g.datasets.size() == 2);
   CHECK((g.skipped() == std::map<int, std::size_t>{{18, 1}, {82, 1}}));
+  // An empty delimiter pair is tolerated.
+  UffFile h = parse_uff("    -1\n    -1\n    82\nx\n    -1\n", "d.unv");
+  CHECK(h.datasets.size() == 1);
 }
