@@ -20,5 +20,7 @@ struct Command {
 const std::vector<Command>& commands();
 
 int cmd_deck(const Args& args);
+int cmd_uff(const Args& args);
+int cmd_correlate(const Args& args);
 
 }  // namespace ssid::cli

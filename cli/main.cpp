@@ -13,6 +13,8 @@ namespace ssid::cli {
 const std::vector<Command>& commands() {
   static const std::vector<Command> list = {
       {"deck", "read, check and write NASTRAN bulk data (summary, write)", cmd_deck},
+      {"uff", "universal files: list datasets, nodes, modes, functions", cmd_uff},
+      {"correlate", "pair analysis and test modes: MAC table, unpaired modes", cmd_correlate},
   };
   return list;
 }

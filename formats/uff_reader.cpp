@@ -347,6 +347,10 @@ UffFile parse_uff(const std::string& text, const std::string& name) {
     if (sc.at_end()) break;  // a trailing lone delimiter
     Block b;
     b.header = sc.next();
+    // Some writers leave an empty "-1 / -1" pair: a delimiter where a dataset number
+    // should be opens the dataset afresh.
+    while (detail::is_delimiter(b.header.text) && !sc.at_end()) b.header = sc.next();
+    if (detail::is_delimiter(b.header.text)) break;
     {
       std::string_view num = b.header.text.substr(0, std::min<std::size_t>(6, b.header.text.size()));
       auto n = parse_integer(formats::detail::trim(num));

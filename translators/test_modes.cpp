@@ -57,6 +57,39 @@ ModeSet modes_from_uff(const formats::uff::UffFile& file, ModeSetReport* report)
   return s;
 }
 
+formats::uff::UffFile mode_set_to_uff(const ModeSet& set, const std::vector<formats::uff::Node>& nodes) {
+  formats::uff::UffFile f;
+  if (!nodes.empty()) {
+    formats::uff::NodeSet ns;
+    ns.dataset = 2411;
+    ns.nodes = nodes;
+    f.datasets.push_back(ns);
+  }
+  std::vector<std::int64_t> order;
+  std::unordered_map<std::int64_t, Eigen::Index> node_row;
+  bool rotations = false;
+  for (const auto& d : set.dofs) {
+    if (node_row.emplace(d.node, static_cast<Eigen::Index>(order.size())).second) order.push_back(d.node);
+    rotations |= std::abs(d.direction) > 3;
+  }
+  const int ndv = rotations ? 6 : 3;
+  for (Eigen::Index j = 0; j < set.shapes.cols(); ++j) {
+    Eigen::MatrixXd v = Eigen::MatrixXd::Zero(static_cast<Eigen::Index>(order.size()), ndv);
+    for (std::size_t r = 0; r < set.dofs.size(); ++r) {
+      const auto& d = set.dofs[r];
+      const double sign = d.direction < 0 ? -1.0 : 1.0;
+      v(node_row.at(d.node), std::abs(d.direction) - 1) = sign * set.shapes(static_cast<Eigen::Index>(r), j);
+    }
+    const auto k = static_cast<std::size_t>(j);
+    auto m = formats::uff::NodalData55::normal_mode(
+        k < set.numbers.size() ? set.numbers[k] : static_cast<int>(j) + 1,
+        k < set.frequency_hz.size() ? set.frequency_hz[k] : 0.0, order, v,
+        k < set.modal_mass.size() ? set.modal_mass[k] : 0.0, k < set.damping.size() ? set.damping[k] : 0.0);
+    f.datasets.push_back(std::move(m));
+  }
+  return f;
+}
+
 std::vector<MeasuredDof> measured_dofs(const formats::uff::UffFile& file) {
   std::vector<MeasuredDof> r;
   std::set<std::int64_t> seen;

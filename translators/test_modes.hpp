@@ -35,6 +35,14 @@ struct ModeSetReport {
 /// keep file order.
 ModeSet modes_from_uff(const formats::uff::UffFile& file, ModeSetReport* report = nullptr);
 
+/// A mode set as UFF 55 real normal modes (one dataset per mode, analysis type 2),
+/// preceded by `nodes` as dataset 2411 when given. Nodes appear in the order of
+/// their first DOF; NDV is 6 when any rotation is present, else 3. Components the
+/// set does not hold are written as 0 — UFF 55 cannot mark a component unmeasured,
+/// so keep the measured DOF list beside the file (or use 58 records) when it matters.
+/// A negative direction is written as the negated value on the positive axis.
+formats::uff::UffFile mode_set_to_uff(const ModeSet& set, const std::vector<formats::uff::Node>& nodes = {});
+
 /// The measured DOFs named by the 58 functions of a file (response node and
 /// signed direction), each once, in file order: the sensors of an FRF test.
 std::vector<MeasuredDof> measured_dofs(const formats::uff::UffFile& file);

@@ -352,4 +352,21 @@ TEST_CASE("UFF: delimiter recognition", "[uff]") {
   UffFile g = parse_uff("    -1   \n    82   \nx\n    -1      \n\n    -1\n    18\n    -1\n", "d.unv");
   CHECK(g.datasets.size() == 2);
   CHECK((g.skipped() == std::map<int, std::size_t>{{18, 1}, {82, 1}}));
+  // An empty delimiter pair is tolerated.
+  UffFile h = parse_uff("    -1\n    -1\n    82\nx\n    -1\n", "d.unv");
+  CHECK(h.datasets.size() == 1);
+}
+
+TEST_CASE("UFF: Fortran exponents past 99 (no letter) and 3-digit exponents that fill the field", "[uff]") {
+  // E13.5 of 1.5e-100 is "  1.50000-100"; C's %13.5E gives " 1.50000E-100"; 1P E13.6 of -2e+100
+  // fills all 13 columns and touches its neighbour.
+  const std::string text =
+      "    -1\n    55\nA\nB\nC\nD\nE\n         1         2         2         8         2         3\n"
+      "         2         4         1         1\n  7.75000E+00  1.00000E+00  0.00000E+00  0.00000E+00\n"
+      "         1\n  1.50000-100 1.50000E-100-2.000000+100\n    -1\n";
+  UffFile f = parse_uff(text, "exp.unv");
+  const auto& m = *f.nodal_data()[0];
+  CHECK(m.values(0, 0) == 1.5e-100);
+  CHECK(m.values(0, 1) == 1.5e-100);
+  CHECK(m.values(0, 2) == -2e100);
 }

@@ -133,3 +133,34 @@ TEST_CASE("Mode sets from UFF 55: common DOFs, complex modes counted, restrictio
   // Sensors of an FRF test from the 58 records.
   CHECK(measured_dofs(f) == std::vector<MeasuredDof>{{1, 1}, {3, -2}});
 }
+
+TEST_CASE("Mode sets written as UFF 55 read back to the same set", "[mapping][modes]") {
+  ModeSet s;
+  for (std::int64_t n : {4, 9, 2})
+    for (int c = 1; c <= 3; ++c) s.dofs.push_back({n, c});
+  s.shapes = Eigen::MatrixXd::Random(9, 3);
+  s.frequency_hz = {1.5, 2.25, 7.125};
+  s.numbers = {1, 2, 5};
+  s.damping = {0.01, 0.02, 0.03};
+  s.modal_mass = {1, 1, 1};
+  auto f = mode_set_to_uff(s, {{4, 0, 0, 1, {0, 0, 0}}, {9, 0, 0, 1, {1, 0, 0}}, {2, 0, 0, 1, {2, 0, 0}}});
+  auto back = modes_from_uff(ssid::formats::uff::parse_uff(
+      ssid::formats::uff::format_uff(f, ssid::formats::uff::Precision::Extended), "set.unv"));
+  CHECK(back.dofs == s.dofs);
+  CHECK(back.shapes == s.shapes);
+  CHECK(back.frequency_hz == s.frequency_hz);
+  CHECK(back.numbers == s.numbers);
+  CHECK(back.damping == s.damping);
+  // Signed and partial sensor sets: -Y becomes the negated value on +Y, the rest 0.
+  ModeSet p;
+  p.dofs = {{7, -2}, {7, 5}};
+  p.shapes = Eigen::Matrix<double, 2, 1>(0.5, 0.25);
+  p.frequency_hz = {3.0};
+  auto g = mode_set_to_uff(p);
+  const auto& m = *g.nodal_data()[0];
+  CHECK(m.values_per_node == 6);
+  CHECK(m.values(0, 1) == -0.5);
+  CHECK(m.values(0, 4) == 0.25);
+  CHECK(m.values(0, 0) == 0.0);
+  CHECK(m.mode_number() == 1);
+}

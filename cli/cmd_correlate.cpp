@@ -1,0 +1,205 @@
+/// \file cmd_correlate.cpp
+/// `ssid correlate FE.unv TEST.unv`: pairing table (reconciliation paper
+/// Tables 4–6 layout), MAC, auto-MAC, with --json.
+#include <fstream>
+#include <iostream>
+#include <set>
+
+#include "cli/cli_util.hpp"
+#include "estimator/correlate.hpp"
+#include "formats/uff.hpp"
+
+namespace ssid::cli {
+
+namespace {
+
+namespace uff = formats::uff;
+
+/// True when the file starts (after blank lines) with a UFF delimiter.
+bool looks_like_uff(const std::string& path) {
+  std::ifstream in(path);
+  if (!in) return true;  // let the reader report "not found"
+  for (std::string line; std::getline(in, line);) {
+    std::size_t b = line.find_first_not_of(" \t\r");
+    if (b == std::string::npos) continue;
+    return line.compare(b, 2, "-1") == 0;
+  }
+  return true;
+}
+
+nlohmann::json matrix_json(const Eigen::MatrixXd& m) {
+  nlohmann::json j = nlohmann::json::array();
+  for (Eigen::Index i = 0; i < m.rows(); ++i) {
+    nlohmann::json row = nlohmann::json::array();
+    for (Eigen::Index k = 0; k < m.cols(); ++k) row.push_back(m(i, k));
+    j.push_back(row);
+  }
+  return j;
+}
+
+}  // namespace
+
+int cmd_correlate(const Args& args) {
+  po::options_description desc("ssid correlate options");
+  desc.add_options()("fe", po::value<std::string>()->required(), "analysis modes: universal file with dataset 55")(
+      "test", po::value<std::string>()->required(), "test modes: universal file with dataset 55 (+ nodes 15/2411)")(
+      "json", po::value<std::string>(), "write the results as JSON to this file ('-' for stdout)")(
+      "mac", po::value<std::string>()->default_value("squared"),
+      "MAC form: squared, or ns (the seed report's non-squared MAC)")(
+      "min-mac", po::value<double>()->default_value(0.9), "accept a mutual-best pair at this MAC or above")(
+      "max-freq-error", po::value<double>()->default_value(10.0),
+      "accept a pair only within this frequency error (%)")(
+      "map", po::value<std::string>()->default_value("id"),
+      "test node to analysis node: id, position, or id-then-position (positions from 15/2411 in both files)")(
+      "tol", po::value<double>()->default_value(0.0), "distance tolerance for position mapping (model units)");
+  po::positional_options_description pos;
+  pos.add("fe", 1).add("test", 1);
+  po::variables_map vm;
+  int rc = 0;
+  if (!parse_options(args,
+                     "ssid correlate FE.unv TEST.unv [--json FILE] [--mac squared|ns] [--min-mac X] "
+                     "[--max-freq-error PCT] [--map id|position|id-then-position --tol D]",
+                     desc, pos, vm, rc))
+    return rc;
+  const std::string fe_path = vm["fe"].as<std::string>(), test_path = vm["test"].as<std::string>();
+  if (!looks_like_uff(fe_path))
+    throw std::runtime_error(fe_path +
+                             ": not a universal file. Correlating a NASTRAN deck directly needs model assembly, "
+                             "which this build does not have yet; write the analysis modes at the test nodes as "
+                             "UFF dataset 55 and pass that file");
+
+  estimator::PairingOptions opt;
+  const std::string form = vm["mac"].as<std::string>();
+  if (form == "squared") opt.form = estimator::MacForm::Squared;
+  else if (form == "ns" || form == "non-squared") opt.form = estimator::MacForm::NonSquared;
+  else {
+    print_error("--mac: expected squared or ns, got \"" + form + "\"");
+    return 2;
+  }
+  opt.min_mac = vm["min-mac"].as<double>();
+  opt.max_frequency_error_pct = vm["max-freq-error"].as<double>();
+
+  const uff::UffFile fe_file = uff::read_uff(fe_path);
+  const uff::UffFile test_file = uff::read_uff(test_path);
+  translators::ModeSetReport fe_rep, test_rep;
+  translators::ModeSet fe = translators::modes_from_uff(fe_file, &fe_rep);
+  translators::ModeSet test = translators::modes_from_uff(test_file, &test_rep);
+  if (fe.frequency_hz.empty()) throw std::runtime_error(fe_path + ": no real normal modes (dataset 55, analysis type 2)");
+  if (test.frequency_hz.empty())
+    throw std::runtime_error(test_path + ": no real normal modes (dataset 55, analysis type 2)");
+  std::vector<std::string> problems;
+  for (const auto& p : fe_rep.problems) problems.push_back(fe_path + ": " + p);
+  for (const auto& p : test_rep.problems) problems.push_back(test_path + ": " + p);
+  if (test_rep.complex_modes)
+    problems.push_back(test_path + ": " + std::to_string(test_rep.complex_modes) +
+                       " complex mode(s) not used (real normal modes are compared)");
+
+  // Test nodes onto the analysis nodes.
+  const std::string map = vm["map"].as<std::string>();
+  nlohmann::json mapping_json;
+  {
+    translators::NodeMapOptions mo;
+    if (map == "id") mo.by = translators::MapBy::Id;
+    else if (map == "position") mo.by = translators::MapBy::Position;
+    else if (map == "id-then-position") mo.by = translators::MapBy::IdThenPosition;
+    else {
+      print_error("--map: expected id, position or id-then-position, got \"" + map + "\"");
+      return 2;
+    }
+    mo.tolerance = vm["tol"].as<double>();
+    std::vector<translators::GridPosition> grids;
+    for (const auto& n : fe_file.nodes())
+      grids.push_back({n.id, Eigen::Vector3d(n.xyz[0], n.xyz[1], n.xyz[2]), Eigen::Matrix3d::Identity()});
+    std::vector<translators::TestNode> nodes;
+    for (const auto& n : test_file.nodes())
+      nodes.push_back({n.id, Eigen::Vector3d(n.xyz[0], n.xyz[1], n.xyz[2]), n.displacement_cs});
+    if (map == "id") {
+      // Node geometry is optional for id matching: every test node id in the modes maps to itself
+      // when the analysis file lists no nodes.
+      std::set<std::int64_t> ids;
+      for (const auto& d : test.dofs) ids.insert(d.node);
+      if (grids.empty())
+        for (auto id : ids) grids.push_back({id, Eigen::Vector3d::Zero(), Eigen::Matrix3d::Identity()});
+      if (nodes.empty())
+        for (auto id : ids) nodes.push_back({id, Eigen::Vector3d::Zero(), 0});
+    } else if (grids.empty() || nodes.empty()) {
+      throw std::runtime_error("--map " + map + " needs node positions (dataset 15 or 2411) in both files");
+    }
+    auto m = translators::map_test_nodes(nodes, grids, mo);
+    for (const auto& p : m.problems) problems.push_back(test_path + ": " + p);
+    mapping_json = {{"by", map}, {"mapped", m.matches.size()}, {"unmapped", m.unmapped}};
+    test = translators::relabel(test, m);
+  }
+
+  const estimator::Correlation c = estimator::correlate(fe, test, opt);
+  const auto& p = c.pairing;
+  auto fe_no = [&](int i) { return c.fe.numbers[static_cast<std::size_t>(i)]; };
+  auto test_no = [&](int j) { return c.test.numbers[static_cast<std::size_t>(j)]; };
+
+  nlohmann::json j;
+  j["fe_file"] = fe_path;
+  j["test_file"] = test_path;
+  j["mac_form"] = opt.form == estimator::MacForm::Squared ? "squared" : "non-squared";
+  j["min_mac"] = opt.min_mac;
+  j["max_frequency_error_pct"] = opt.max_frequency_error_pct;
+  j["dofs"] = c.dofs.size();
+  j["mapping"] = mapping_json;
+  j["pairs"] = nlohmann::json::array();
+  for (const auto& mp : p.pairs)
+    j["pairs"].push_back({{"fe_mode", fe_no(mp.fe)},
+                          {"test_mode", test_no(mp.test)},
+                          {"fe_hz", c.fe.frequency_hz[static_cast<std::size_t>(mp.fe)]},
+                          {"test_hz", c.test.frequency_hz[static_cast<std::size_t>(mp.test)]},
+                          {"error_pct", mp.error_pct},
+                          {"mac", mp.mac},
+                          {"msf", mp.msf},
+                          {"accepted", mp.accepted}});
+  j["unpaired_fe"] = nlohmann::json::array();
+  for (int i : p.unpaired_fe) j["unpaired_fe"].push_back(fe_no(i));
+  j["unpaired_test"] = nlohmann::json::array();
+  for (int k : p.unpaired_test) j["unpaired_test"].push_back(test_no(k));
+  j["table"] = nlohmann::json::array();
+  for (const auto& r : p.table) {
+    nlohmann::json row;
+    row["fe_mode"] = r.fe ? nlohmann::json(fe_no(*r.fe)) : nlohmann::json(nullptr);
+    row["test_mode"] = r.test ? nlohmann::json(test_no(*r.test)) : nlohmann::json(nullptr);
+    if (!r.fe && r.fe_best >= 0) row["fe_best"] = fe_no(r.fe_best);
+    if (!r.test && r.test_best >= 0) row["test_best"] = test_no(r.test_best);
+    row["max_fe_mac"] = r.max_fe_mac ? nlohmann::json(*r.max_fe_mac) : nlohmann::json(nullptr);
+    row["max_test_mac"] = r.max_test_mac ? nlohmann::json(*r.max_test_mac) : nlohmann::json(nullptr);
+    row["error_pct"] = r.error_pct ? nlohmann::json(*r.error_pct) : nlohmann::json(nullptr);
+    row["accepted"] = r.accepted;
+    j["table"].push_back(row);
+  }
+  j["mac"] = matrix_json(p.mac);
+  j["auto_mac_fe"] = matrix_json(c.auto_mac_fe);
+  j["auto_mac_test"] = matrix_json(c.auto_mac_test);
+  j["problems"] = problems;
+
+  const std::string json_path = vm.count("json") ? vm["json"].as<std::string>() : "";
+  for (const auto& s : problems) std::cerr << "warning: " << s << "\n";
+  if (json_path == "-") {
+    write_json("-", j);
+    return 0;
+  }
+  std::size_t accepted = 0;
+  for (const auto& mp : p.pairs) accepted += mp.accepted;
+  std::cout << "analysis: " << fe_path << " (" << c.fe.frequency_hz.size() << " modes); test: " << test_path << " ("
+            << c.test.frequency_hz.size() << " modes); compared at " << c.dofs.size() << " common DOF(s), MAC "
+            << j["mac_form"].get<std::string>() << "\n\n";
+  std::cout << estimator::format_pairing_table(p, c.fe.frequency_hz, c.test.frequency_hz, c.fe.numbers, c.test.numbers);
+  std::cout << "\n(*) accepted: MAC >= " << opt.min_mac << " and |error| <= " << opt.max_frequency_error_pct
+            << " %; -n-: best partner n preferred a mode with higher MAC\n";
+  std::cout << "accepted pairs: " << accepted << " of " << p.pairs.size() << " mutual-best\n";
+  std::cout << "unpaired analysis modes:";
+  if (p.unpaired_fe.empty()) std::cout << " none";
+  for (int i : p.unpaired_fe) std::cout << " " << fe_no(i);
+  std::cout << "\nunpaired test modes:";
+  if (p.unpaired_test.empty()) std::cout << " none";
+  for (int k : p.unpaired_test) std::cout << " " << test_no(k);
+  std::cout << "\n";
+  if (!json_path.empty()) write_json(json_path, j);
+  return 0;
+}
+
+}  // namespace ssid::cli

@@ -1,0 +1,194 @@
+/// \file cmd_uff.cpp
+/// `ssid uff list FILE [--json OUT]`: what a universal file holds.
+#include <cstdio>
+#include <iostream>
+
+#include "cli/cli_util.hpp"
+#include "formats/uff.hpp"
+#include "translators/test_modes.hpp"
+
+namespace ssid::cli {
+
+namespace {
+
+namespace uff = formats::uff;
+
+std::string direction_name(int d) {
+  static const char* axes[] = {"X", "Y", "Z", "RX", "RY", "RZ"};
+  if (d == 0 || d < -6 || d > 6) return "scalar";
+  return std::string(d < 0 ? "-" : "+") + axes[std::abs(d) - 1];
+}
+
+const char* analysis_name(int t) {
+  switch (t) {
+    case 0: return "unknown";
+    case 1: return "static";
+    case 2: return "normal mode";
+    case 3: return "complex mode";
+    case 4: return "transient";
+    case 5: return "frequency response";
+    case 6: return "buckling";
+    case 7: return "complex mode (2nd order)";
+    default: return "other";
+  }
+}
+
+nlohmann::json to_json(const uff::UffFile& f) {
+  nlohmann::json j;
+  j["file"] = f.path;
+  j["datasets"] = nlohmann::json::array();
+  for (const auto& d : f.datasets) {
+    nlohmann::json e;
+    e["number"] = uff::dataset_number(d);
+    std::visit([&](const auto& x) { e["line"] = x.where.line; }, d);
+    e["kept_verbatim"] = std::holds_alternative<uff::UnknownDataset>(d);
+    j["datasets"].push_back(e);
+  }
+  for (const auto& d : f.datasets) {
+    if (auto h = std::get_if<uff::Header151>(&d)) {
+      j["header"] = {{"model", h->model_name()}, {"description", h->description()}, {"program", h->program()}};
+    } else if (auto u = std::get_if<uff::Units164>(&d)) {
+      j["units"] = {{"code", u->code},       {"description", u->description}, {"length", u->length},
+                    {"force", u->force},     {"temperature", u->temperature}, {"temperature_offset", u->temperature_offset}};
+    }
+  }
+  j["nodes"] = nlohmann::json::array();
+  for (const auto& n : f.nodes())
+    j["nodes"].push_back({{"id", n.id}, {"xyz", n.xyz}, {"definition_cs", n.definition_cs},
+                          {"displacement_cs", n.displacement_cs}});
+  j["modes"] = nlohmann::json::array();
+  for (const auto* m : f.nodal_data()) {
+    nlohmann::json e{{"line", m->where.line},
+                     {"analysis", analysis_name(m->analysis_type)},
+                     {"analysis_type", m->analysis_type},
+                     {"mode", m->mode_number()},
+                     {"frequency_hz", m->frequency_hz()},
+                     {"nodes", m->nodes.size()},
+                     {"values_per_node", m->values_per_node},
+                     {"complex", m->is_complex()},
+                     {"id_line", m->id_lines[0]}};
+    if (m->is_normal_mode()) {
+      e["modal_mass"] = m->modal_mass();
+      e["viscous_damping"] = m->viscous_damping();
+      e["hysteretic_damping"] = m->hysteretic_damping();
+    }
+    if (m->is_complex_mode()) {
+      const auto lam = m->eigenvalue();
+      e["eigenvalue"] = {lam.real(), lam.imag()};
+      e["damping_ratio"] = std::abs(lam) > 0 ? -lam.real() / std::abs(lam) : 0.0;
+    }
+    j["modes"].push_back(e);
+  }
+  j["functions"] = nlohmann::json::array();
+  for (const auto* fn : f.functions())
+    j["functions"].push_back({{"line", fn->where.line},
+                              {"function_type", fn->function_type},
+                              {"response_node", fn->response_node},
+                              {"response_direction", fn->response_direction},
+                              {"reference_node", fn->reference_node},
+                              {"reference_direction", fn->reference_direction},
+                              {"points", fn->y.size()},
+                              {"complex", fn->is_complex()},
+                              {"even", fn->even},
+                              {"abscissa_min", fn->x.empty() ? 0.0 : fn->x.front()},
+                              {"abscissa_max", fn->x.empty() ? 0.0 : fn->x.back()},
+                              {"id_line", fn->id_lines[0]}});
+  nlohmann::json sk = nlohmann::json::object();
+  for (const auto& [n, c] : f.skipped()) sk[std::to_string(n)] = c;
+  j["skipped"] = sk;
+  translators::ModeSetReport rep;
+  auto set = translators::modes_from_uff(f, &rep);
+  j["normal_modes"] = set.frequency_hz.size();
+  j["complex_modes"] = rep.complex_modes;
+  j["measured_dofs"] = set.dofs.size();
+  j["problems"] = rep.problems;
+  return j;
+}
+
+int uff_list(const Args& args) {
+  po::options_description desc("ssid uff list options");
+  desc.add_options()("file", po::value<std::string>()->required(), "universal file (.unv/.uff)")(
+      "json", po::value<std::string>(), "write the listing as JSON to this file ('-' for stdout)");
+  po::positional_options_description pos;
+  pos.add("file", 1);
+  po::variables_map vm;
+  int rc = 0;
+  if (!parse_options(args, "ssid uff list FILE [--json OUT]", desc, pos, vm, rc)) return rc;
+  const uff::UffFile f = uff::read_uff(vm["file"].as<std::string>());
+  const nlohmann::json j = to_json(f);
+  const std::string json_path = vm.count("json") ? vm["json"].as<std::string>() : "";
+  if (json_path == "-") {
+    write_json("-", j);
+    return 0;
+  }
+  std::cout << "universal file " << f.path << ": " << f.datasets.size() << " dataset(s)\n";
+  if (j.contains("header"))
+    std::cout << "  header (151): model \"" << j["header"]["model"].get<std::string>() << "\", written by \""
+              << j["header"]["program"].get<std::string>() << "\"\n";
+  if (j.contains("units"))
+    std::cout << "  units (164): code " << j["units"]["code"] << " \"" << j["units"]["description"].get<std::string>()
+              << "\"\n";
+  std::size_t n15 = 0, n2411 = 0;
+  for (const auto& d : f.datasets)
+    if (auto s = std::get_if<uff::NodeSet>(&d)) (s->dataset == 15 ? n15 : n2411) += s->nodes.size();
+  std::cout << "nodes: " << n15 + n2411 << " (dataset 15: " << n15 << ", dataset 2411: " << n2411 << ")\n";
+  const auto modes = f.nodal_data();
+  std::cout << "data at nodes (55): " << modes.size() << "\n";
+  if (!modes.empty()) {
+    std::printf("  %5s %6s %14s %12s %10s %6s %4s  %s\n", "line", "mode", "frequency Hz", "modal mass", "damping",
+                "nodes", "NDV", "analysis");
+    std::fflush(stdout);
+    for (const auto* m : modes) {
+      double damping = m->viscous_damping();
+      if (m->is_complex_mode()) {
+        const auto lam = m->eigenvalue();
+        damping = std::abs(lam) > 0 ? -lam.real() / std::abs(lam) : 0.0;
+      }
+      std::printf("  %5u %6lld %14.6g %12.6g %10.4g %6zu %4d  %s%s\n", m->where.line,
+                  static_cast<long long>(m->mode_number()), m->frequency_hz(), m->modal_mass(), damping,
+                  m->nodes.size(), m->values_per_node, analysis_name(m->analysis_type),
+                  m->is_complex() ? " (complex values)" : "");
+    }
+    std::fflush(stdout);
+  }
+  const auto fns = f.functions();
+  std::cout << "functions at nodal DOFs (58): " << fns.size() << "\n";
+  for (const auto* fn : fns)
+    std::cout << "  line " << fn->where.line << ": type " << fn->function_type << ", response " << fn->response_node
+              << direction_name(fn->response_direction) << ", reference "
+              << (fn->reference_node == 0 && fn->reference_direction == 0
+                      ? std::string("none")
+                      : std::to_string(fn->reference_node) + direction_name(fn->reference_direction))
+              << ", " << fn->y.size() << " points"
+              << (fn->is_complex() ? " (complex)" : "") << "\n";
+  std::cout << "skipped (kept verbatim):";
+  if (f.skipped().empty()) std::cout << " none";
+  for (const auto& [n, c] : f.skipped()) std::cout << " " << n << " x" << c;
+  std::cout << "\n";
+  std::cout << "real normal modes usable for correlation: " << j["normal_modes"] << " at " << j["measured_dofs"]
+            << " DOF(s)";
+  if (j["complex_modes"].get<std::size_t>() > 0) std::cout << "; complex modes reported, not used: " << j["complex_modes"];
+  std::cout << std::endl;
+  for (const auto& p : j["problems"]) std::cerr << f.path << ": " << p.get<std::string>() << "\n";
+  if (!json_path.empty()) write_json(json_path, j);
+  return 0;
+}
+
+}  // namespace
+
+int cmd_uff(const Args& args) {
+  const std::string usage = "usage: ssid uff list FILE [--json OUT]\n";
+  if (args.empty()) {
+    std::cerr << usage;
+    return 2;
+  }
+  if (args[0] == "--help" || args[0] == "-h") {
+    std::cout << usage << "\n  list   datasets, nodes, modes and functions of a universal file\n";
+    return 0;
+  }
+  if (args[0] == "list") return uff_list(Args(args.begin() + 1, args.end()));
+  std::cerr << "ssid uff: unknown subcommand '" << args[0] << "'\n" << usage;
+  return 2;
+}
+
+}  // namespace ssid::cli

@@ -1,0 +1,145 @@
+#include <catch2/catch.hpp>
+
+#include <Eigen/QR>
+#include <nlohmann/json.hpp>
+#include <random>
+#include <unistd.h>
+
+#include "cli_run.hpp"
+#include "formats/uff.hpp"
+
+namespace fs = std::filesystem;
+namespace uff = ssid::formats::uff;
+
+namespace {
+
+fs::path scratch() {
+  fs::path p = fs::temp_directory_path() / ("ssid_cli_uff_" + std::to_string(::getpid()));
+  fs::create_directories(p);
+  return p;
+}
+
+const std::string kMixed = std::string(SSID_SOURCE_DIR) + "/tests/data/uff/testlab_mixed.unv";
+
+/// FE modes: 4 orthonormal shapes on nodes 1..6 (3 components each); test modes:
+/// FE modes 1, 2 and 4 (scaled, sign-flipped, slightly perturbed) plus a spurious
+/// shape, at nodes 1..5 only, numbered 101.. and placed 1 mm off the FE nodes.
+void write_pair(const fs::path& fe_path, const fs::path& test_path) {
+  std::mt19937 rng(5);
+  std::normal_distribution<double> g;
+  Eigen::MatrixXd A(18, 18);
+  for (Eigen::Index i = 0; i < A.size(); ++i) A(i) = g(rng);
+  Eigen::MatrixXd Q = Eigen::HouseholderQR<Eigen::MatrixXd>(A).householderQ();
+  uff::UffFile fe, test;
+  uff::NodeSet fn, tn;
+  fn.dataset = 2411;
+  tn.dataset = 15;
+  for (int n = 1; n <= 6; ++n) {
+    fn.nodes.push_back(uff::Node{n, 0, 0, 1, {double(n), 0.0, 0.0}});
+    if (n <= 5) tn.nodes.push_back(uff::Node{100 + n, 0, 0, 1, {n + 0.001, 0.0, 0.0}});
+  }
+  fe.datasets.push_back(fn);
+  test.datasets.push_back(tn);
+  const double fe_hz[] = {10.0, 20.0, 30.0, 40.0};
+  for (int m = 0; m < 4; ++m) {
+    Eigen::MatrixXd v = Eigen::Map<Eigen::MatrixXd>(Q.col(m).data(), 3, 6).transpose();
+    fe.datasets.push_back(uff::NodalData55::normal_mode(m + 1, fe_hz[m], {1, 2, 3, 4, 5, 6}, v));
+  }
+  const int used[] = {0, 1, 3, -1};
+  const double test_hz[] = {10.2, 19.5, 33.0, 41.0};
+  for (int k = 0; k < 4; ++k) {
+    Eigen::VectorXd s = used[k] >= 0 ? Eigen::VectorXd(-2.0 * Q.col(used[k]) + 0.002 * Q.col(10)) : Eigen::VectorXd(Q.col(12));
+    Eigen::MatrixXd v = Eigen::Map<Eigen::MatrixXd>(s.data(), 3, 6).transpose().topRows(5);
+    test.datasets.push_back(uff::NodalData55::normal_mode(k + 1, test_hz[k], {101, 102, 103, 104, 105}, v));
+  }
+  uff::write_uff(fe, fe_path.string());
+  uff::write_uff(test, test_path.string());
+}
+
+}  // namespace
+
+TEST_CASE("ssid uff list: datasets, nodes, modes, functions, JSON", "[cli][uff]") {
+  const fs::path json = scratch() / "list.json";
+  auto r = run_ssid("uff list " + kMixed + " --json " + json.string());
+  CHECK(r.code == 0);
+  CHECK_THAT(r.out, Catch::Contains("10 dataset(s)") && Catch::Contains("nodes: 5 (dataset 15: 3, dataset 2411: 2)") &&
+                        Catch::Contains("skipped (kept verbatim): 82 x1") && Catch::Contains("response 3-Y"));
+  CHECK_THAT(r.err, Catch::Contains("9 DOF(s) are missing from some modes"));
+  auto j = nlohmann::json::parse(cli_slurp(json));
+  CHECK(j["datasets"].size() == 10);
+  CHECK(j["modes"].size() == 3);
+  CHECK(j["modes"][0]["frequency_hz"] == 7.75);
+  CHECK(j["modes"][2]["analysis"] == "complex mode");
+  CHECK(j["modes"][2]["eigenvalue"][1] == 48.0);
+  CHECK(j["nodes"].size() == 5);
+  CHECK(j["functions"][1]["response_direction"] == -2);
+  CHECK(j["skipped"]["82"] == 1);
+  CHECK(j["normal_modes"] == 2);
+  CHECK(j["complex_modes"] == 1);
+  auto help = run_ssid("uff --help");
+  CHECK(help.code == 0);
+  auto bad = run_ssid("uff list " + (scratch() / "missing.unv").string());
+  CHECK(bad.code == 1);
+  CHECK_THAT(bad.err, Catch::Contains("missing.unv") && Catch::Contains("not found"));
+  std::ofstream(scratch() / "broken.unv") << "    -1\n    55\nA\nB\nC\nD\nE\n         1         2         2         8"
+                                             "         2         3\n         2         4         1         1\n"
+                                             "  7.7500X+00\n    -1\n";
+  auto br = run_ssid("uff list " + (scratch() / "broken.unv").string());
+  CHECK(br.code == 1);
+  CHECK(br.out.empty());
+  CHECK_THAT(br.err, Catch::Contains("broken.unv:10: dataset 55 record 8 field 1"));
+}
+
+TEST_CASE("ssid correlate: pairing table, unpaired modes, JSON; position mapping", "[cli][correlate]") {
+  const fs::path dir = scratch();
+  write_pair(dir / "fe.unv", dir / "test.unv");
+  // By id the test nodes (101..105) match nothing.
+  auto none = run_ssid("correlate " + (dir / "fe.unv").string() + " " + (dir / "test.unv").string());
+  CHECK(none.code == 1);
+  CHECK_THAT(none.err, Catch::Contains("share no measured DOF"));
+
+  const fs::path json = dir / "c.json";
+  auto r = run_ssid("correlate " + (dir / "fe.unv").string() + " " + (dir / "test.unv").string() +
+                    " --map position --tol 0.01 --json " + json.string());
+  CHECK(r.code == 0);
+  CHECK_THAT(r.out, Catch::Contains("FEM Frequency/#") && Catch::Contains("compared at 15 common DOF(s)") &&
+                        Catch::Contains("10.00/1") && Catch::Contains("accepted pairs: 2 of 3 mutual-best"));
+  auto j = nlohmann::json::parse(cli_slurp(json));
+  REQUIRE(j["pairs"].size() == 3);
+  CHECK(j["pairs"][0]["fe_mode"] == 1);
+  CHECK(j["pairs"][0]["test_mode"] == 1);
+  CHECK(j["pairs"][0]["accepted"] == true);
+  CHECK(j["pairs"][0]["mac"].get<double>() > 0.99);
+  CHECK(j["pairs"][0]["msf"].get<double>() == Approx(-0.5).epsilon(0.01));
+  CHECK(j["pairs"][0]["error_pct"].get<double>() == Approx(100.0 * (10.0 - 10.2) / 10.2));
+  CHECK(j["pairs"][1]["fe_mode"] == 2);
+  CHECK(j["pairs"][1]["accepted"] == true);
+  // FE 4 pairs with test 3 (33 Hz) by shape, but 21 % off in frequency: not accepted.
+  CHECK(j["pairs"][2]["fe_mode"] == 4);
+  CHECK(j["pairs"][2]["test_mode"] == 3);
+  CHECK(j["pairs"][2]["accepted"] == false);
+  CHECK(j["unpaired_fe"] == nlohmann::json::array({3, 4}));
+  CHECK(j["unpaired_test"] == nlohmann::json::array({3, 4}));
+  CHECK(j["dofs"] == 15);
+  CHECK(j["mac"].size() == 4);
+  CHECK(j["auto_mac_test"][0][0].get<double>() == Approx(1.0));
+  CHECK(j["mapping"]["mapped"] == 5);
+  // Looser frequency tolerance and the non-squared MAC.
+  auto ns = run_ssid("correlate " + (dir / "fe.unv").string() + " " + (dir / "test.unv").string() +
+                     " --map position --tol 0.01 --mac ns --max-freq-error 25 --json -");
+  CHECK(ns.code == 0);
+  auto k = nlohmann::json::parse(ns.out);
+  CHECK(k["mac_form"] == "non-squared");
+  CHECK(k["pairs"][2]["accepted"] == true);
+  CHECK(k["unpaired_fe"] == nlohmann::json::array({3}));
+}
+
+TEST_CASE("ssid correlate: a deck where a universal file is expected is refused clearly", "[cli][correlate][errors]") {
+  const fs::path dir = scratch();
+  std::ofstream(dir / "model.bdf") << "GRID    1               0.      0.      0.\n";
+  auto r = run_ssid("correlate " + (dir / "model.bdf").string() + " " + kMixed);
+  CHECK(r.code == 1);
+  CHECK_THAT(r.err, Catch::Contains("not a universal file"));
+  auto bad = run_ssid("correlate " + kMixed + " " + kMixed + " --mac cubed");
+  CHECK(bad.code == 2);
+}
