@@ -1,6 +1,7 @@
 #include <catch2/catch.hpp>
 
 #include "element_test_util.hpp"
+#include "translators/elements/elements.hpp"  // the umbrella header must compile on its own
 #include "translators/elements/point.hpp"
 #include "translators/elements/rigid_body.hpp"
 
