@@ -522,7 +522,11 @@ void resolve(const Deck& deck, BulkModel& m) {
   for (const auto& d : m.dvmrel1s) dvmrels.define(d.id, d.card);
   dvmrels.define_verbatim({"DVMREL2"});
   for (const auto& d : m.dvprel1s) {
-    properties.need(d.pid, d.type, d.card, 3, "PID");
+    // Element-valued designs (CONM2 M, CELAS2 K, …): the PID field holds the element id.
+    if (d.type == "CONM2" || d.type == "CELAS2" || d.type == "CMASS2" || d.type == "CONROD")
+      elements.need(d.pid, d.type, d.card, 3, "EID");
+    else
+      properties.need(d.pid, d.type, d.card, 3, "PID");
     for (const auto& [dvid, coef] : d.terms) desvars.need(dvid, {}, d.card, 9, "DVID");
   }
   for (const auto& d : m.dvmrel1s) {

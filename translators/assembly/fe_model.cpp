@@ -1,0 +1,406 @@
+#include "translators/assembly/fe_model.hpp"
+
+#include <algorithm>
+#include <cctype>
+#include <map>
+#include <set>
+#include <sstream>
+
+namespace ssid::translators {
+
+namespace {
+
+using formats::BulkModel;
+using formats::Deck;
+
+/// Cards that cannot change K or M in a real-eigenvalue analysis: ignored, with a note.
+const std::set<std::string>& no_effect_cards() {
+  static const std::set<std::string> s = {
+      "FORCE",   "FORCE1",  "FORCE2",  "MOMENT",  "MOMENT1", "MOMENT2", "LOAD",    "PLOAD",   "PLOAD1",  "PLOAD2",
+      "PLOAD4",  "GRAV",    "RFORCE",  "TEMP",    "TEMPD",   "TEMPP1",  "SPCD",    "DAREA",   "DLOAD",   "RLOAD1",
+      "RLOAD2",  "TLOAD1",  "TLOAD2",  "FREQ",    "FREQ1",   "FREQ2",   "TSTEP",   "TABLED1", "TABLED2", "TABLED3",
+      "TABLED4", "TABDMP1", "DRESP1",  "DRESP2",  "DCONSTR", "DOPTPRM", "DEQATN",  "DTABLE",  "DVPREL2", "DVMREL2",
+      "DLINK",   "AERO",    "AEROS",   "CAERO1",  "PAERO1",  "SPLINE1", "SPLINE2", "SET1",    "AESTAT",  "AESURF",
+      "TRIM",    "MONPNT1", "ENDDATA", "EIGB",    "EIGC",    "SUPORT",  "SUPORT1", "CVISC",   "PVISC",   "CDAMP1",
+      "CDAMP2",  "PDAMP",   "NLPARM",  "TABLES1", "MATS1",   "CORD1R",  "CORD1C",  "CORD1S",  "DMIG",    "DTI",
+      "USET",    "USET1",   "SEQGP",   "PLOTEL",  "CONM1X"};
+  return s;
+}
+
+std::string upper(std::string s) {
+  for (auto& c : s) c = static_cast<char>(std::toupper(static_cast<unsigned char>(c)));
+  return s;
+}
+
+/// `NAME = n` in case control (global, or the first subcase), e.g. SPC, MPC, METHOD.
+std::optional<std::int64_t> case_control(const Deck& deck, const std::string& name) {
+  std::optional<std::int64_t> global, first_subcase;
+  int subcase = 0;
+  for (const auto& st : deck.statements) {
+    if (st.section != formats::Section::CaseControl) continue;
+    const std::string t = upper(st.text);
+    if (t.rfind("SUBCASE", 0) == 0) {
+      ++subcase;
+      continue;
+    }
+    const auto eq = t.find('=');
+    if (eq == std::string::npos) continue;
+    std::string key = t.substr(0, eq);
+    key.erase(std::remove_if(key.begin(), key.end(), [](unsigned char c) { return std::isspace(c); }), key.end());
+    if (const auto paren = key.find('('); paren != std::string::npos) key = key.substr(0, paren);
+    if (key != name) continue;
+    try {
+      const std::int64_t v = std::stoll(t.substr(eq + 1));
+      if (subcase == 0) global = v;
+      else if (subcase == 1 && !first_subcase) first_subcase = v;
+    } catch (const std::exception&) {
+    }
+  }
+  return global ? global : first_subcase;
+}
+
+/// CORD1x are ignored above only if no grid refers to them; geometry would fail otherwise.
+bool has_case_control(const Deck& deck) {
+  for (const auto& st : deck.statements)
+    if (st.section == formats::Section::CaseControl) return true;
+  return false;
+}
+
+const formats::Param* find_param(const BulkModel& m, const std::string& name) {
+  for (const auto& p : m.params)
+    if (upper(p.name) == name) return &p;
+  return nullptr;
+}
+
+/// Field number (FID) to name, for the cards whose layout is fixed.
+std::string field_name(const std::string& type, std::int64_t fid) {
+  static const std::map<std::string, std::map<std::int64_t, std::string>> names = {
+      {"PROD", {{4, "A"}, {5, "J"}, {7, "NSM"}}},
+      {"PBAR", {{4, "A"}, {5, "I1"}, {6, "I2"}, {7, "J"}, {8, "NSM"}, {19, "I12"}}},
+      {"PELAS", {{3, "K"}}},
+      {"PMASS", {{3, "M"}}},
+      {"CONM2", {{5, "M"}, {6, "X1"}, {7, "X2"}, {8, "X3"}}},
+      {"CELAS2", {{3, "K"}}},
+      {"CMASS2", {{3, "M"}}},
+  };
+  auto t = names.find(type);
+  if (t == names.end()) return "";
+  auto f = t->second.find(fid);
+  return f == t->second.end() ? "" : f->second;
+}
+
+}  // namespace
+
+FeModel::FeModel(const Deck& deck, BulkModel model, AssemblyOptions options) : m_model(std::move(model)) {
+  const BulkModel& m = m_model;
+
+  // Cards we do not assemble: harmless ones are noted, the others refused.
+  for (const auto& [name, count] : m.unsupported) {
+    if (no_effect_cards().count(name)) {
+      m_notes.push_back(std::to_string(count) + " " + name + " card" + (count > 1 ? "s" : "") +
+                        " ignored: no effect on K or M");
+      continue;
+    }
+    throw ModelError(name + " (" + std::to_string(count) + " card" + (count > 1 ? "s" : "") +
+                     "): ssid cannot assemble this card and it may change K or M; remove it or model it with "
+                     "supported cards");
+  }
+
+  // Parameters of the analysis.
+  auto param_int = [&](const char* name) -> std::optional<std::int64_t> {
+    if (const auto* p = find_param(m, name)) {
+      if (auto v = p->integer()) return v;
+      if (auto t = p->text()) return upper(*t) == "YES" ? 1 : upper(*t) == "NO" ? 0 : -1;
+    }
+    return std::nullopt;
+  };
+  m_settings.mass = options.coupled_mass ? (*options.coupled_mass ? elements::MassKind::Coupled : elements::MassKind::Lumped)
+                                         : (param_int("COUPMASS").value_or(-1) > 0 ? elements::MassKind::Coupled
+                                                                                   : elements::MassKind::Lumped);
+  m_settings.barmass = param_int("BARMASS").value_or(0) > 0;
+  m_wtmass = options.wtmass ? *options.wtmass : 1.0;
+  if (!options.wtmass)
+    if (const auto* p = find_param(m, "WTMASS")) {
+      if (auto v = p->real()) m_wtmass = *v;
+      else throw ModelError(card_label(deck, p->card) + ": PARAM WTMASS: expected a real value");
+    }
+  const bool autospc = options.autospc ? *options.autospc : param_int("AUTOSPC").value_or(1) != 0;
+  double epzero = options.epzero;
+  if (const auto* p = find_param(m, "EPZERO"))
+    if (auto v = p->real()) epzero = *v;
+  if (m_wtmass != 1.0) m_notes.push_back("PARAM WTMASS " + std::to_string(m_wtmass) + " scales the mass matrix");
+  if (m_settings.mass == elements::MassKind::Coupled) m_notes.push_back("PARAM COUPMASS: coupled mass for rods and bars");
+
+  m_geometry = std::make_unique<ModelGeometry>(deck, m);
+  m_elements = std::make_unique<ElementSet>(deck, m, *m_geometry, m_settings);
+  const ModelGeometry& geo = *m_geometry;
+
+  // Constraint sets selected by case control (or the only one in a deck without case control).
+  auto select = [&](const char* what, std::optional<std::int64_t> forced, std::set<std::int64_t> available)
+      -> std::optional<std::int64_t> {
+    if (forced) return forced;
+    if (auto cc = case_control(deck, what)) return cc;
+    if (!has_case_control(deck) && available.size() == 1) {
+      m_notes.push_back(std::string("no case control: ") + what + " set " + std::to_string(*available.begin()) +
+                        " applied, as the only one");
+      return *available.begin();
+    }
+    if (!available.empty())
+      m_notes.push_back(std::string(what) + " sets present but none selected in case control: not applied");
+    return std::nullopt;
+  };
+  std::set<std::int64_t> spc_ids, mpc_ids, method_ids;
+  for (const auto& s : m.spcs) spc_ids.insert(s.sid);
+  for (const auto& s : m.spc1s) spc_ids.insert(s.sid);
+  for (const auto& s : m.spcadds) spc_ids.insert(s.sid);
+  for (const auto& s : m.mpcs) mpc_ids.insert(s.sid);
+  for (const auto& e : m.eigrls) method_ids.insert(e.sid);
+  for (const auto& e : m.eigrs) method_ids.insert(e.sid);
+  const auto spc_set = select("SPC", options.spc_set, spc_ids);
+  const auto mpc_set = select("MPC", options.mpc_set, mpc_ids);
+  const auto method = select("METHOD", options.method, method_ids);
+  if (method) {
+    for (const auto& e : m.eigrls)
+      if (e.sid == *method) m_eigrl = &e;
+    for (const auto& e : m.eigrs)
+      if (e.sid == *method) m_eigr = &e;
+    if (!m_eigrl && !m_eigr) throw ModelError("METHOD = " + std::to_string(*method) + ": no EIGRL or EIGR with that SID");
+  }
+
+  // Single-point constraints: GRID PS and the selected set (SPCADD expanded).
+  std::set<std::size_t> spc;
+  auto add_components = [&](std::int64_t point, const std::string& comps, const std::string& who) {
+    if (geo.is_scalar_point(point)) {
+      spc.insert(geo.dof(point, 0, who));
+      return;
+    }
+    for (char c : comps) spc.insert(geo.dof(point, c - '0', who));
+  };
+  for (const auto& g : geo.grids())
+    if (!g.ps.empty()) add_components(g.id, g.ps, card_label(deck, g.card));
+  if (spc_set) {
+    std::set<std::int64_t> sets{*spc_set};
+    for (const auto& a : m.spcadds)
+      if (a.sid == *spc_set) sets.insert(a.sets.begin(), a.sets.end());
+    bool found = false;
+    for (const auto& s : m.spcs)
+      if (sets.count(s.sid)) {
+        found = true;
+        for (const auto& e : s.entries) {
+          if (e.d != 0.0)
+            m_notes.push_back(card_label(deck, s.card) + ": enforced displacement " + std::to_string(e.d) +
+                              " has no effect on modes; treated as a constraint");
+          add_components(e.g, e.c, card_label(deck, s.card));
+        }
+      }
+    for (const auto& s : m.spc1s)
+      if (sets.count(s.sid)) {
+        found = true;
+        for (auto g : s.grids) add_components(g, s.c, card_label(deck, s.card));
+      }
+    if (!found && !std::any_of(m.spcadds.begin(), m.spcadds.end(), [&](const auto& a) { return a.sid == *spc_set; }))
+      throw ModelError("SPC = " + std::to_string(*spc_set) + ": no SPC, SPC1 or SPCADD with that SID");
+  }
+
+  // Multipoint constraints: rigid elements and the selected MPC set.
+  std::vector<MpcEquation> mpcs;
+  auto rigid = [&](const GridPoint& g, const std::string& ind, const std::string& dep) {
+    return RigidGrid{g.x, g.dofs, ind, dep, g.frame};
+  };
+  try {
+    for (const auto& r : m.rbars) {
+      const auto who = card_label(deck, r.card);
+      const auto& a = geo.grid(r.ga, who);
+      const auto& b = geo.grid(r.gb, who);
+      std::string cma = r.cma, cmb = r.cmb;
+      if (cma.empty() && cmb.empty()) {
+        // QRG: with CMA and CMB blank, every DOF not in CNA/CNB is dependent.
+        for (char c : std::string("123456")) {
+          if (r.cna.find(c) == std::string::npos) cma += c;
+          if (r.cnb.find(c) == std::string::npos) cmb += c;
+        }
+      }
+      auto part = rigid_equations({rigid(a, r.cna, cma), rigid(b, r.cnb, cmb)}, who);
+      mpcs.insert(mpcs.end(), part.begin(), part.end());
+    }
+    for (const auto& r : m.rbe2s) {
+      const auto who = card_label(deck, r.card);
+      std::vector<RigidGrid> grids{rigid(geo.grid(r.gn, who), "123456", "")};
+      for (auto g : r.gm) grids.push_back(rigid(geo.grid(g, who), "", r.cm));
+      auto part = rigid_equations(grids, who);
+      mpcs.insert(mpcs.end(), part.begin(), part.end());
+    }
+    for (const auto& r : m.rbe3s) {
+      const auto who = card_label(deck, r.card);
+      if (!r.um.empty()) throw ModelError(who + ": UM (user-chosen dependent DOFs) is not supported");
+      const auto& ref = geo.grid(r.refgrid, who);
+      std::vector<Rbe3Group> groups;
+      for (const auto& grp : r.groups) {
+        Rbe3Group g;
+        g.weight = grp.weight;
+        g.components = grp.components;
+        for (auto id : grp.grids) {
+          const auto& p = geo.grid(id, who);
+          g.grids.emplace_back(p.x, p.dofs);
+          g.frames.push_back(p.frame);
+        }
+        groups.push_back(std::move(g));
+      }
+      auto part = rbe3_equations(ref.x, ref.dofs, r.refc, groups, who, ref.frame);
+      mpcs.insert(mpcs.end(), part.begin(), part.end());
+    }
+    if (mpc_set)
+      for (const auto& c : m.mpcs) {
+        if (c.sid != *mpc_set) continue;
+        const auto who = card_label(deck, c.card);
+        const auto& t0 = c.terms.front();
+        if (t0.a == 0.0) throw ModelError(who + ": the dependent term's coefficient A1 is zero");
+        MpcEquation e;
+        e.dependent = geo.dof(t0.g, static_cast<int>(t0.c), who);
+        e.source = who;
+        for (std::size_t k = 1; k < c.terms.size(); ++k)
+          e.terms.emplace_back(geo.dof(c.terms[k].g, static_cast<int>(c.terms[k].c), who), -c.terms[k].a / t0.a);
+        mpcs.push_back(std::move(e));
+      }
+  } catch (const std::invalid_argument& e) {
+    throw ModelError(e.what());
+  }
+
+  // Parameters and their relations to the model.
+  std::map<std::int64_t, std::size_t> desvar_index;
+  for (const auto& d : m.desvars) {
+    desvar_index[d.id] = m_parameters.size();
+    m_parameters.push_back({d.id, d.label, d.xinit, d.xlb, d.xub, {}});
+  }
+  auto relate = [&](ValueKey key, double c0, std::optional<double> lo, double hi,
+                    const std::vector<std::pair<std::int64_t, double>>& terms, const std::string& who) {
+    Relation rel{std::move(key), c0, lo, hi, {}, who};
+    for (const auto& [dvid, coef] : terms) {
+      auto it = desvar_index.find(dvid);
+      if (it == desvar_index.end()) throw ModelError(who + ": DESVAR " + std::to_string(dvid) + " does not exist");
+      rel.terms.emplace_back(it->second, coef);
+      std::ostringstream s;
+      s << (rel.key.owner == ValueOwner::Material ? "MAT1 " : "") << rel.key.id << " " << rel.key.name << " ("
+        << who.substr(who.find(": ") + 2) << ", coefficient " << coef << ")";
+      m_parameters[it->second].designs.push_back(s.str());
+    }
+    try {
+      (void)get_value(m_model, rel.key);
+    } catch (const std::invalid_argument& e) {
+      throw ModelError(who + ": " + e.what());
+    }
+    m_relations.push_back(std::move(rel));
+  };
+  for (const auto& d : m.dvprel1s) {
+    const auto who = card_label(deck, d.card);
+    const std::string type = upper(d.type);
+    std::string name = upper(d.pname);
+    if (name.empty()) {
+      name = field_name(type, d.fid);
+      if (name.empty())
+        throw ModelError(who + ": field number " + std::to_string(d.fid) + " of " + type +
+                         " is not supported; give the field name (PNAME)");
+    }
+    const bool element = type == "CONM2" || type == "CELAS2" || type == "CMASS2" || type == "CONROD";
+    if (!element) {
+      const std::string actual = property_type(m, d.pid);
+      if (actual != type)
+        throw ModelError(who + ": TYPE " + type + " but property " + std::to_string(d.pid) +
+                         (actual.empty() ? " does not exist" : " is a " + actual));
+    }
+    relate({element ? ValueOwner::Element : ValueOwner::Property, d.pid, name}, d.c0, d.pmin, d.pmax, d.terms, who);
+  }
+  for (const auto& d : m.dvmrel1s) {
+    const auto who = card_label(deck, d.card);
+    if (upper(d.type) != "MAT1") throw ModelError(who + ": only MAT1 materials are designed (TYPE " + d.type + ")");
+    relate({ValueOwner::Material, d.mid, upper(d.mpname)}, d.c0, d.mpmin, d.mpmax, d.terms, who);
+  }
+
+  // Constraint sets at the nominal design; AUTOSPC from the stiffness there.
+  std::vector<std::size_t> spc_list(spc.begin(), spc.end());
+  const std::size_t ng = geo.gset().size();
+  try {
+    m_reduction = build_reduction(ng, mpcs, spc_list);
+    if (autospc) {
+      const SparseMatrix Kg = sum_blocks(m_elements->blocks(values_at(initial_parameters())), false);
+      m_autospc = find_singular_dofs(Kg, m_reduction, geo.gset(), epzero);
+      if (!m_autospc.empty()) {
+        std::sort(m_autospc.begin(), m_autospc.end());
+        spc_list.insert(spc_list.end(), m_autospc.begin(), m_autospc.end());
+        m_reduction = build_reduction(ng, mpcs, spc_list);
+      }
+    }
+  } catch (const std::invalid_argument& e) {
+    throw ModelError(e.what());
+  }
+}
+
+Eigen::VectorXd FeModel::initial_parameters() const {
+  Eigen::VectorXd x(static_cast<Eigen::Index>(m_parameters.size()));
+  for (std::size_t j = 0; j < m_parameters.size(); ++j) x(static_cast<Eigen::Index>(j)) = m_parameters[j].initial;
+  return x;
+}
+
+BulkModel FeModel::values_at(const Eigen::VectorXd& x) const {
+  if (x.size() != static_cast<Eigen::Index>(m_parameters.size()))
+    throw std::invalid_argument("values_at: " + std::to_string(m_parameters.size()) + " parameters expected, got " +
+                                std::to_string(x.size()));
+  BulkModel v = m_model;
+  for (const auto& rel : m_relations) {
+    double value = rel.c0;
+    for (const auto& [j, coef] : rel.terms) value += coef * x(static_cast<Eigen::Index>(j));
+    if (rel.lower) value = std::max(value, *rel.lower);
+    value = std::min(value, rel.upper);
+    set_value(v, rel.key, value);
+  }
+  return v;
+}
+
+SparseMatrix FeModel::sum_blocks(const std::vector<ElementBlock>& blocks, bool mass) const {
+  std::vector<Eigen::Triplet<double>> t;
+  for (const auto& b : blocks) {
+    const Eigen::MatrixXd& a = mass ? b.m : b.k;
+    for (Eigen::Index i = 0; i < a.rows(); ++i)
+      for (Eigen::Index j = 0; j < a.cols(); ++j)
+        if (a(i, j) != 0.0)
+          t.emplace_back(static_cast<int>(b.dofs[static_cast<std::size_t>(i)]),
+                         static_cast<int>(b.dofs[static_cast<std::size_t>(j)]), a(i, j));
+  }
+  const auto n = static_cast<Eigen::Index>(m_geometry->gset().size());
+  SparseMatrix s(n, n);
+  s.setFromTriplets(t.begin(), t.end());
+  if (mass && m_wtmass != 1.0) s *= m_wtmass;
+  return s;
+}
+
+FeOperators FeModel::operators(const Eigen::VectorXd& x, bool derivatives) const {
+  const BulkModel v = values_at(x);
+  const auto blocks = m_elements->blocks(v);
+  FeOperators op;
+  op.Kg = sum_blocks(blocks, false);
+  op.Mg = sum_blocks(blocks, true);
+  op.K = reduce(op.Kg, m_reduction);
+  op.M = reduce(op.Mg, m_reduction);
+  if (!derivatives) return op;
+  for (std::size_t j = 0; j < m_parameters.size(); ++j) {
+    ValueDelta delta;
+    for (const auto& rel : m_relations) {
+      double value = rel.c0, rate = 0;
+      for (const auto& [k, coef] : rel.terms) {
+        value += coef * x(static_cast<Eigen::Index>(k));
+        if (k == j) rate += coef;
+      }
+      // A value held at PMIN/PMAX does not move with the parameter.
+      const bool clipped = (rel.lower && value < *rel.lower) || value > rel.upper;
+      if (rate != 0.0 && !clipped) delta.add(rel.key, rate);
+    }
+    const auto d = m_elements->derivative_blocks(v, delta);
+    op.dK.push_back(reduce(sum_blocks(d, false), m_reduction));
+    op.dM.push_back(reduce(sum_blocks(d, true), m_reduction));
+  }
+  return op;
+}
+
+Eigen::MatrixXd FeModel::expand(const Eigen::MatrixXd& a_modes) const { return m_reduction.T * a_modes; }
+
+}  // namespace ssid::translators
