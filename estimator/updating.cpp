@@ -21,7 +21,7 @@ struct Residuals {
   Eigen::MatrixXd T;
 };
 
-void fill_pair_stats(const std::vector<MeasuredMode>& test, const ModalSolution& fem, std::vector<ModePair>& pairs) {
+void fill_pair_stats(const std::vector<MeasuredMode>& test, const ModalSolution& fem, std::vector<UpdatePair>& pairs) {
   for (auto& p : pairs) {
     p.test_hz = test[static_cast<std::size_t>(p.test)].frequency_hz;
     p.fem_hz = hz(fem.eigenvalues(p.fem));
@@ -34,11 +34,11 @@ void fill_pair_stats(const std::vector<MeasuredMode>& test, const ModalSolution&
 /// Follows each pair's analysis mode from the previous cycle to this one by
 /// MAC on the tracking shapes; a pair whose partner cannot be followed, or whose
 /// new partner no longer matches the test shape, is dropped with a note.
-std::vector<ModePair> track_pairs(const std::vector<ModePair>& previous, const Eigen::MatrixXd& previous_shapes,
+std::vector<UpdatePair> track_pairs(const std::vector<UpdatePair>& previous, const Eigen::MatrixXd& previous_shapes,
                                   const std::vector<MeasuredMode>& test, const ModalSolution& fem,
                                   const UpdateOptions& options, int cycle, std::vector<std::string>& notes) {
   const Eigen::MatrixXd tmac = mac_matrix(previous_shapes, fem.tracking_shapes);
-  std::vector<ModePair> out;
+  std::vector<UpdatePair> out;
   std::vector<bool> taken(static_cast<std::size_t>(fem.eigenvalues.size()), false);
   for (const auto& p : previous) {
     Eigen::Index best = -1;
@@ -58,7 +58,7 @@ std::vector<ModePair> track_pairs(const std::vector<ModePair>& previous, const E
       continue;
     }
     taken[static_cast<std::size_t>(best)] = true;
-    ModePair q = p;
+    UpdatePair q = p;
     q.fem = static_cast<int>(best);
     out.push_back(q);
   }
@@ -67,7 +67,7 @@ std::vector<ModePair> track_pairs(const std::vector<ModePair>& previous, const E
 }
 
 Residuals residuals(ModalModel& model, const std::vector<MeasuredMode>& test, const ModalSolution& fem,
-                    const std::vector<ModePair>& pairs, const UpdateOptions& options) {
+                    const std::vector<UpdatePair>& pairs, const UpdateOptions& options) {
   const int p = model.parameter_count();
   std::vector<double> z, u, sigma;
   std::vector<Eigen::VectorXd> rows;
@@ -124,23 +124,7 @@ void summarise(UpdateCycle& c) {
 
 }  // namespace
 
-Eigen::MatrixXd mac_matrix(const Eigen::Ref<const Eigen::MatrixXd>& a, const Eigen::Ref<const Eigen::MatrixXd>& b) {
-  if (a.rows() != b.rows())
-    throw std::invalid_argument("MAC: shapes of different lengths (" + std::to_string(a.rows()) + " and " +
-                                std::to_string(b.rows()) + ")");
-  const Eigen::MatrixXd cross = a.transpose() * b;
-  const Eigen::VectorXd na = a.colwise().squaredNorm().transpose();
-  const Eigen::VectorXd nb = b.colwise().squaredNorm().transpose();
-  Eigen::MatrixXd m(a.cols(), b.cols());
-  for (Eigen::Index i = 0; i < a.cols(); ++i)
-    for (Eigen::Index j = 0; j < b.cols(); ++j) {
-      const double d = na(i) * nb(j);
-      m(i, j) = d > 0 ? cross(i, j) * cross(i, j) / d : 0.0;
-    }
-  return m;
-}
-
-std::vector<ModePair> pair_modes(const std::vector<MeasuredMode>& test, const ModalSolution& fem,
+std::vector<UpdatePair> pair_for_update(const std::vector<MeasuredMode>& test, const ModalSolution& fem,
                                  const UpdateOptions& options) {
   const auto m = fem.eigenvalues.size();
   struct Candidate { int t, f; double mac; };
@@ -160,11 +144,11 @@ std::vector<ModePair> pair_modes(const std::vector<MeasuredMode>& test, const Mo
   }
   std::stable_sort(candidates.begin(), candidates.end(), [](const Candidate& a, const Candidate& b) { return a.mac > b.mac; });
   std::vector<bool> test_done(test.size(), false), fem_done(static_cast<std::size_t>(m), false);
-  std::vector<ModePair> pairs;
+  std::vector<UpdatePair> pairs;
   for (const auto& c : candidates) {
     if (test_done[static_cast<std::size_t>(c.t)] || fem_done[static_cast<std::size_t>(c.f)]) continue;
     test_done[static_cast<std::size_t>(c.t)] = fem_done[static_cast<std::size_t>(c.f)] = true;
-    ModePair q;
+    UpdatePair q;
     q.test = c.t;
     q.fem = c.f;
     pairs.push_back(q);
@@ -180,13 +164,13 @@ std::vector<ModePair> pair_modes(const std::vector<MeasuredMode>& test, const Mo
     }
     if (best >= 0) {
       fem_done[static_cast<std::size_t>(best)] = true;
-      ModePair q;
+      UpdatePair q;
       q.test = static_cast<int>(i);
       q.fem = best;
       pairs.push_back(q);
     }
   }
-  std::sort(pairs.begin(), pairs.end(), [](const ModePair& a, const ModePair& b) { return a.test < b.test; });
+  std::sort(pairs.begin(), pairs.end(), [](const UpdatePair& a, const UpdatePair& b) { return a.test < b.test; });
   fill_pair_stats(test, fem, pairs);
   return pairs;
 }
@@ -232,7 +216,7 @@ UpdateResult update(const std::vector<Configuration>& configurations, const Para
 
   UpdateResult result;
   Eigen::VectorXd theta = Eigen::VectorXd::Zero(p);
-  std::vector<std::vector<ModePair>> pairs(nc);
+  std::vector<std::vector<UpdatePair>> pairs(nc);
   std::vector<Eigen::MatrixXd> tracking(nc);
   for (int cycle = 0;; ++cycle) {
     const Eigen::VectorXd r = prior.mean + d.cwiseProduct(theta);
@@ -246,13 +230,13 @@ UpdateResult update(const std::vector<Configuration>& configurations, const Para
              static_cast<double>(cycle) / static_cast<double>(options.max_iterations + 1));
       const ModalSolution fem = conf.model->solve(r);
       if (cycle == 0) {
-        pairs[k] = pair_modes(conf.test, fem, options);
+        pairs[k] = pair_for_update(conf.test, fem, options);
         if (pairs[k].empty()) throw std::runtime_error("update: no test mode" + label(k) + " pairs with an analysis mode");
         for (std::size_t i = 0; i < conf.test.size(); ++i)
-          if (std::none_of(pairs[k].begin(), pairs[k].end(), [&](const ModePair& q) { return q.test == static_cast<int>(i); }))
+          if (std::none_of(pairs[k].begin(), pairs[k].end(), [&](const UpdatePair& q) { return q.test == static_cast<int>(i); }))
             result.notes.push_back("test mode " + std::to_string(conf.test[i].id) + label(k) + " has no analysis partner");
       } else {
-        std::vector<ModePair> previous;
+        std::vector<UpdatePair> previous;
         Eigen::MatrixXd prev(tracking[k].rows(), static_cast<Eigen::Index>(pairs[k].size()));
         for (std::size_t q = 0; q < pairs[k].size(); ++q) {
           prev.col(static_cast<Eigen::Index>(q)) = tracking[k].col(pairs[k][q].fem);

@@ -23,6 +23,7 @@
 #include <vector>
 
 #include "estimator/bayes.hpp"
+#include "estimator/correlation.hpp"
 #include "estimator/modal_model.hpp"
 #include "estimator/progress.hpp"
 
@@ -58,7 +59,7 @@ struct UpdateOptions {
 };
 
 /// One test–analysis pair.
-struct ModePair {
+struct UpdatePair {
   int config = 0;         ///< configuration index
   int test = -1;          ///< index into the measured modes
   int fem = -1;           ///< analysis mode index (0-based)
@@ -70,7 +71,7 @@ struct ModePair {
 struct UpdateCycle {
   int cycle = 0;
   Eigen::VectorXd r;
-  std::vector<ModePair> pairs;
+  std::vector<UpdatePair> pairs;
   double objective = 0;    ///< J(r_i)
   double misfit = 0;       ///< data part of J
   double freq_rms_pct = 0; ///< RMS frequency error of the pairs
@@ -90,13 +91,10 @@ struct UpdateResult {
   int measurements = 0;              ///< length of z in the final cycle
 };
 
-/// MAC between two shape sets (columns): |aᵢᵀbⱼ|² / (aᵢᵀaᵢ bⱼᵀbⱼ).
-Eigen::MatrixXd mac_matrix(const Eigen::Ref<const Eigen::MatrixXd>& a, const Eigen::Ref<const Eigen::MatrixXd>& b);
-
 /// Pairs measured modes with analysis modes by MAC and frequency: greedily
 /// by decreasing MAC, one partner each; modes without a shape pair by nearest
 /// frequency among the remaining ones.
-std::vector<ModePair> pair_modes(const std::vector<MeasuredMode>& test, const ModalSolution& fem,
+std::vector<UpdatePair> pair_for_update(const std::vector<MeasuredMode>& test, const ModalSolution& fem,
                                  const UpdateOptions& options);
 
 /// One tested configuration (bare, with added mass, …): its model and its

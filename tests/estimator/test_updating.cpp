@@ -83,16 +83,6 @@ ParameterPrior prior_of(const Eigen::VectorXd& mean, double rel_std) {
 
 }  // namespace
 
-TEST_CASE("mac_matrix is scale invariant and one for identical shapes", "[estimator][updating]") {
-  Eigen::MatrixXd a(3, 2);
-  a << 1, 0, 2, 1, 3, -1;
-  const Eigen::MatrixXd m = mac_matrix(a, -5.0 * a);
-  CHECK(m(0, 0) == Approx(1.0));
-  CHECK(m(1, 1) == Approx(1.0));
-  // (1·0 + 2·1 + 3·(−1))² / (14 · 2) = 1/28
-  CHECK(m(0, 1) == Approx(1.0 / 28.0));
-}
-
 TEST_CASE("updating recovers hidden stiffness and mass parameters of a chain", "[estimator][updating]") {
   const Eigen::VectorXd truth = (Eigen::VectorXd(3) << 1.25, 0.8, 1.1).finished();
   const SparseMatrix S = sensors({0, 1, 2, 3, 5, 7});
