@@ -226,9 +226,16 @@ public:
     const Card& c = m_deck.cards[card];
     auto [it, fresh] = m_defs.emplace(id, Def{card, &c.name});
     if (fresh) return;
+    // Card types are defined in turn, not in deck order: the earlier card is the first definition.
+    std::size_t later = card;
+    if (card < it->second.card) {
+      later = it->second.card;
+      it->second = Def{card, &c.name};
+    }
     const Card& first = m_deck.cards[it->second.card];
-    m_problems.push_back(error_at(m_deck, c, field,
-                                  "duplicate " + m_noun + " " + std::to_string(id) + " (" + c.name +
+    const Card& dup = m_deck.cards[later];
+    m_problems.push_back(error_at(m_deck, dup, field,
+                                  "duplicate " + m_noun + " " + std::to_string(id) + " (" + dup.name +
                                       "; first defined by " + first.name + " at " + m_deck.location(first).str() +
                                       ")"));
   }
