@@ -141,3 +141,11 @@ TEST_CASE("resolve: a clean deck has no problems; DMIG is counted as supported, 
     CHECK(is_supported_card(name));
   CHECK_FALSE(is_supported_card("FORCE"));
 }
+
+TEST_CASE("resolve: an SPC1 THRU range over missing grids names five and counts the rest", "[resolve]") {
+  auto got = problems_of("GRID    1               0.      0.      0.\nSPC1    1       123     1       THRU    100\n");
+  REQUIRE(got.size() == 6);
+  CHECK(got[0] == "r.bdf:2: grid or scalar point 2 required by SPC1 1 does not exist");
+  CHECK(got[4] == "r.bdf:2: grid or scalar point 6 required by SPC1 1 does not exist");
+  CHECK(got[5] == "r.bdf:2: ... and 94 more grids or scalar points required by SPC1 1 do not exist");
+}
