@@ -33,8 +33,17 @@ TEST_CASE("MAT1: E, G, NU derivation rule and defaults", "[cards][mat1]") {
   CHECK(m6.ss == 3.0e8);
   CHECK(m6.mcsid == 4);
   for (const auto& x : {m, m2, m3, m4, m5, m6}) check_roundtrip(x, parse_mat1, write_mat1);
-  // Derived values are written blank so a later change of E keeps G derived.
+  // Derived values are written blank so a later change of E keeps G derived...
   CHECK(std::holds_alternative<std::monostate>(write_mat1(m)[3]));
+  // ...and a derived value changed itself is written once its flag is set.
+  Mat1 changed = m2;  // E derived from G and NU
+  changed.e = 1.5e11;
+  changed.e_given = true;
+  CHECK(write_mat1(changed)[2] == FieldValue(1.5e11));
+  auto back = parse_text(format_card("MAT1", write_mat1(changed), FieldFormat::Small), parse_mat1);
+  CHECK(back.e == 1.5e11);
+  CHECK(back.g == m2.g);
+  CHECK(back.nu == m2.nu);
 }
 
 TEST_CASE("MAT1 errors name the field", "[cards][mat1][errors]") {
