@@ -65,7 +65,10 @@ int deck_summary(const Args& args) {
               << " warning(s); listed on stderr)\n";
     if (vm.count("json")) write_json(vm["json"].as<std::string>(), j);
   }
-  for (const auto& p : problems) std::cerr << p.str() << "\n";
+  // One write: std::cerr is unbuffered, and a broken deck can have a million problems.
+  std::string report;
+  for (const auto& p : problems) report += p.str() + "\n";
+  std::cerr << report << std::flush;
   return errors ? 1 : 0;
 }
 
