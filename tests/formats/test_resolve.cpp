@@ -149,3 +149,19 @@ TEST_CASE("resolve: an SPC1 THRU range over missing grids names five and counts 
   CHECK(got[4] == "r.bdf:2: grid or scalar point 6 required by SPC1 1 does not exist");
   CHECK(got[5] == "r.bdf:2: ... and 94 more grids or scalar points required by SPC1 1 do not exist");
 }
+
+TEST_CASE("parse errors and resolve problems come together, in one list", "[resolve]") {
+  auto got = problems_of(
+      "GRID    1               0.      0.      0.\n"
+      "GRID    2               1.      0.      X\n"       // field error: GRID 2 is not defined
+      "CONROD  5       1       2       1       1.\n"      // GRID 2 and MAT1 1 missing
+      "GRDSET          1\n"
+      "GRDSET          2\n");
+  CHECK(got == std::vector<std::string>{
+                   "r.bdf:2: GRID 2 field 6 (X3): expected real, got \"X\"",
+                   "r.bdf:5: more than one GRDSET (first at r.bdf:4)",
+                   "r.bdf:1: coordinate system 1 required by GRID 1 does not exist",  // CP from GRDSET
+                   "r.bdf:3: GRID 2 required by CONROD 5 does not exist",
+                   "r.bdf:3: MAT1 1 required by CONROD 5 does not exist",
+               });
+}
