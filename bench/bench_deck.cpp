@@ -39,7 +39,7 @@ int main(int argc, char** argv) {
   }
   {
     // A realistic mix: 40% GRID (small), 10% GRID (large, 2 lines), 10% GRID free,
-    // 30% CROD, 10% other cards kept verbatim (CBAR with continuation).
+    // 30% CROD, 10% CBAR with a continuation (pin flag and offset).
     std::ofstream o(path);
     std::mt19937 rng(1);
     std::uniform_real_distribution<double> u(-100, 100);
@@ -51,7 +51,7 @@ int main(int argc, char** argv) {
       else if (k == 4) std::snprintf(buf, sizeof buf, "GRID*   %16zu%16s%16.9f%16.9f\n*       %16.9f\n", i, "", u(rng), u(rng), u(rng));
       else if (k == 5) std::snprintf(buf, sizeof buf, "GRID,%zu,,%.4f,%.4f,%.4f\n", i, u(rng), u(rng), u(rng));
       else if (k < 9) std::snprintf(buf, sizeof buf, "CROD    %-8zu1       %-8zu%-8zu\n", i, i, i + 1);
-      else std::snprintf(buf, sizeof buf, "CBAR    %-8zu2       %-8zu%-8zu0.      1.      0.\n        GGG\n", i, i, i + 1);
+      else std::snprintf(buf, sizeof buf, "CBAR    %-8zu2       %-8zu%-8zu0.      1.      0.      GGG\n        1               .1\n", i, i, i + 1);
       o << buf;
     }
     o << "ENDDATA\n";

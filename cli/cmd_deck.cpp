@@ -36,6 +36,7 @@ int deck_summary(const Args& args) {
   j["files"] = nlohmann::json::array();
   for (const auto& f : deck.files) j["files"].push_back(f.path);
   j["cards"] = counts;
+  j["typed"] = model.supported;
   j["unsupported"] = model.unsupported;
   j["problems"] = nlohmann::json::array();
   for (const auto& p : problems) j["problems"].push_back(p.str());
@@ -52,15 +53,22 @@ int deck_summary(const Args& args) {
     std::cout << "cards:\n";
     for (const auto& [name, n] : counts)
       std::cout << "  " << name << std::string(name.size() < 10 ? 10 - name.size() : 1, ' ') << n
-                << (model.unsupported.count(name) ? "  (kept verbatim)" : "") << "\n";
+                << (model.unsupported.count(name) ? "  (kept verbatim)" : "  (typed)") << "\n";
+    std::size_t typed = 0;
+    for (const auto& [name, n] : model.supported) typed += n;
+    std::cout << "typed: " << typed << " card(s) of " << model.supported.size() << " type(s)\n";
     std::size_t verbatim = 0;
     for (const auto& [name, n] : model.unsupported) verbatim += n;
     std::cout << "kept verbatim (no typed parser): " << verbatim << " card(s) of " << model.unsupported.size()
               << " type(s)\n";
-    std::cout << "problems: " << problems.size() << "\n";
+    std::cout << "problems: " << problems.size() << " (" << errors << " error(s), " << problems.size() - errors
+              << " warning(s); listed on stderr)\n";
     if (vm.count("json")) write_json(vm["json"].as<std::string>(), j);
   }
-  for (const auto& p : problems) std::cerr << p.str() << "\n";
+  // One write: std::cerr is unbuffered, and a broken deck can have a million problems.
+  std::string report;
+  for (const auto& p : problems) report += p.str() + "\n";
+  std::cerr << report << std::flush;
   return errors ? 1 : 0;
 }
 

@@ -226,9 +226,16 @@ public:
     const Card& c = m_deck.cards[card];
     auto [it, fresh] = m_defs.emplace(id, Def{card, &c.name});
     if (fresh) return;
+    // Card types are defined in turn, not in deck order: the earlier card is the first definition.
+    std::size_t later = card;
+    if (card < it->second.card) {
+      later = it->second.card;
+      it->second = Def{card, &c.name};
+    }
     const Card& first = m_deck.cards[it->second.card];
-    m_problems.push_back(error_at(m_deck, c, field,
-                                  "duplicate " + m_noun + " " + std::to_string(id) + " (" + c.name +
+    const Card& dup = m_deck.cards[later];
+    m_problems.push_back(error_at(m_deck, dup, field,
+                                  "duplicate " + m_noun + " " + std::to_string(id) + " (" + dup.name +
                                       "; first defined by " + first.name + " at " + m_deck.location(first).str() +
                                       ")"));
   }
@@ -483,7 +490,14 @@ void resolve(const Deck& deck, BulkModel& m) {
   }
   for (const Spc1& s : m.spc1s) {
     spc_sets.insert(s.sid);
-    for (std::int64_t g : s.grids) grids.need(g, {}, s.card, 0, "G");
+    // A THRU range over missing grids is one mistake: name the first few, count the rest.
+    std::size_t missing = 0;
+    for (std::int64_t g : s.grids)
+      if (!grids.find(g) && ++missing <= 5) grids.need(g, {}, s.card, 0, "G");
+    if (missing > 5)
+      out.push_back(error_at(deck, deck.cards[s.card], 0,
+                             "... and " + std::to_string(missing - 5) + " more grids or scalar points required by " +
+                                 label(deck, s.card) + " do not exist"));
   }
   IdSpace spcadd_ids(deck, out, "SPCADD set");
   for (const Spcadd& s : m.spcadds) {

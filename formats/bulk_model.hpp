@@ -76,7 +76,8 @@ struct BulkModel {
   std::map<std::string, std::size_t> unsupported;
   /// Typed cards, by name.
   std::map<std::string, std::size_t> supported;
-  /// Field errors and cross-reference problems (resolve), in deck order.
+  /// Field errors and deck-wide defaults problems (parse_bulk, in deck order), then
+  /// the cross-reference problems resolve appends (grouped by kind).
   std::vector<Problem> problems;
 };
 

@@ -49,6 +49,7 @@ struct Cbar {
   std::string pa, pb;                      ///< pin flags (component digits), "" = none
   std::array<double, 3> wa{0.0, 0.0, 0.0}, wb{0.0, 0.0, 0.0};  ///< end offsets
   /// Fields that were blank (filled from BAROR or the NASTRAN default); written blank.
+  /// When changing PID, the orientation or OFFT of a parsed card, clear its flag too.
   bool pid_blank = false, orientation_blank = false, offt_blank = true;
   std::size_t card = 0;
 };

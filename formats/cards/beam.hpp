@@ -53,6 +53,7 @@ struct Cbeam {
   std::string pa, pb;
   std::array<double, 3> wa{0.0, 0.0, 0.0}, wb{0.0, 0.0, 0.0};
   std::int64_t sa = 0, sb = 0;
+  /// When changing PID, the orientation or OFFT of a parsed card, clear its flag too.
   bool pid_blank = false, orientation_blank = false, offt_blank = true;
   std::size_t card = 0;
 };

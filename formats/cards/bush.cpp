@@ -41,8 +41,11 @@ Pbush parse_pbush(const FieldReader& r) {
   Pbush p;
   p.pid = r.id(1, "PID");
   // Row r covers fields 1+8r .. 8+8r: field 1+8r is PID (row 0) or blank, the flag follows.
-  for (std::size_t base = 1; base + 1 < r.size() || base == 1; base += 8) {
+  for (std::size_t base = 1; base < r.size() || base == 1; base += 8) {
     if (base > 1 && !r.blank(base)) r.fail(base, "(blank)", "blank (the flag goes in field 3)");
+    bool empty_row = base > 1;
+    for (std::size_t i = base + 1; i < base + 8; ++i) empty_row = empty_row && r.blank(i);
+    if (empty_row) continue;
     std::string flag = r.choice(base + 1, "flag", {"K", "B", "GE", "RCV"}, nullptr);
     auto row6 = [&](std::array<double, 6>& a, bool& has, const char* n) {
       if (has) r.fail(base + 1, "flag", std::string("each flag once (") + n + " repeated)");

@@ -26,7 +26,8 @@ struct Mat1 {
   double rho = 0.0, a = 0.0, tref = 0.0, ge = 0.0;
   double st = 0.0, sc = 0.0, ss = 0.0;
   std::int64_t mcsid = 0;
-  /// Which of E, G, NU were given; the others were derived and are written blank.
+  /// Which of E, G, NU were given; the others were derived and are written blank
+  /// (so they follow a changed E, G or NU). To change a derived value itself, set its flag.
   bool e_given = true, g_given = false, nu_given = false;
   std::size_t card = 0;
 };

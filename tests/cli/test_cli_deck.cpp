@@ -31,12 +31,59 @@ TEST_CASE("ssid deck summary: counts, verbatim cards, JSON", "[cli]") {
   const fs::path json = dir / "s.json";
   auto r = run_ssid("deck summary " + std::string(SSID_SOURCE_DIR) + "/tests/data/deck/nested/main.bdf --json " + json.string());
   CHECK(r.code == 0);
-  CHECK_THAT(r.out, Catch::Contains("252 bulk data cards in 30 file(s)"));
+  CHECK_THAT(r.out, Catch::Contains("254 bulk data cards in 30 file(s)"));
   auto j = nlohmann::json::parse(cli_slurp(json));
   CHECK(j["files"].size() == 30);
   CHECK(j["cards"]["GRID"] == 108);
   CHECK(j["unsupported"]["FORCE"] == 53);
+  CHECK(j["typed"]["GRID"] == 108);
+  CHECK(j["typed"]["PBAR"] == 44);
+  CHECK(j["typed"].count("FORCE") == 0);
   CHECK(j["problems"].empty());
+}
+
+TEST_CASE("ssid deck summary: typed counts of every card family, warnings do not fail", "[cli]") {
+  const fs::path dir = scratch();
+  for (const char* family : {"elements", "scalar", "coord", "constraints"}) {
+    INFO(family);
+    const fs::path json = dir / (std::string(family) + ".json");
+    auto r = run_ssid("deck summary " + std::string(SSID_SOURCE_DIR) + "/tests/data/cards/" + family + ".bdf --json " +
+                      json.string());
+    CHECK(r.code == 0);
+    CHECK_THAT(r.out, Catch::Contains("(typed)"));
+    CHECK_THAT(r.out, Catch::Contains("kept verbatim (no typed parser): 0 card(s)"));
+    auto j = nlohmann::json::parse(cli_slurp(json));
+    CHECK(j["unsupported"].empty());
+    CHECK(j["typed"] == j["cards"]);
+  }
+  auto j = nlohmann::json::parse(cli_slurp(dir / "elements.json"));
+  CHECK(j["typed"]["MAT1"] == 3);
+  CHECK(j["typed"]["CBAR"] == 4);
+  CHECK(j["typed"]["PBEAML"] == 1);
+  REQUIRE(j["problems"].size() == 1);
+  CHECK_THAT(j["problems"][0].get<std::string>(), Catch::Contains("warning: PBARL 23: TYPE CHAN"));
+  auto c = nlohmann::json::parse(cli_slurp(dir / "constraints.json"));
+  CHECK(c["typed"]["RBE3"] == 1);
+  CHECK(c["typed"]["DVPREL1"] == 2);
+  CHECK(c["typed"]["SPC1"] == 2);
+}
+
+TEST_CASE("ssid deck summary: resolve problems, all at once, on stderr and in JSON; exit 1", "[cli][errors]") {
+  const fs::path dir = scratch();
+  std::ofstream(dir / "refs.bdf") << "GRID    1               0.      0.      0.\n"
+                                     "PBAR    3       1       1.\n"
+                                     "CROD    10      3       1       12\n"
+                                     "CROD    10      3       1       12\n";
+  const fs::path json = dir / "refs.json";
+  auto r = run_ssid("deck summary " + (dir / "refs.bdf").string() + " --json " + json.string());
+  CHECK(r.code == 1);
+  CHECK_THAT(r.out, Catch::Contains("problems: 6 (6 error(s), 0 warning(s)"));
+  CHECK_THAT(r.err, Catch::Contains("refs.bdf:4: duplicate element 10 (CROD; first defined by CROD at"));
+  CHECK_THAT(r.err, Catch::Contains("refs.bdf:3: GRID 12 required by CROD 10 does not exist"));
+  CHECK_THAT(r.err, Catch::Contains("refs.bdf:3: CROD 10 refers to PID 3, which is a PBAR, expected PROD"));
+  CHECK_THAT(r.err, Catch::Contains("refs.bdf:2: MAT1 1 required by PBAR 3 does not exist"));
+  auto j = nlohmann::json::parse(cli_slurp(json));
+  CHECK(j["problems"].size() == 6);
 }
 
 TEST_CASE("ssid deck: bad input exits 1 with file:line on stderr and no result on stdout", "[cli][errors]") {

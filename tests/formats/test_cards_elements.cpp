@@ -1,6 +1,8 @@
 // Group a typed cards: MAT1, PROD, CONROD, PBAR, CBAR (+BAROR), PBARL, CBEAM (+BEAMOR), PBEAM, PBEAML.
 #include "card_test_util.hpp"
 
+#include <cmath>
+
 using namespace card_test;
 
 TEST_CASE("MAT1: E, G, NU derivation rule and defaults", "[cards][mat1]") {
@@ -31,8 +33,17 @@ TEST_CASE("MAT1: E, G, NU derivation rule and defaults", "[cards][mat1]") {
   CHECK(m6.ss == 3.0e8);
   CHECK(m6.mcsid == 4);
   for (const auto& x : {m, m2, m3, m4, m5, m6}) check_roundtrip(x, parse_mat1, write_mat1);
-  // Derived values are written blank so a later change of E keeps G derived.
+  // Derived values are written blank so a later change of E keeps G derived...
   CHECK(std::holds_alternative<std::monostate>(write_mat1(m)[3]));
+  // ...and a derived value changed itself is written once its flag is set.
+  Mat1 changed = m2;  // E derived from G and NU
+  changed.e = 1.5e11;
+  changed.e_given = true;
+  CHECK(write_mat1(changed)[2] == FieldValue(1.5e11));
+  auto back = parse_text(format_card("MAT1", write_mat1(changed), FieldFormat::Small), parse_mat1);
+  CHECK(back.e == 1.5e11);
+  CHECK(back.g == m2.g);
+  CHECK(back.nu == m2.nu);
 }
 
 TEST_CASE("MAT1 errors name the field", "[cards][mat1][errors]") {
@@ -299,4 +310,35 @@ TEST_CASE("BAROR/BEAMOR fill blank CBAR/CBEAM fields in parse_bulk; missing orie
   REQUIRE(m.problems.size() == 2);
   CHECK(m.problems[0].str() == "o.bdf:4: more than one BAROR (first at o.bdf:2)");
   CHECK(m.problems[1].str() == "o.bdf:3: CBEAM 2: orientation (fields 6-8) blank and no BEAMOR gives one");
+}
+
+TEST_CASE("a changed card is rewritten in its own format with full precision", "[cards][writer]") {
+  Deck d = read_deck_text(
+      "PBAR    20      1       1.-3    8.333-8 2.-7    1.5-7   .2\n"
+      "        .01     .02     -.01    .02     -.01    -.02    .01     -.02\n"
+      "MAT1,1,2.1+11,,.3,7850.\n",
+      "p.bdf");
+  BulkModel m = parse_bulk(d);
+  m.pbars[0].a = 0.123456789;
+  m.pbars[0].i1 = 1.23456789e-7;
+  m.mat1s[0].e = 2.1e11 + 21000.0;
+  const auto values = write_bulk(m);
+  for (const auto& [i, v] : values) d.set_values(i, v);
+  const std::string text = render_file(d, 0);
+  INFO(text);
+  // The changed PBAR goes to large field (8 columns cannot hold .123456789); unchanged
+  // fields keep their text; the free-field MAT1 stays free field.
+  CHECK_THAT(text, Catch::StartsWith("PBAR*   20              1               .123456789      1.23456789-7"));
+  CHECK_THAT(text, Catch::Contains("*       2.-7            1.5-7"));
+  CHECK_THAT(text, Catch::Contains("MAT1*,1,"));
+  Deck back = read_deck_text(text, "q.bdf");
+  BulkModel m2 = parse_bulk(back);
+  REQUIRE(m2.problems.empty());
+  CHECK(m2.pbars[0].a == 0.123456789);
+  CHECK(m2.pbars[0].i1 == 1.23456789e-7);
+  CHECK(m2.pbars[0].i2 == 2.0e-7);
+  CHECK(m2.pbars[0].f2 == -0.02);
+  CHECK(m2.mat1s[0].e == 2.1e11 + 21000.0);
+  CHECK(m2.mat1s[0].nu == 0.3);
+  CHECK_FALSE(m2.mat1s[0].g_given);  // G stays derived from the new E
 }

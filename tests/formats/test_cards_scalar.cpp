@@ -119,6 +119,10 @@ TEST_CASE("PBUSH: K, B, GE, RCV rows in any order", "[cards][bush]") {
   CHECK(p.ge[1] == 0.0);
   CHECK_FALSE(p.has_b);
   check_roundtrip(p, parse_pbush, write_pbush);
+  auto e = parse_text("PBUSH,1,K,1.,,,,,,+\n+,,,,,,,,,+\n+,,B,2.\n", parse_pbush);  // an all-blank row is skipped
+  CHECK(e.b[0] == 2.0);
+  CHECK(error_of("PBUSH,1,K,1.,,,,,,+\n+,7\n", parse_pbush) ==
+        "t.bdf:2: PBUSH 1 continuation 1 field 2 ((blank)): expected blank (the flag goes in field 3), got \"7\"");
   CHECK(error_of("PBUSH   1       X       1.\n", parse_pbush) ==
         "t.bdf:1: PBUSH 1 field 3 (flag): expected one of K, B, GE, RCV, got \"X\"");
   CHECK(error_of("PBUSH   1       K       1.\n                K       2.\n", parse_pbush) ==
