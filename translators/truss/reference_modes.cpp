@@ -201,7 +201,8 @@ ReferenceModes reference_modes(const FeModel& fe, int count) {
   ReferenceModes out;
   out.a_set_size = static_cast<std::size_t>(n);
   for (const auto& g : fe.grids) out.grid_ids.push_back(g.id);
-  const int nev = std::min<int>(count, static_cast<int>(n) - 1);
+  // Dense: every mode is available; Lanczos needs nev < n.
+  const int nev = std::min<int>(count, static_cast<int>(n) - (n <= 3000 ? 0 : 1));
   Eigen::VectorXd lambda;
   Eigen::MatrixXd phi;
   if (n <= 3000) {
