@@ -20,5 +20,6 @@ struct Command {
 const std::vector<Command>& commands();
 
 int cmd_deck(const Args& args);
+int cmd_truss(const Args& args);
 
 }  // namespace ssid::cli

@@ -13,6 +13,7 @@ namespace ssid::cli {
 const std::vector<Command>& commands() {
   static const std::vector<Command> list = {
       {"deck", "read, check and write NASTRAN bulk data (summary, write)", cmd_deck},
+      {"truss", "generate MPI-like truss decks, rod or beam, in the report's configurations", cmd_truss},
   };
   return list;
 }
