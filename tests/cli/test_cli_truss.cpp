@@ -83,3 +83,14 @@ TEST_CASE("ssid truss: bad input gives a clear error and a non-zero exit", "[cli
   auto d = run_ssid("truss frobnicate");
   CHECK(d.code == 2);
 }
+
+TEST_CASE("samples/mpi_rod.bdf and samples/mpi_beam.bdf are what the generator writes today", "[cli][truss][golden]") {
+  const fs::path dir = scratch();
+  for (const std::string model : {"rod", "beam"}) {
+    const fs::path out = dir / ("golden_" + model + ".bdf");
+    auto r = run_ssid("truss mpi --model " + model + " -o " + out.string());
+    REQUIRE(r.code == 0);
+    INFO("regenerate with: ssid truss mpi --model " << model << " -o samples/mpi_" << model << ".bdf");
+    CHECK(cli_slurp(out) == cli_slurp(fs::path(SSID_SOURCE_DIR) / "samples" / ("mpi_" + model + ".bdf")));
+  }
+}
