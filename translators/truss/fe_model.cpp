@@ -102,7 +102,7 @@ double equivalent_axial_area(const TrussModel& t, const Member& m) {
   return t.length(m) / compliance;
 }
 
-int tube_segments(const TrussModel& t, const Member& m) { return t.tube_length(m) > 1.1 ? 4 : 2; }
+int tube_segments(const TrussModel& t, const Member& m) { return t.tube_length(m) > 1.0 ? 4 : 2; }
 
 std::size_t FeModel::dof_count() const {
   std::size_t n = 0;
