@@ -75,8 +75,9 @@ int truss_mpi(const Args& args) {
   std::ostream& out = json_stdout ? std::cerr : std::cout;
 
   if (vm.count("output")) {
-    const auto written = formats::write_deck(tr::to_deck(t, fe, command, vm["output"].as<std::string>()),
-                                             vm["output"].as<std::string>());
+    // The generated deck has no input file: name it so the writer's overwrite guard
+    // (which protects input files) never mistakes the output for one.
+    const auto written = formats::write_deck(tr::to_deck(t, fe, command, "<ssid truss mpi>"), vm["output"].as<std::string>());
     for (const auto& w : written) out << "wrote " << w << "\n";
   }
   if (vm.count("svg")) {

@@ -49,6 +49,8 @@ TEST_CASE("ssid truss mpi writes a deck that ssid deck reads with no problems; J
     auto sj = nlohmann::json::parse(s.out);
     CHECK(sj["problems"].empty());
     CHECK(sj["cards"]["GRID"] == j["grids"]);
+    // Writing again over an existing output is allowed (it is not an input).
+    CHECK(run_ssid("truss mpi --model " + model + " --config surge_springs --config optics_tip_mass -o " + deck.string()).code == 0);
     // The deck round-trips through the reader and writer byte for byte.
     auto w = run_ssid("deck write " + deck.string() + " -o " + copy.string());
     CHECK(w.code == 0);
