@@ -2,6 +2,7 @@
 /// Turns the truss inventory into the rod or beam model form.
 #include "translators/truss/fe_model.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <map>
 #include <stdexcept>
@@ -102,6 +103,15 @@ double equivalent_axial_area(const TrussModel& t, const Member& m) {
   return t.length(m) / compliance;
 }
 
+Eigen::Vector3d equivalent_area_gradient(const TrussModel& t, const Member& m) {
+  const Hardware& h = t.hw;
+  const FittingSection& bn = t.bnut_of(m);
+  const double A = equivalent_axial_area(t, m), L = t.length(m);
+  const double c = A * A / L;
+  return {c * t.tube_length(m) / (h.tube_area * h.tube_area), c * 2.0 * h.endcap.length / (h.endcap.area * h.endcap.area),
+          c * 2.0 * bn.length / (bn.area * bn.area)};
+}
+
 int tube_segments(const TrussModel& t, const Member& m) { return t.tube_length(m) > 1.0 ? 4 : 2; }
 
 std::size_t FeModel::dof_count() const {
@@ -152,14 +162,17 @@ FeModel build_fe_model(const TrussModel& t, ModelForm form) {
   }
 
   if (form == ModelForm::Rod) {
-    std::map<std::pair<double, bool>, int> pid_of;  // (rounded A_eq, long B-nut) -> PROD id
+    // One PROD per strut length (and B-nut kind): its series-equivalent area, and a
+    // DVPREL1 expressing it through the component areas (exact at the nominal point).
+    std::map<std::pair<long long, bool>, int> pid_of;
+    std::vector<Eigen::Vector3d> grads;
     for (const auto& m : t.members) {
-      const double a = sig(equivalent_axial_area(t, m));
-      auto key = std::make_pair(a, m.long_bnut);
+      auto key = std::make_pair(std::llround(t.length(m) * 1e6), m.long_bnut);
       if (!pid_of.count(key)) {
         const int pid = static_cast<int>(pid_of.size()) + 1;
         pid_of[key] = pid;
-        fe.rod_props.push_back({pid, a, 0.0, 0.0, m.long_bnut ? "long_bnut_strut" : "strut"});
+        fe.rod_props.push_back({pid, equivalent_axial_area(t, m), 0.0, 0.0, m.long_bnut ? "long_bnut_strut" : "strut"});
+        grads.push_back(equivalent_area_gradient(t, m));
       }
       fe.rods.push_back({m.id, pid_of[key], m.a, m.b, m.id});
     }
@@ -169,8 +182,17 @@ FeModel build_fe_model(const TrussModel& t, ModelForm form) {
       if (b.added_mass > 0) fe.masses.push_back({kAddedMassBase + b.id, b.id, b.added_mass, 0.0, "added"});
     }
     add_suspension(t, fe, true);
-    add_desvar(fe, 1, "STRUTK", 1.0, "strut axial stiffness scale (PROD A = coef * x, coef = series-equivalent area)");
-    for (const auto& p : fe.rod_props) add_dvprel(fe, "PROD", p.id, "A", 1, p.A);
+    const bool any_long = std::any_of(t.members.begin(), t.members.end(), [](const Member& m) { return m.long_bnut; });
+    add_desvar(fe, 1, "STRUTA", h.tube_area, "strut tube area A_strut, m^2 (enters PROD A through the series-equivalent area)");
+    add_desvar(fe, 2, "BNUTA", h.bnut.area, "B-nut area A_bnut, m^2 (through the series-equivalent area)");
+    if (any_long) add_desvar(fe, 10, "LBNUTA", h.long_bnut.area, "long B-nut area, m^2 (through the series-equivalent area)");
+    add_desvar(fe, 9, "ECAPA", h.endcap.area, "end-cap area, m^2 (through the series-equivalent area)");
+    for (std::size_t k = 0; k < fe.rod_props.size(); ++k) {
+      const bool lb = fe.rod_props[k].kind == "long_bnut_strut";
+      FeDvprel r{static_cast<int>(fe.dvprels.size()) + 1, "PROD", fe.rod_props[k].id, "A", 1, grads[k](0), {}};
+      r.more = {{lb ? 10 : 2, grads[k](2)}, {9, grads[k](1)}};
+      fe.dvprels.push_back(r);
+    }
     add_desvar(fe, 7, "JOINTM", 1.0, "joint mass scale (ball + B-nuts + end caps, CONM2 M)");
     for (const auto& c : fe.masses)
       if (c.kind == "joint") add_dvprel(fe, "CONM2", c.id, "M", 7, c.m);

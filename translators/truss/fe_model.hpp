@@ -37,8 +37,16 @@ struct FeSpring { int id = 0, pid = 0, g1 = 0, c1 = 0, g2 = 0, c2 = 0; };
 struct FeRigid { int id = 0, gn = 0; std::vector<int> gm; };
 struct FeSpc { int grid = 0; std::string components; };
 struct FeDesvar { int id = 0; std::string label; double init = 0, lower = 0, upper = 0; std::string what; };
-/// DVPREL1: property (or CONM2/PELAS element) field = coefficient * DESVAR.
-struct FeDvprel { int id = 0; std::string type; int pid = 0; std::string pname; int dvid = 0; double coef = 0; };
+/// DVPREL1: property (or CONM2/PELAS element) field = coef * DESVAR dvid (+ the `more` terms).
+struct FeDvprel {
+  int id = 0;
+  std::string type;
+  int pid = 0;
+  std::string pname;
+  int dvid = 0;
+  double coef = 0;
+  std::vector<std::pair<int, double>> more;  ///< further (DESVAR, coefficient) terms
+};
 
 struct FeModel {
   ModelForm form = ModelForm::Rod;
@@ -76,6 +84,12 @@ FeModel build_fe_model(const TrussModel& t, ModelForm form);
 /// Series-equivalent axial area of a strut over its centre-to-centre length:
 /// L / sum(L_i / A_i) over tube, end caps and B-nuts, the ball radii rigid.
 double equivalent_axial_area(const TrussModel& t, const Member& m);
+
+/// Derivatives of equivalent_axial_area with respect to the tube, end-cap and
+/// B-nut areas: dA/dA_i = A^2 L_i / (L A_i^2). A is homogeneous of degree one in
+/// the areas, so A = sum_i (dA/dA_i) A_i exactly: the rod form's DVPREL1 (no C0)
+/// reproduces the PROD area at the nominal point with the exact first derivatives.
+Eigen::Vector3d equivalent_area_gradient(const TrussModel& t, const Member& m);
 
 /// Number of tube elements a strut gets in the beam form.
 int tube_segments(const TrussModel& t, const Member& m);

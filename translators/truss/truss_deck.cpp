@@ -122,9 +122,14 @@ formats::Deck to_deck(const TrussModel& t, const FeModel& fe, const std::string&
     d.append_text(0, "$ " + dv.label + ": " + dv.what + "\n");
     d.append_card(0, "DESVAR", V{S("DESVAR"), I(dv.id), S(dv.label), R(dv.init), R(dv.lower), R(dv.upper)});
   }
-  for (const auto& r : fe.dvprels)
-    d.append_card(0, "DVPREL1", V{S("DVPREL1"), I(r.id), S(r.type), I(r.pid), S(r.pname), blank, blank, blank, blank,
-                                   I(r.dvid), R(r.coef)});
+  for (const auto& r : fe.dvprels) {
+    V v{S("DVPREL1"), I(r.id), S(r.type), I(r.pid), S(r.pname), blank, blank, blank, blank, I(r.dvid), R(r.coef)};
+    for (const auto& [dv, c] : r.more) {
+      v.push_back(I(dv));
+      v.push_back(R(c));
+    }
+    d.append_card(0, "DVPREL1", std::move(v));
+  }
   d.append_text(0, "ENDDATA\n");
   (void)form_name;
   return d;
@@ -179,7 +184,8 @@ nlohmann::json summary_json(const TrussModel& t, const FeModel& fe) {
     nlohmann::json p = {{"id", dv.id}, {"label", dv.label}, {"initial", dv.init}, {"lower", dv.lower},
                         {"upper", dv.upper}, {"description", dv.what}};
     std::size_t n = 0;
-    for (const auto& r : fe.dvprels) n += r.dvid == dv.id;
+    for (const auto& r : fe.dvprels)
+      n += r.dvid == dv.id || std::any_of(r.more.begin(), r.more.end(), [&](const auto& t) { return t.first == dv.id; });
     p["dvprel1_count"] = n;
     j["parameters"].push_back(p);
   }
