@@ -22,5 +22,6 @@ const std::vector<Command>& commands();
 int cmd_deck(const Args& args);
 int cmd_uff(const Args& args);
 int cmd_correlate(const Args& args);
+int cmd_truss(const Args& args);
 
 }  // namespace ssid::cli

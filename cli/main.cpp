@@ -15,6 +15,7 @@ const std::vector<Command>& commands() {
       {"deck", "read, check and write NASTRAN bulk data (summary, write)", cmd_deck},
       {"uff", "universal files: list datasets, nodes, modes, functions", cmd_uff},
       {"correlate", "pair analysis and test modes: MAC table, unpaired modes", cmd_correlate},
+      {"truss", "generate MPI-like truss decks, rod or beam, in the report's configurations", cmd_truss},
   };
   return list;
 }
