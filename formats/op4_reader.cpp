@@ -57,6 +57,16 @@ public:
     m_val[m_n] = v;
     ++m_n;
   }
+  /// Room for `extra` more terms (push_unchecked may then be used that many times).
+  void ensure(std::size_t extra) {
+    if (m_n + extra > m_cap) grow(std::max<std::size_t>(m_n + extra, 2 * m_cap));
+  }
+  /// Stores a term unless it is an exact zero; ensure() first.
+  void push_unchecked(int row, const T& v) {
+    m_inner[m_n] = row;
+    m_val[m_n] = v;
+    m_n += v != T(0);
+  }
   std::size_t size() const { return m_n; }
   int* outer() { return m_outer; }
   const int* inner() const { return m_inner; }
@@ -116,6 +126,15 @@ public:
   void reserve(std::size_t n) {
     if (m_complex) m_cx.reserve(n);
     else m_re.reserve(n);
+  }
+  /// Real terms of rows row0, row0+1, ... (0-based), value(t) for t < terms; zeros dropped.
+  template <class Value>
+  void add_run(Eigen::Index row0, std::int64_t terms, Value value) {
+    if (terms <= 0) return;
+    if (row0 <= m_last_row) m_sorted = false;
+    m_last_row = row0 + terms - 1;
+    m_re.ensure(static_cast<std::size_t>(terms));
+    for (std::int64_t t = 0; t < terms; ++t) m_re.push_unchecked(static_cast<int>(row0 + t), value(t));
   }
 
   void finish(Op4Matrix& m) {
@@ -683,10 +702,20 @@ private:
         std::memcpy(&d, &u, 8);
         return round_single ? static_cast<double>(static_cast<float>(d)) : d;
       };
-      for (std::int64_t t = 0; t < terms; ++t) {
-        if (cx) b.add(row0 - 1 + t, num(p + 2 * t * bpn), num(p + (2 * t + 1) * bpn));
-        else b.add(row0 - 1 + t, num(p + t * bpn));
+      if (!cx && bpn == 8 && !round_single && !m_swap) {
+        // The common case (real double in the host's byte order): one tight loop.
+        b.add_run(row0 - 1, terms, [p](std::int64_t t) {
+          double d;
+          std::memcpy(&d, p + 8 * t, 8);
+          return d;
+        });
+        return;
       }
+      if (!cx) {
+        b.add_run(row0 - 1, terms, [&](std::int64_t t) { return num(p + t * bpn); });
+        return;
+      }
+      for (std::int64_t t = 0; t < terms; ++t) b.add(row0 - 1 + t, num(p + 2 * t * bpn), num(p + (2 * t + 1) * bpn));
     };
 
     while (true) {

@@ -6,6 +6,7 @@
 #include <cstring>
 #include <fcntl.h>
 #include <stdexcept>
+#include <type_traits>
 #include <unistd.h>
 
 #include <fmt/format.h>
@@ -165,6 +166,12 @@ private:
     // nrows_span terms starting at first_row; rows not in `rows` are zero (dense gaps).
     const std::size_t bytes = static_cast<std::size_t>(nrows_span) * m_l.npt * m_l.bpn;
     char* p = m_out.grow(bytes);
+    if constexpr (std::is_same_v<T, double>) {
+      if (count == nrows_span && m_l.bpn == 8 && !m_l.single && !m_swap) {
+        std::memcpy(p, values, bytes);  // real double in the host's byte order: the values as they are
+        return;
+      }
+    }
     if (count == nrows_span) {
       for (int t = 0; t < count; ++t) {
         put_number(p, re_of(values[t]));
