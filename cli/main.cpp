@@ -16,6 +16,8 @@ const std::vector<Command>& commands() {
       {"uff", "universal files: list datasets, nodes, modes, functions", cmd_uff},
       {"correlate", "pair analysis and test modes: MAC table, unpaired modes", cmd_correlate},
       {"truss", "generate MPI-like truss decks, rod or beam, in the report's configurations", cmd_truss},
+      {"op4", "OP4 matrix files: list, dump as JSON, convert (encoding, storage, precision, MatrixMarket)", cmd_op4},
+      {"dmig", "DMIG matrices of a deck or punch file: list, dump as JSON", cmd_dmig},
   };
   return list;
 }

@@ -22,36 +22,123 @@ namespace {
 bool complex_type(int t) { return t == 3 || t == 4; }
 bool single_type(int t) { return t == 1 || t == 3; }
 
+/// Asks the kernel for transparent huge pages on a large fresh allocation: the
+/// first touch of hundreds of MB in 4 KiB pages costs more than parsing them
+/// (measured in bench_op4, docs/performance.md). Advisory; no effect elsewhere.
+void advise_huge_pages(void* p, std::size_t bytes) {
+#ifdef MADV_HUGEPAGE
+  constexpr std::uintptr_t huge = 2u << 20;
+  if (bytes < 4 * huge) return;
+  const std::uintptr_t b = (reinterpret_cast<std::uintptr_t>(p) + huge - 1) & ~(huge - 1);
+  const std::uintptr_t e = (reinterpret_cast<std::uintptr_t>(p) + bytes) & ~(huge - 1);
+  if (e > b) ::madvise(reinterpret_cast<void*>(b), e - b, MADV_HUGEPAGE);
+#else
+  (void)p;
+  (void)bytes;
+#endif
+}
+
+/// Compressed-column storage of one Eigen sparse matrix, filled in place (no
+/// intermediate copy: at hundreds of MB the copy and its page faults cost more
+/// than the parsing).
+template <class T>
+class CscTarget {
+public:
+  void start(Eigen::Index rows, Eigen::Index cols) {
+    m.resize(rows, cols);  // compressed, outer indices zero
+    m_outer = m.outerIndexPtr();
+  }
+  void reserve(std::size_t n) {
+    if (n > m_cap) grow(n);
+  }
+  void push(int row, const T& v) {
+    if (m_n == m_cap) grow(std::max<std::size_t>(1024, 2 * m_cap));
+    m_inner[m_n] = row;
+    m_val[m_n] = v;
+    ++m_n;
+  }
+  /// Room for `extra` more terms (push_unchecked may then be used that many times).
+  void ensure(std::size_t extra) {
+    if (m_n + extra > m_cap) grow(std::max<std::size_t>(m_n + extra, 2 * m_cap));
+  }
+  /// Stores a term unless it is an exact zero; ensure() first.
+  void push_unchecked(int row, const T& v) {
+    m_inner[m_n] = row;
+    m_val[m_n] = v;
+    m_n += v != T(0);
+  }
+  std::size_t size() const { return m_n; }
+  int* outer() { return m_outer; }
+  const int* inner() const { return m_inner; }
+  const T* values() const { return m_val; }
+  /// Sets the final size; frees the unused reserve when it is large.
+  Eigen::SparseMatrix<T>& done() {
+    m.data().resize(static_cast<Eigen::Index>(m_n));
+    if (m_cap > m_n + m_n / 4 + 4096) m.data().squeeze();
+    return m;
+  }
+  Eigen::SparseMatrix<T> m;
+
+private:
+  void grow(std::size_t cap) {
+    m.data().resize(static_cast<Eigen::Index>(m_n));  // the terms so far (no reallocation)
+    m.data().resize(static_cast<Eigen::Index>(cap));  // reallocates keeping them
+    m_cap = cap;
+    m_inner = m.innerIndexPtr();
+    m_val = m.valuePtr();
+    advise_huge_pages(m_inner + m_n, (cap - m_n) * sizeof(int));
+    advise_huge_pages(m_val + m_n, (cap - m_n) * sizeof(T));
+  }
+  int* m_outer = nullptr;
+  int* m_inner = nullptr;
+  T* m_val = nullptr;
+  std::size_t m_n = 0, m_cap = 0;
+};
+
 /// Collects the terms of one matrix column by column (columns arrive in increasing
-/// order) straight into compressed-column arrays; exact zeros are dropped.
+/// order) straight into the matrix's compressed-column arrays; exact zeros are dropped.
 class ColumnBuilder {
 public:
   ColumnBuilder(Eigen::Index rows, Eigen::Index cols, bool is_complex)
-      : m_rows(rows), m_cols(cols), m_complex(is_complex), m_outer(static_cast<std::size_t>(cols) + 1, 0) {}
+      : m_rows(rows), m_cols(cols), m_complex(is_complex) {
+    if (m_complex) m_cx.start(rows, cols);
+    else m_re.start(rows, cols);
+  }
 
   /// Starts column c (0-based); columns must increase.
   void begin_column(Eigen::Index c) {
-    for (Eigen::Index k = m_current + 1; k <= c; ++k) m_outer[static_cast<std::size_t>(k)] = static_cast<int>(m_inner.size());
+    int* outer = m_complex ? m_cx.outer() : m_re.outer();
+    const int n = static_cast<int>(m_complex ? m_cx.size() : m_re.size());
+    for (Eigen::Index k = m_current + 1; k <= c; ++k) outer[k] = n;
     m_current = c;
     m_last_row = -1;
   }
   void add(Eigen::Index row, double re) {
     if (re == 0.0) return;
     note_row(row);
-    m_re.push_back(re);
+    m_re.push(static_cast<int>(row), re);
   }
   void add(Eigen::Index row, double re, double im) {
     if (re == 0.0 && im == 0.0) return;
     note_row(row);
-    m_cx.emplace_back(re, im);
+    m_cx.push(static_cast<int>(row), std::complex<double>(re, im));
   }
   void reserve(std::size_t n) {
-    m_inner.reserve(n);
-    (m_complex ? static_cast<void>(m_cx.reserve(n)) : m_re.reserve(n));
+    if (m_complex) m_cx.reserve(n);
+    else m_re.reserve(n);
+  }
+  /// Real terms of rows row0, row0+1, ... (0-based), value(t) for t < terms; zeros dropped.
+  template <class Value>
+  void add_run(Eigen::Index row0, std::int64_t terms, Value value) {
+    if (terms <= 0) return;
+    if (row0 <= m_last_row) m_sorted = false;
+    m_last_row = row0 + terms - 1;
+    m_re.ensure(static_cast<std::size_t>(terms));
+    for (std::int64_t t = 0; t < terms; ++t) m_re.push_unchecked(static_cast<int>(row0 + t), value(t));
   }
 
   void finish(Op4Matrix& m) {
-    for (Eigen::Index k = m_current + 1; k <= m_cols; ++k) m_outer[static_cast<std::size_t>(k)] = static_cast<int>(m_inner.size());
+    begin_column(m_cols);  // outer[last+1 .. cols] = number of terms
     if (m_complex) fill(m.complex, m_cx);
     else fill(m.real, m_re);
   }
@@ -60,34 +147,29 @@ private:
   void note_row(Eigen::Index row) {
     if (row <= m_last_row) m_sorted = false;
     m_last_row = row;
-    m_inner.push_back(static_cast<int>(row));
   }
   template <class T>
-  void fill(Eigen::SparseMatrix<T>& out, std::vector<T>& values) {
+  void fill(Eigen::SparseMatrix<T>& out, CscTarget<T>& a) {
     if (!m_sorted) {
       // Strings given out of row order (allowed by the format, never written by NASTRAN).
       std::vector<Eigen::Triplet<T>> t;
-      t.reserve(values.size());
+      t.reserve(a.size());
+      const int* outer = a.outer();
       for (Eigen::Index c = 0; c < m_cols; ++c)
-        for (int k = m_outer[c]; k < m_outer[c + 1]; ++k) t.emplace_back(m_inner[k], static_cast<int>(c), values[k]);
+        for (int k = outer[c]; k < outer[c + 1]; ++k) t.emplace_back(a.inner()[k], static_cast<int>(c), a.values()[k]);
       out.resize(m_rows, m_cols);
       out.setFromTriplets(t.begin(), t.end(), [](const T&, const T& b) { return b; });
       return;
     }
-    out.resize(m_rows, m_cols);
-    out.resizeNonZeros(static_cast<Eigen::Index>(values.size()));
-    std::copy(m_outer.begin(), m_outer.end(), out.outerIndexPtr());
-    std::copy(m_inner.begin(), m_inner.end(), out.innerIndexPtr());
-    std::copy(values.begin(), values.end(), out.valuePtr());
+    out.swap(a.done());
   }
 
   Eigen::Index m_rows, m_cols;
   bool m_complex;
   Eigen::Index m_current = -1, m_last_row = -1;
   bool m_sorted = true;
-  std::vector<int> m_outer, m_inner;
-  std::vector<double> m_re;
-  std::vector<std::complex<double>> m_cx;
+  CscTarget<double> m_re;
+  CscTarget<std::complex<double>> m_cx;
 };
 
 /// Form-specific completion (documented in docs/op4.md).
@@ -620,10 +702,20 @@ private:
         std::memcpy(&d, &u, 8);
         return round_single ? static_cast<double>(static_cast<float>(d)) : d;
       };
-      for (std::int64_t t = 0; t < terms; ++t) {
-        if (cx) b.add(row0 - 1 + t, num(p + 2 * t * bpn), num(p + (2 * t + 1) * bpn));
-        else b.add(row0 - 1 + t, num(p + t * bpn));
+      if (!cx && bpn == 8 && !round_single && !m_swap) {
+        // The common case (real double in the host's byte order): one tight loop.
+        b.add_run(row0 - 1, terms, [p](std::int64_t t) {
+          double d;
+          std::memcpy(&d, p + 8 * t, 8);
+          return d;
+        });
+        return;
       }
+      if (!cx) {
+        b.add_run(row0 - 1, terms, [&](std::int64_t t) { return num(p + t * bpn); });
+        return;
+      }
+      for (std::int64_t t = 0; t < terms; ++t) b.add(row0 - 1 + t, num(p + 2 * t * bpn), num(p + (2 * t + 1) * bpn));
     };
 
     while (true) {
@@ -743,7 +835,7 @@ public:
     }
     m_size = static_cast<std::size_t>(st.st_size);
     if (m_size > 0) {
-      void* p = ::mmap(nullptr, m_size, PROT_READ, MAP_PRIVATE, m_fd, 0);
+      void* p = ::mmap(nullptr, m_size, PROT_READ, MAP_PRIVATE | MAP_POPULATE, m_fd, 0);
       if (p == MAP_FAILED) {
         ::close(m_fd);
         throw ParseError(SourceLocation{path, 0, {}}, "cannot map file: " + std::string(std::strerror(errno)));
