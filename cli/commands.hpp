@@ -23,5 +23,7 @@ int cmd_deck(const Args& args);
 int cmd_uff(const Args& args);
 int cmd_correlate(const Args& args);
 int cmd_truss(const Args& args);
+int cmd_modes(const Args& args);
+int cmd_assemble(const Args& args);
 
 }  // namespace ssid::cli
