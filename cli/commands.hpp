@@ -25,5 +25,7 @@ int cmd_correlate(const Args& args);
 int cmd_truss(const Args& args);
 int cmd_op4(const Args& args);
 int cmd_dmig(const Args& args);
+int cmd_modes(const Args& args);
+int cmd_assemble(const Args& args);
 
 }  // namespace ssid::cli

@@ -1,0 +1,116 @@
+/// \file model_load.cpp
+#include "cli/model_load.hpp"
+
+#include <cmath>
+#include <iostream>
+#include <limits>
+#include <stdexcept>
+
+#include "estimator/dense_eigen.hpp"
+#include "formats/bulk_model.hpp"
+
+namespace ssid::cli {
+
+LoadedModel load_model(const std::string& path, const translators::AssemblyOptions& options) {
+  LoadedModel l;
+  l.path = path;
+  l.deck = formats::read_deck(path);
+  formats::BulkModel bulk = formats::parse_bulk(l.deck);
+  formats::resolve(l.deck, bulk);
+  std::vector<formats::Problem> problems = l.deck.problems;
+  problems.insert(problems.end(), bulk.problems.begin(), bulk.problems.end());
+  std::string errors;
+  std::size_t n_errors = 0;
+  for (const auto& p : problems) {
+    if (p.severity == formats::Problem::Severity::Warning) {
+      l.warnings.push_back(p.str());
+      continue;
+    }
+    if (++n_errors <= 20) errors += "\n  " + p.str();
+  }
+  if (n_errors) {
+    if (n_errors > 20) errors += "\n  ... and " + std::to_string(n_errors - 20) + " more";
+    throw std::runtime_error(path + ": " + std::to_string(n_errors) + " error(s) in the deck; nothing assembled:" +
+                             errors);
+  }
+  try {
+    l.model = std::make_unique<translators::FeModel>(l.deck, std::move(bulk), options);
+  } catch (const translators::ModelError& e) {
+    throw std::runtime_error(path + ": cannot assemble the model: " + std::string(e.what()));
+  }
+  return l;
+}
+
+void print_model_notes(const LoadedModel& m) {
+  for (const auto& w : m.warnings) std::cerr << "warning: " << w << "\n";
+  for (const auto& n : m.model->notes()) std::cerr << "note: " << n << "\n";
+  if (!m.model->autospc().empty())
+    std::cerr << "note: AUTOSPC constrained " << m.model->autospc().size()
+              << " DOF(s) without stiffness (ssid assemble lists them in its manifest)\n";
+}
+
+estimator::EigenOptions eigen_options(const translators::FeModel& model, std::optional<int> nmodes, long n,
+                                      std::string& source, int default_nd) {
+  const double nan = std::numeric_limits<double>::quiet_NaN();
+  auto norm_of = [](const std::string& s) {
+    return s == "MAX" ? estimator::ModeNormalization::Max : estimator::ModeNormalization::Mass;
+  };
+  if (nmodes) {
+    if (*nmodes <= 0) throw std::invalid_argument("--nmodes: expected a positive number, got " + std::to_string(*nmodes));
+    source = "--nmodes " + std::to_string(*nmodes);
+    return estimator::eigrl_options(nan, nan, *nmodes);
+  }
+  if (const auto* e = model.eigrl()) {
+    source = "EIGRL " + std::to_string(e->sid);
+    return estimator::eigrl_options(e->v1.value_or(nan), e->v2.value_or(nan), static_cast<int>(e->nd.value_or(0)),
+                                    norm_of(e->norm));
+  }
+  if (const auto* e = model.eigr()) {
+    source = "EIGR " + std::to_string(e->sid);
+    return estimator::eigr_options(e->f1.value_or(nan), e->f2.value_or(nan), static_cast<int>(e->ne.value_or(0)),
+                                   static_cast<int>(e->nd.value_or(0)), norm_of(e->norm));
+  }
+  if (n <= estimator::kDenseEigenLimit) {
+    source = "no EIGRL/EIGR: every mode";
+    return estimator::eigrl_options(nan, nan, 0);
+  }
+  source = "no EIGRL/EIGR: lowest " + std::to_string(default_nd);
+  return estimator::eigrl_options(nan, nan, default_nd);
+}
+
+estimator::EigenResult solve_model(const translators::FeOperators& op, const estimator::EigenOptions& options) {
+  const long n = op.K.rows();
+  if (n == 0) throw std::runtime_error("the analysis set is empty: every DOF is constrained");
+  if (n <= estimator::kDenseEigenLimit) {
+    estimator::EigenResult r = estimator::solve_modes_dense(op.K, op.M, options);
+    if (!r.ok()) throw std::runtime_error("eigen-solve failed: " + r.message);
+    return r;
+  }
+  // Every mode is checked: a backward error above 1e-8 means a wrong mode (seen with
+  // the single-vector path on models with massless DOFs); block Lanczos then redoes it.
+  auto worst = [](const estimator::EigenResult& r) {
+    return r.backward_errors.size() ? r.backward_errors.maxCoeff() : 0.0;
+  };
+  estimator::EigenResult r = estimator::solve_modes(op.K, op.M, options);
+  if (r.ok() && worst(r) > 1e-8 && options.method != estimator::EigenMethod::BlockLanczos) {
+    estimator::EigenOptions o = options;
+    o.method = estimator::EigenMethod::BlockLanczos;
+    estimator::EigenResult b = estimator::solve_modes(op.K, op.M, o);
+    b.warnings.insert(b.warnings.begin(), r.method + " gave a mode with backward error " + std::to_string(worst(r)) +
+                                              "; solved again with block Lanczos");
+    r = std::move(b);
+  }
+  if (!r.ok()) throw std::runtime_error("eigen-solve failed: " + r.message);
+  if (worst(r) > 1e-8)
+    throw std::runtime_error("eigen-solve: a mode has backward error " + std::to_string(worst(r)) +
+                             " (above 1e-8): the modes are not reliable");
+  return r;
+}
+
+std::vector<translators::GridPosition> grid_positions(const translators::FeModel& model) {
+  std::vector<translators::GridPosition> g;
+  for (const auto& p : model.geometry().grids()) g.push_back({p.id, p.x, p.frame});
+  return g;
+}
+
+}  // namespace ssid::cli
