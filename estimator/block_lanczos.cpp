@@ -53,11 +53,26 @@ BlockLanczosResult block_lanczos(const std::function<MatrixXd(const MatrixXd&)>&
   // columns [col0, col0 + W.cols()) when col0 >= 0.
   auto orthonormalise = [&](MatrixXd& W, long col0) -> MatrixXd {
     const long act = m;
-    // The n x m by m x b products are the iteration's dense work: system BLAS.
-    for (int pass = 0; pass < 2 && act > 0; ++pass) {
-      const MatrixXd C = detail::at_b(V.leftCols(act), mass(W));
-      detail::gemm(false, false, -1.0, V.leftCols(act), C, 1.0, W);
-      if (col0 >= 0) H.block(0, col0, act, W.cols()) += C;
+    // Against the basis: first the newest two blocks, which hold the large
+    // components (the block tridiagonal part of T); then one full classical
+    // Gram–Schmidt pass, and a second only when that pass removed more than
+    // half of a column's squared norm (the DGKS "twice is enough" test:
+    // cancellation there leaves round-off along older vectors). The n x m by
+    // m x b products are the iteration's dense work: system BLAS.
+    auto project = [&](long lo, long hi) -> bool {
+      const MatrixXd MW = mass(W);
+      const MatrixXd C = detail::at_b(V.middleCols(lo, hi - lo), MW);
+      const VectorXd before = W.cwiseProduct(MW).colwise().sum().transpose();
+      detail::gemm(false, false, -1.0, V.middleCols(lo, hi - lo), C, 1.0, W);
+      if (col0 >= 0) H.block(lo, col0, hi - lo, W.cols()) += C;
+      for (long c = 0; c < W.cols(); ++c)  // ‖w − V c‖²_M = ‖w‖²_M − ‖c‖² (V M-orthonormal)
+        if (before(c) - C.col(c).squaredNorm() < 0.5 * before(c)) return true;
+      return false;
+    };
+    if (act > 0) {
+      const long lo = std::max<long>(0, act - 2L * b);
+      project(lo, act);
+      if (project(0, act)) project(0, act);
     }
     MatrixXd R = MatrixXd::Zero(W.cols(), W.cols());
     const MatrixXd MW0 = mass(W);

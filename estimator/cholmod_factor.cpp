@@ -249,9 +249,23 @@ void CholmodFactor::analyze_grouped(long n) {
   std::vector<SuiteSparse_long> gperm(static_cast<size_t>(ng)), perm(static_cast<size_t>(n));
   double best_fl = 0.0;
   std::string first_failure;
-  for (const int method : {CHOLMOD_AMD, CHOLMOD_METIS}) {
-    const int ok = method == CHOLMOD_AMD ? cholmod_l_amd(&Gs, nullptr, 0, gperm.data(), &s.cm)
-                                         : cholmod_l_metis(&Gs, nullptr, 0, 1, gperm.data(), &s.cm);
+  std::vector<SuiteSparse_long> cparent, cmember;
+  const double anz = static_cast<double>(s.i.size());
+  for (const int method : {CHOLMOD_AMD, CHOLMOD_METIS, CHOLMOD_NESDIS}) {
+    // CHOLMOD's own rule: AMD's ordering is kept without trying nested
+    // dissection when it is already good (fl/lnz < 500 or lnz/anz < 5).
+    if (method != CHOLMOD_AMD && s.L && m_ordering.rfind("AMD", 0) == 0 && (m_fl < 500.0 * m_lnz || m_lnz < 5.0 * anz))
+      break;
+    int ok = 0;
+    if (method == CHOLMOD_AMD) {
+      ok = cholmod_l_amd(&Gs, nullptr, 0, gperm.data(), &s.cm);
+    } else if (method == CHOLMOD_METIS) {
+      ok = cholmod_l_metis(&Gs, nullptr, 0, 1, gperm.data(), &s.cm);
+    } else {
+      cparent.resize(static_cast<size_t>(ng));
+      cmember.resize(static_cast<size_t>(ng));
+      ok = cholmod_l_nested_dissection(&Gs, nullptr, 0, gperm.data(), cparent.data(), cmember.data(), &s.cm) >= 0;
+    }
     if (!ok) {  // METIS not installed: AMD alone
       if (first_failure.empty()) first_failure = std::to_string(s.cm.status);
       continue;
@@ -273,7 +287,8 @@ void CholmodFactor::analyze_grouped(long n) {
       best_fl = s.cm.fl;
       m_fl = s.cm.fl;
       m_lnz = s.cm.lnz;
-      m_ordering = std::string(method == CHOLMOD_AMD ? "AMD" : "METIS") + " on " + std::to_string(ng) + " groups";
+      m_ordering = std::string(method == CHOLMOD_AMD ? "AMD" : method == CHOLMOD_METIS ? "METIS" : "NESDIS") +
+                   " on " + std::to_string(ng) + " groups";
     } else {
       cholmod_l_free_factor(&L, &s.cm);
     }
