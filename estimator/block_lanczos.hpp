@@ -28,7 +28,7 @@ namespace ssid::estimator {
 
 struct BlockLanczosOptions {
   int nev = 1;          ///< eigenpairs wanted
-  int block = 8;        ///< block size b
+  int block = 16;       ///< block size b
   long max_basis = 0;   ///< basis cap (columns); 0: min(n, max(20 nev, 200))
   double tol = 1e-10;   ///< relative residual of the Ritz values θ
   unsigned seed = 12345;
