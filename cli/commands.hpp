@@ -23,5 +23,8 @@ int cmd_deck(const Args& args);
 int cmd_uff(const Args& args);
 int cmd_correlate(const Args& args);
 int cmd_truss(const Args& args);
+int cmd_estimate(const Args& args);
+int cmd_translate(const Args& args);
+int cmd_update_deck(const Args& args);
 
 }  // namespace ssid::cli

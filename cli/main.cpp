@@ -16,6 +16,9 @@ const std::vector<Command>& commands() {
       {"uff", "universal files: list datasets, nodes, modes, functions", cmd_uff},
       {"correlate", "pair analysis and test modes: MAC table, unpaired modes", cmd_correlate},
       {"truss", "generate MPI-like truss decks, rod or beam, in the report's configurations", cmd_truss},
+      {"estimate", "Bayesian model updating: deck + measured modes in, parameters with uncertainty out", cmd_estimate},
+      {"translate", "gather operators, priors and measured modes into a problem file", cmd_translate},
+      {"update-deck", "write estimated parameters into a deck (DESVAR and designed fields)", cmd_update_deck},
   };
   return list;
 }

@@ -66,6 +66,7 @@ class OperatorModel : public ModalModel {
   ModeSensitivity sensitivity(int i, bool shapes) override;
 
   const Operators& operators() const { return m_ops; }
+  ShapeDerivative shape_derivative() const { return m_shape_derivative; }
   const Eigen::MatrixXd& modes() const { return m_phi; }
 
  private:
