@@ -11,6 +11,8 @@
 ///   --modes    measured = analysis modes (default 35)
 ///   --sensors  grids 1..S measured (default 80)
 ///   --repeat   cycles timed (default 3; the first also does the symbolic analysis)
+///   --modal-sum  the seed's modal-summation shape derivatives instead of Nelson's
+///   --method   Krylov iteration of the eigen-solver (default auto)
 #include <chrono>
 #include <cstdio>
 #include <cstring>
@@ -58,17 +60,19 @@ class TimedModel : public estimator::ModalModel {
 
 int main(int argc, char** argv) {
   if (argc < 2) {
-    std::fprintf(stderr, "usage: bench_estimate DECK [--modes N] [--sensors S] [--repeat R] [--modal-sum]\n");
+    std::fprintf(stderr, "usage: bench_estimate DECK [--modes N] [--sensors S] [--repeat R] [--modal-sum] [--method auto|spectra|block]\n");
     return 2;
   }
   const std::string deck_path = argv[1];
   int modes = 35, sensors = 80, repeat = 3;
   bool modal_sum = false;
+  std::string method = "auto";
   for (int i = 2; i < argc; ++i) {
     if (!std::strcmp(argv[i], "--modes") && i + 1 < argc) modes = std::atoi(argv[++i]);
     else if (!std::strcmp(argv[i], "--sensors") && i + 1 < argc) sensors = std::atoi(argv[++i]);
     else if (!std::strcmp(argv[i], "--repeat") && i + 1 < argc) repeat = std::atoi(argv[++i]);
     else if (!std::strcmp(argv[i], "--modal-sum")) modal_sum = true;
+    else if (!std::strcmp(argv[i], "--method") && i + 1 < argc) method = argv[++i];
   }
   try {
     // Truth: every DESVAR +3 %; its modes at the sensors as a universal file.
@@ -82,6 +86,22 @@ int main(int argc, char** argv) {
     eo.nd = modes;
     const auto res = estimator::solve_modes(ops.K, ops.M, eo);
     if (!res.ok()) throw std::runtime_error("truth eigen-solve: " + res.message);
+    std::printf("truth solve (%s): %.3f s total, factor %.3f s (%d analyses), Lanczos %.3f s, %ld solves, %d runs\n",
+                res.method.c_str(), res.total_seconds, res.factor_seconds, res.analyses, res.lanczos_seconds, res.solves,
+                res.lanczos_runs);
+    if (method == "compare") {
+      // The two Krylov iterations on the same pencil: eigenvalues and residuals.
+      for (auto m : {estimator::EigenMethod::Spectra, estimator::EigenMethod::BlockLanczos}) {
+        estimator::EigenOptions o = eo;
+        o.method = m;
+        const auto q = estimator::solve_modes(ops.K, ops.M, o);
+        std::printf("%-12s %.3f s, status %d, max backward error %.2e, f1..f%d:", q.method.c_str(), q.total_seconds,
+                    static_cast<int>(q.status), q.backward_errors.size() ? q.backward_errors.maxCoeff() : -1.0, q.size());
+        for (int i = 0; i < q.size(); ++i) std::printf(" %.6g", std::sqrt(std::max(q.eigenvalues(i), 0.0)) / (2 * M_PI));
+        std::printf("\n");
+      }
+      return 0;
+    }
     const Eigen::MatrixXd g = fe.expand(res.modes);
     translators::ModeSet set;
     std::vector<formats::uff::Node> nodes;
@@ -126,6 +146,8 @@ int main(int argc, char** argv) {
       return o;
     };
     auto solver = std::make_shared<estimator::EigenSolver>();
+    if (method == "spectra") solver->options().method = estimator::EigenMethod::Spectra;
+    if (method == "block") solver->options().method = estimator::EigenMethod::BlockLanczos;
     auto timed_eigen = [&t, solver](const estimator::SparseMatrix& K, const estimator::SparseMatrix& M, int n) {
       const double t0 = now_s();
       solver->options().nd = n;
