@@ -84,8 +84,13 @@ struct Op4ReadOptions {
   /// Form 6 stored as one triangle only (some non-NASTRAN writers): mirror it so
   /// the matrix is complete. NASTRAN itself writes all terms; those are kept as read.
   bool expand_symmetric = true;
-  /// Form 8 (identity) written without terms: build the identity.
+  /// Form 8 (identity) written without terms: build the identity; form 9
+  /// (pseudo-identity, rectangular) without terms: ones on the leading diagonal.
   bool expand_identity = true;
+  /// Form 3 (diagonal) declared with one column of N rows (NASTRAN keeps a
+  /// diagonal matrix as the column of its diagonal terms): build the N x N
+  /// diagonal matrix. A square form 3 matrix is kept as stored.
+  bool expand_diagonal = true;
 };
 
 /// Reads every matrix of an OP4 file, in file order (repeated names are kept).

@@ -110,14 +110,31 @@ void complete_forms(Op4Matrix& m, const Op4ReadOptions& opt) {
     if (m.is_complex()) mirror(m.complex);
     else mirror(m.real);
   }
-  if (opt.expand_identity && m.form == op4_form::Identity && m.rows == m.cols && m.nonzeros() == 0) {
-    if (m.is_complex()) {
-      m.complex.resize(m.rows, m.cols);
-      m.complex.setIdentity();
-    } else {
-      m.real.resize(m.rows, m.cols);
-      m.real.setIdentity();
-    }
+  const bool identity = m.form == op4_form::Identity && m.rows == m.cols;
+  const bool pseudo = m.form == op4_form::PseudoIdentity;
+  if (opt.expand_identity && (identity || pseudo) && m.nonzeros() == 0) {
+    auto ones = [&](auto& a) {
+      using T = typename std::decay_t<decltype(a)>::Scalar;
+      std::vector<Eigen::Triplet<T>> t;
+      for (Eigen::Index k = 0; k < std::min(m.rows, m.cols); ++k) t.emplace_back(k, k, T(1));
+      a.resize(m.rows, m.cols);
+      a.setFromTriplets(t.begin(), t.end());
+    };
+    if (m.is_complex()) ones(m.complex);
+    else ones(m.real);
+  }
+  if (opt.expand_diagonal && m.form == op4_form::Diagonal && m.cols == 1 && m.rows > 1) {
+    auto diag = [&](auto& a) {
+      using T = typename std::decay_t<decltype(a)>::Scalar;
+      std::vector<Eigen::Triplet<T>> t;
+      for (typename std::decay_t<decltype(a)>::InnerIterator it(a, 0); it; ++it)
+        t.emplace_back(it.row(), it.row(), it.value());
+      a.resize(m.rows, m.rows);
+      a.setFromTriplets(t.begin(), t.end());
+    };
+    if (m.is_complex()) diag(m.complex);
+    else diag(m.real);
+    m.cols = m.rows;
   }
 }
 

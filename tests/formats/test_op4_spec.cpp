@@ -277,3 +277,43 @@ TEST_CASE("binary 64-bit NASTRAN: 8-byte words, 48-byte header, every number 8 b
   o.word_bytes = 8;
   CHECK(write_op4_string({m}, o) == f);
 }
+
+TEST_CASE("forms 3 (diagonal as one column), 9 (pseudo-identity without terms), 8-character name abutting the format",
+          "[op4]") {
+  const std::string f =
+      // Diagonal 3x3 kept as the column of its diagonal terms (NCOL 1).
+      "       1       3       3       2D       1P,3E23.16\n"
+      "       1       1       3\n"
+      " 2.0000000000000000E+00 0.0000000000000000E+00-5.0000000000000000E-01\n"
+      "       2       1       1\n"
+      " 1.0000000000000000E+00\n"
+      // Pseudo-identity 2x3 written without terms.
+      "       3       2       9       1P       1P,5E16.9\n"
+      "       4       1       1\n"
+      " 1.000000000E+00\n"
+      // Name of 8 characters touching the format; values wider than 5E16.9 declares.
+      "       1       1       6       2ABCDEFGH1P,5E16.9\n"
+      "       1       1       1\n"
+      " 1.00000000000000000E+01\n"
+      "       2       1       1\n"
+      " 2.00000000000000000E+00\n"
+      " \n";
+  auto ms = read_text(f);
+  REQUIRE(ms.size() == 3);
+  Eigen::MatrixXd d = Eigen::MatrixXd::Zero(3, 3);
+  d(0, 0) = 2.0;
+  d(2, 2) = -0.5;
+  CHECK(ms[0].cols == 3);
+  CHECK(ms[0].dense_real() == d);
+  Eigen::MatrixXd p = Eigen::MatrixXd::Zero(2, 3);
+  p(0, 0) = p(1, 1) = 1.0;
+  CHECK(ms[1].dense_real() == p);
+  CHECK(ms[2].name == "ABCDEFGH");
+  CHECK(ms[2].real.coeff(0, 0) == 10.0);
+  // Expansion can be switched off: the matrix as stored.
+  Op4ReadOptions raw;
+  raw.expand_diagonal = raw.expand_identity = false;
+  auto r = read_op4_buffer(f.data(), f.size(), "f.op4", raw);
+  CHECK(r[0].cols == 1);
+  CHECK(r[1].nonzeros() == 0);
+}

@@ -133,7 +133,9 @@ std::vector<double*> slots(BulkModel& m, const ValueKey& k, std::string& type) {
   }
   if (auto* p = find_pid(m.pelases, k.id)) {
     type = "PELAS";
-    if (n == "K") return {&p->k};
+    // NASTRAN's DVPREL1 names the first PELAS stiffness "K1" (the card's PID1/K1
+    // pair); "K" is accepted as the field's plain name.
+    if (n == "K" || n == "K1") return {&p->k};
     no_field(type, k.id, n);
   }
   if (auto* p = find_pid(m.pmasses, k.id)) {

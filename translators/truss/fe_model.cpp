@@ -32,6 +32,9 @@ constexpr int kMidMassBase = 4000;       // CONM2 mid-span mass: 4000 + member
 constexpr int kSpringMassBase = 5000;    // CONM2 surge chain: 5000 + 100 * point + k
 constexpr int kRigidBase = 6000;         // RBE2: 6000 + ball
 constexpr int kSpringBase = 7000;        // CELAS1: 7000 + 100 * point + k
+// PROD ids start above the PELAS ids (11-15): NASTRAN property ids share one
+// number space, so a PROD 11 next to a PELAS 11 is a duplicate.
+constexpr int kRodPropBase = 100;        // PROD rod form: 101, 102, ...
 
 // Property ids.
 constexpr int kPbarTube = 1, kPbarEndcap = 2, kPbarBnut = 3, kPbarLongBnut = 4;
@@ -169,7 +172,7 @@ FeModel build_fe_model(const TrussModel& t, ModelForm form) {
     for (const auto& m : t.members) {
       auto key = std::make_pair(std::llround(t.length(m) * 1e6), m.long_bnut);
       if (!pid_of.count(key)) {
-        const int pid = static_cast<int>(pid_of.size()) + 1;
+        const int pid = kRodPropBase + static_cast<int>(pid_of.size()) + 1;
         pid_of[key] = pid;
         fe.rod_props.push_back({pid, equivalent_axial_area(t, m), 0.0, 0.0, m.long_bnut ? "long_bnut_strut" : "strut"});
         grads.push_back(equivalent_area_gradient(t, m));
