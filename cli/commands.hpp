@@ -27,5 +27,8 @@ int cmd_op4(const Args& args);
 int cmd_dmig(const Args& args);
 int cmd_modes(const Args& args);
 int cmd_assemble(const Args& args);
+int cmd_estimate(const Args& args);
+int cmd_translate(const Args& args);
+int cmd_update_deck(const Args& args);
 
 }  // namespace ssid::cli

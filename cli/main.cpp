@@ -20,6 +20,9 @@ const std::vector<Command>& commands() {
       {"truss", "generate MPI-like truss decks, rod or beam, in the report's configurations", cmd_truss},
       {"op4", "OP4 matrix files: list, dump as JSON, convert (encoding, storage, precision, MatrixMarket)", cmd_op4},
       {"dmig", "DMIG matrices of a deck or punch file: list, dump as JSON", cmd_dmig},
+      {"estimate", "Bayesian model updating: deck + measured modes in, parameters with uncertainty out", cmd_estimate},
+      {"translate", "gather operators, priors and measured modes into a problem file", cmd_translate},
+      {"update-deck", "write estimated parameters into a deck (DESVAR and designed fields)", cmd_update_deck},
   };
   return list;
 }

@@ -31,6 +31,7 @@ ModalSolution OperatorModel::solve(const Eigen::VectorXd& r) {
   auto [lambda, phi] = m_eigensolve(m_ops.K, m_ops.M, m_nmodes);
   m_lambda = std::move(lambda);
   m_phi = std::move(phi);
+  m_nelson.reset();
   ModalSolution s;
   s.eigenvalues = m_lambda;
   s.sensor_shapes = m_sensors * m_phi;
@@ -49,7 +50,8 @@ ModeSensitivity OperatorModel::sensitivity(int i, bool shapes) {
   if (!shapes) return s;
   Eigen::MatrixXd dphi;
   if (m_shape_derivative == ShapeDerivative::Nelson) {
-    dphi = nelson_derivatives(m_ops.K, m_ops.M, m_lambda(i), phi, m_ops.dK, m_ops.dM);
+    if (!m_nelson) m_nelson = std::make_shared<NelsonSolver>(m_ops.K, m_ops.M);
+    dphi = m_nelson->derivatives(m_lambda(i), phi, m_ops.dK, m_ops.dM);
   } else {
     dphi.resize(phi.size(), static_cast<Eigen::Index>(p));
     for (std::size_t j = 0; j < p; ++j)

@@ -12,6 +12,7 @@
 #include <Eigen/Core>
 #include <Eigen/SparseCore>
 #include <functional>
+#include <memory>
 #include <utility>
 #include <vector>
 
@@ -50,6 +51,8 @@ struct Operators {
 
 enum class ShapeDerivative { Nelson, ModalSum };
 
+class NelsonSolver;  // sensitivity.hpp
+
 class OperatorModel : public ModalModel {
  public:
   using Assemble = std::function<Operators(const Eigen::VectorXd& r)>;
@@ -66,6 +69,7 @@ class OperatorModel : public ModalModel {
   ModeSensitivity sensitivity(int i, bool shapes) override;
 
   const Operators& operators() const { return m_ops; }
+  ShapeDerivative shape_derivative() const { return m_shape_derivative; }
   const Eigen::MatrixXd& modes() const { return m_phi; }
 
  private:
@@ -78,6 +82,7 @@ class OperatorModel : public ModalModel {
   Operators m_ops;
   Eigen::VectorXd m_lambda;
   Eigen::MatrixXd m_phi;
+  std::shared_ptr<NelsonSolver> m_nelson;  ///< analysis of K − λM shared by the modes of one solve
 };
 
 /// First-order Taylor model of imported operators about r0:

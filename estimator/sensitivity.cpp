@@ -1,5 +1,6 @@
 #include "estimator/sensitivity.hpp"
 
+#include <Eigen/SparseCholesky>
 #include <Eigen/SparseLU>
 #include <stdexcept>
 
@@ -39,6 +40,81 @@ Eigen::MatrixXd nelson_derivatives(const SparseMatrix& K, const SparseMatrix& M,
     if (lu.info() != Eigen::Success) throw std::runtime_error("Nelson's method: solve failed");
     const double c = -Mphi.dot(v) - 0.5 * phi.dot(dM[p] * phi);
     out.col(static_cast<int>(p)) = v + c * phi;
+  }
+  return out;
+}
+
+namespace {
+
+/// The right-hand sides of Nelson's equations for every parameter, with the pinned entry zeroed.
+Eigen::MatrixXd nelson_rhs(double lambda, const Eigen::Ref<const Eigen::VectorXd>& phi, const Eigen::VectorXd& Mphi,
+                           const std::vector<SparseMatrix>& dK, const std::vector<SparseMatrix>& dM, int k) {
+  Eigen::MatrixXd rhs(phi.size(), static_cast<Eigen::Index>(dK.size()));
+  for (std::size_t p = 0; p < dK.size(); ++p) {
+    const double dl = eigenvalue_derivative(dK[p], dM[p], lambda, phi);
+    Eigen::VectorXd r = -(dK[p] * phi - lambda * (dM[p] * phi) - dl * Mphi);
+    r(k) = 0.0;
+    rhs.col(static_cast<Eigen::Index>(p)) = r;
+  }
+  return rhs;
+}
+
+}  // namespace
+
+struct NelsonSolver::State {
+  SparseMatrix Z;  ///< zero diagonal: puts every diagonal entry in the pattern
+  SparseMatrix A;  ///< K − λM on the union pattern of K, M and the diagonal
+  Eigen::SimplicialLDLT<SparseMatrix, Eigen::Lower, Eigen::AMDOrdering<int>> ldlt;
+  bool analysed = false;
+};
+
+NelsonSolver::NelsonSolver(const SparseMatrix& K, const SparseMatrix& M) : m_K(K), m_M(M), m_state(std::make_unique<State>()) {
+  if (K.rows() != K.cols() || M.rows() != K.rows() || M.cols() != K.cols())
+    throw std::invalid_argument("NelsonSolver: K and M must be square and of the same size");
+  SparseMatrix Z(K.rows(), K.cols());
+  std::vector<Eigen::Triplet<double>> diag;
+  for (Eigen::Index i = 0; i < K.rows(); ++i) diag.emplace_back(static_cast<int>(i), static_cast<int>(i), 0.0);
+  Z.setFromTriplets(diag.begin(), diag.end());
+  m_state->Z = std::move(Z);
+}
+
+NelsonSolver::~NelsonSolver() = default;
+
+Eigen::MatrixXd NelsonSolver::derivatives(double lambda, const Eigen::Ref<const Eigen::VectorXd>& phi,
+                                          const std::vector<SparseMatrix>& dK, const std::vector<SparseMatrix>& dM) {
+  SparseMatrix& A = m_state->A;
+  int k = 0;
+  phi.cwiseAbs().maxCoeff(&k);
+  // K − λM + 0·I: a sparse sum keeps the union pattern (explicit zeros too), so
+  // the pattern is the same for every mode. Then row and column k are pinned.
+  A = m_K - lambda * m_M + m_state->Z;
+  for (int c = 0; c < A.outerSize(); ++c)
+    for (SparseMatrix::InnerIterator it(A, c); it; ++it)
+      if (it.row() == k || it.col() == k) it.valueRef() = (it.row() == it.col()) ? 1.0 : 0.0;
+  if (!m_state->analysed) {
+    m_state->ldlt.analyzePattern(A);
+    m_state->analysed = true;
+  }
+  m_state->ldlt.factorize(A);
+  const Eigen::VectorXd Mphi = m_M * phi;
+  const Eigen::MatrixXd rhs = nelson_rhs(lambda, phi, Mphi, dK, dM, k);
+  Eigen::MatrixXd v;
+  bool good = m_state->ldlt.info() == Eigen::Success;
+  if (good) {
+    v = m_state->ldlt.solve(rhs);
+    const double scale = std::max(rhs.norm(), 1e-300);
+    good = m_state->ldlt.info() == Eigen::Success && v.allFinite() &&
+           (A.selfadjointView<Eigen::Lower>() * v - rhs).norm() <= 1e-8 * scale + 1e-300;
+  }
+  if (!good) {
+    ++m_fallbacks;
+    return nelson_derivatives(m_K, m_M, lambda, phi, dK, dM);
+  }
+  Eigen::MatrixXd out(phi.size(), static_cast<Eigen::Index>(dK.size()));
+  for (std::size_t p = 0; p < dK.size(); ++p) {
+    const auto j = static_cast<Eigen::Index>(p);
+    const double c = -Mphi.dot(v.col(j)) - 0.5 * phi.dot(dM[p] * phi);
+    out.col(j) = v.col(j) + c * phi;
   }
   return out;
 }

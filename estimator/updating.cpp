@@ -36,7 +36,8 @@ void fill_pair_stats(const std::vector<MeasuredMode>& test, const ModalSolution&
 /// new partner no longer matches the test shape, is dropped with a note.
 std::vector<UpdatePair> track_pairs(const std::vector<UpdatePair>& previous, const Eigen::MatrixXd& previous_shapes,
                                   const std::vector<MeasuredMode>& test, const ModalSolution& fem,
-                                  const UpdateOptions& options, int cycle, std::vector<std::string>& notes) {
+                                  const UpdateOptions& options, int cycle, std::vector<std::string>& notes,
+                                  std::vector<DroppedMode>& dropped) {
   const Eigen::MatrixXd tmac = mac_matrix(previous_shapes, fem.tracking_shapes);
   std::vector<UpdatePair> out;
   std::vector<bool> taken(static_cast<std::size_t>(fem.eigenvalues.size()), false);
@@ -55,6 +56,7 @@ std::vector<UpdatePair> track_pairs(const std::vector<UpdatePair>& previous, con
     if (!why.empty()) {
       notes.push_back("cycle " + std::to_string(cycle) + ": test mode " + std::to_string(t.id) +
                       " left the update: " + why);
+      dropped.push_back({p.config, p.test, cycle, why});
       continue;
     }
     taken[static_cast<std::size_t>(best)] = true;
@@ -221,6 +223,7 @@ UpdateResult update(const std::vector<Configuration>& configurations, const Para
   for (int cycle = 0;; ++cycle) {
     const Eigen::VectorXd r = prior.mean + d.cwiseProduct(theta);
     std::vector<Residuals> parts;
+    std::vector<ModalSolution> solutions;
     UpdateCycle c;
     c.cycle = cycle;
     c.r = r;
@@ -243,16 +246,18 @@ UpdateResult update(const std::vector<Configuration>& configurations, const Para
           previous.push_back(pairs[k][q]);
           previous.back().fem = static_cast<int>(q);
         }
-        pairs[k] = track_pairs(previous, prev, conf.test, fem, options, cycle, result.notes);
+        pairs[k] = track_pairs(previous, prev, conf.test, fem, options, cycle, result.notes, result.dropped);
         if (pairs[k].empty()) throw std::runtime_error("update: every test mode" + label(k) + " lost its analysis partner");
       }
       for (auto& q : pairs[k]) q.config = static_cast<int>(k);
       tracking[k] = fem.tracking_shapes;
       parts.push_back(residuals(*conf.model, conf.test, fem, pairs[k], options));
+      solutions.push_back(fem);
       c.pairs.insert(c.pairs.end(), pairs[k].begin(), pairs[k].end());
     }
     Residuals res;
     Eigen::Index m = 0;
+    result.final_solutions = std::move(solutions);
     for (const auto& part : parts) m += part.z.size();
     res.z.resize(m);
     res.u.resize(m);

@@ -79,6 +79,14 @@ struct UpdateCycle {
   bool clipped = false;
 };
 
+/// A test mode that left the update because its partner was lost.
+struct DroppedMode {
+  int config = 0;
+  int test = -1;   ///< index into the configuration's measured modes
+  int cycle = 0;
+  std::string why;
+};
+
 struct UpdateResult {
   Eigen::VectorXd r;              ///< posterior mean
   Eigen::MatrixXd posterior_cov;  ///< Eq. (8)
@@ -89,6 +97,8 @@ struct UpdateResult {
   std::vector<UpdateCycle> history;  ///< cycle 0 is the initial model; the last one the final model
   std::vector<std::string> notes;    ///< modes that lost their partner, bounds hit, …
   int measurements = 0;              ///< length of z in the final cycle
+  std::vector<DroppedMode> dropped;  ///< test modes that lost their partner (also in notes)
+  std::vector<ModalSolution> final_solutions;  ///< per configuration, at r
 };
 
 /// Pairs measured modes with analysis modes by MAC and frequency: greedily

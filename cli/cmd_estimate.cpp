@@ -1,0 +1,136 @@
+/// \file cmd_estimate.cpp
+/// `ssid estimate` (SSID analogue), `ssid translate` (NASSID analogue: the
+/// problem file) and `ssid update-deck` (SD2NAS analogue). See docs/estimation.md.
+#include <fstream>
+#include <iostream>
+#include <sstream>
+
+#include "cli/cli_util.hpp"
+#include "estimator/deck_study.hpp"
+#include "formats/deck_writer.hpp"
+#include "formats/problem_file.hpp"
+#include "translators/assembly/deck_update.hpp"
+
+namespace ssid::cli {
+
+namespace {
+
+/// True when the file starts with the problem file's magic.
+bool is_problem_file(const std::string& path) {
+  std::ifstream in(path, std::ios::binary);
+  char magic[8] = {};
+  in.read(magic, 8);
+  return in.gcount() == 8 && std::string(magic, 8) == "SSIDPROB";
+}
+
+estimator::EstimationProblem load_problem(const po::variables_map& vm) {
+  const std::string deck = vm["deck"].as<std::string>();
+  if (is_problem_file(deck)) {
+    if (vm.count("study"))
+      throw std::invalid_argument("--study applies to decks; " + deck + " is a problem file that holds its own settings");
+    return estimator::problem_from_file(formats::read_problem(deck));
+  }
+  const std::string measured = vm.count("measured") ? vm["measured"].as<std::string>() : "";
+  const estimator::Study study = vm.count("study") ? estimator::read_study(vm["study"].as<std::string>()) : estimator::Study{};
+  if (measured.empty() && study.configurations.empty())
+    throw std::invalid_argument("no measured modes: give MEASURED.unv after the deck (or configurations in --study)");
+  return estimator::prepare_problem(study, deck, measured);
+}
+
+}  // namespace
+
+int cmd_estimate(const Args& args) {
+  po::options_description desc("ssid estimate options");
+  desc.add_options()("deck", po::value<std::string>()->required(),
+                     "NASTRAN deck with DESVAR parameters (or a problem file from ssid translate)")(
+      "measured", po::value<std::string>(), "measured modes: universal file with dataset 55 (+ nodes 15/2411)")(
+      "study", po::value<std::string>(), "study file (JSON, docs/estimation.md): priors, weights, pairing, configurations")(
+      "json", po::value<std::string>(), "write the result as JSON to this file ('-' for stdout)")(
+      "problem", po::value<std::string>(), "also write the problem file (operators at the prior mean) to this file")(
+      "quiet,q", "no progress lines on stderr");
+  po::positional_options_description pos;
+  pos.add("deck", 1).add("measured", 1);
+  po::variables_map vm;
+  int rc = 0;
+  if (!parse_options(args, "ssid estimate DECK MEASURED.unv [--study FILE] [--json FILE] [--problem FILE]", desc, pos,
+                     vm, rc))
+    return rc;
+  estimator::EstimationProblem problem = load_problem(vm);
+  if (vm.count("problem")) formats::write_problem(vm["problem"].as<std::string>(), estimator::to_problem_file(problem));
+  const bool quiet = vm.count("quiet") != 0;
+  estimator::Progress progress;
+  if (!quiet)
+    progress = [](const std::string& message, double) {
+      if (message.find(": J = ") != std::string::npos || message.rfind("recursive", 0) == 0)
+        std::cerr << "ssid estimate: " << message << "\n";
+    };
+  const estimator::EstimationResult result = estimator::run_problem(problem, progress);
+  const nlohmann::json j = estimator::result_json(problem, result);
+  const std::string json_path = vm.count("json") ? vm["json"].as<std::string>() : "";
+  if (json_path == "-") {
+    write_json("-", j);
+  } else {
+    std::cout << estimator::format_summary(problem, result);
+    if (!json_path.empty()) write_json(json_path, j);
+  }
+  return 0;
+}
+
+int cmd_translate(const Args& args) {
+  po::options_description desc("ssid translate options");
+  desc.add_options()("deck", po::value<std::string>()->required(), "NASTRAN deck with DESVAR parameters")(
+      "measured", po::value<std::string>(), "measured modes: universal file with dataset 55")(
+      "study", po::value<std::string>(), "study file (JSON): priors, weights, pairing, configurations")(
+      "output,o", po::value<std::string>()->required(), "problem file to write");
+  po::positional_options_description pos;
+  pos.add("deck", 1).add("measured", 1);
+  po::variables_map vm;
+  int rc = 0;
+  if (!parse_options(args, "ssid translate DECK MEASURED.unv [--study FILE] -o PROBLEM", desc, pos, vm, rc)) return rc;
+  if (is_problem_file(vm["deck"].as<std::string>()))
+    throw std::invalid_argument(vm["deck"].as<std::string>() + " is a problem file already");
+  const estimator::EstimationProblem problem = load_problem(vm);
+  const formats::ProblemFile file = estimator::to_problem_file(problem);
+  const std::string out = vm["output"].as<std::string>();
+  formats::write_problem(out, file);
+  std::size_t modes = 0, dofs = 0;
+  for (const auto& c : file.configurations) {
+    modes += c.measured.size();
+    dofs += c.dofs.size();
+  }
+  std::cout << "wrote " << out << " (problem file version " << formats::ProblemFile::version << "): "
+            << file.parameters.size() << " parameter(s), " << file.configurations.size() << " configuration(s), "
+            << dofs << " analysis DOFs, " << modes << " measured mode(s)\n";
+  for (const auto& c : problem.configurations)
+    for (const auto& n : c.notes) std::cerr << "note: " << n << "\n";
+  return 0;
+}
+
+int cmd_update_deck(const Args& args) {
+  po::options_description desc("ssid update-deck options");
+  desc.add_options()("deck", po::value<std::string>()->required(), "NASTRAN deck with DESVAR parameters")(
+      "result", po::value<std::string>()->required(),
+      "JSON with \"parameters\": [{\"name\": DESVAR label, \"estimate\": value}] (ssid estimate --json)")(
+      "output,o", po::value<std::string>()->required(), "updated deck to write (never an input file)");
+  po::positional_options_description pos;
+  pos.add("deck", 1).add("result", 1);
+  po::variables_map vm;
+  int rc = 0;
+  if (!parse_options(args, "ssid update-deck DECK RESULT.json -o NEW.bdf", desc, pos, vm, rc)) return rc;
+  const std::string result_path = vm["result"].as<std::string>();
+  std::ifstream in(result_path, std::ios::binary);
+  if (!in) throw std::invalid_argument(result_path + ": cannot open");
+  std::stringstream ss;
+  ss << in.rdbuf();
+  const auto values = translators::parameter_values_from_json(ss.str(), result_path);
+  formats::Deck deck = formats::read_deck(vm["deck"].as<std::string>());
+  const translators::DeckUpdateReport rep = translators::update_deck(deck, values);
+  const auto written = formats::write_deck(deck, vm["output"].as<std::string>());
+  for (const auto& p : rep.parameters) std::cout << "DESVAR " << p << "\n";
+  std::cout << rep.fields.size() << " designed field(s) changed on " << rep.cards_changed << " card(s); wrote";
+  for (const auto& w : written) std::cout << " " << w;
+  std::cout << "\n";
+  return 0;
+}
+
+}  // namespace ssid::cli

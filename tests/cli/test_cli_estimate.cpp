@@ -1,0 +1,179 @@
+// ssid estimate / translate / update-deck on the generator's rod deck.
+#include <catch2/catch.hpp>
+
+#include <nlohmann/json.hpp>
+#include <set>
+#include <unistd.h>
+
+#include "../estimator/estimate_test_data.hpp"
+#include "cli_run.hpp"
+#include "formats/problem_file.hpp"
+
+namespace fs = std::filesystem;
+using json = nlohmann::json;
+
+namespace {
+
+fs::path scratch() {
+  fs::path p = fs::temp_directory_path() / ("ssid_cli_estimate_" + std::to_string(::getpid()));
+  fs::create_directories(p);
+  return p;
+}
+
+/// Splits a deck into blocks: a line that starts a card (or a comment / control
+/// line) with its continuation lines ('+', '*', blank first field).
+std::vector<std::string> blocks(const std::string& text) {
+  std::vector<std::string> out;
+  std::size_t at = 0;
+  while (at < text.size()) {
+    std::size_t nl = text.find('\n', at);
+    if (nl == std::string::npos) nl = text.size();
+    const std::string line = text.substr(at, nl - at + 1);
+    const bool continuation = !line.empty() && (line[0] == '+' || line[0] == '*' || line[0] == ' ') && !out.empty();
+    if (continuation) out.back() += line;
+    else out.push_back(line);
+    at = nl + 1;
+  }
+  return out;
+}
+
+}  // namespace
+
+TEST_CASE("ssid estimate, update-deck, translate: measured modes in, updated deck out", "[cli][estimate]") {
+  const fs::path dir = scratch();
+  const fs::path nominal = dir / "nominal.bdf", truth = dir / "truth.bdf", whatif = dir / "whatif.json",
+                 unv = dir / "test.unv", study = dir / "study.json", result = dir / "result.json",
+                 updated = dir / "updated.bdf", prob = dir / "p.ssidprob", prob2 = dir / "p2.ssidprob";
+  for (const auto& p : {nominal, truth, updated}) fs::remove(p);
+  auto g = run_ssid("truss mpi --model rod --config bare -o " + nominal.string());
+  INFO(g.err);
+  REQUIRE(g.code == 0);
+
+  // A truth deck from a hand-written what-if file, its modes at 40 balls.
+  std::ofstream(whatif) << R"({"parameters": [{"name": "STRUTA", "estimate": 2.12e-4},
+                                               {"name": "JOINTM", "estimate": 0.96}]})";
+  auto w = run_ssid("update-deck " + nominal.string() + " " + whatif.string() + " -o " + truth.string());
+  INFO(w.err);
+  REQUIRE(w.code == 0);
+  CHECK_THAT(w.out, Catch::Contains("STRUTA (DESVAR 1)"));
+  {
+    const auto tm = estimate_test::load(truth);
+    estimate_test::Synthetic syn;
+    syn.sensors = estimate_test::ball_sensors();
+    syn.modes = 16;
+    estimate_test::write_measured(tm, tm.fe->initial_parameters(), syn, unv);
+  }
+  std::ofstream(study) << R"({"parameters": ["STRUTA", "BNUTA", "JOINTM", "KSUSP"],
+      "measurement": {"frequency_std_pct": 1e-6, "shape_std": 1e-8}, "convergence": {"tolerance": 1e-9}})";
+
+  auto e = run_ssid("estimate " + nominal.string() + " " + unv.string() + " --study " + study.string() + " --json " +
+                    result.string() + " --problem " + prob.string());
+  INFO(e.err);
+  REQUIRE(e.code == 0);
+  CHECK_THAT(e.err, Catch::Contains("ssid estimate: cycle 0: J = ") && Catch::Contains("cycle 1: J = "));
+  CHECK_THAT(e.out, Catch::Contains("converged after") && Catch::Contains("STRUTA") &&
+                        Catch::Contains("identifiability: rank 4 of 4"));
+  const json j = json::parse(cli_slurp(result));
+  CHECK(j["converged"] == true);
+  REQUIRE(j["iterations"].is_array());
+  CHECK(j["iterations"].size() >= 2);
+  REQUIRE(j["parameters"].size() == 4);
+  for (const auto& p : j["parameters"])
+    for (const char* k : {"name", "initial", "estimate", "prior_std", "posterior_std"}) CHECK(p.contains(k));
+  CHECK(j["parameters"][0]["name"] == "STRUTA");
+  CHECK(j["parameters"][0]["initial"].get<double>() == 2.015e-4);
+  CHECK(j["parameters"][0]["estimate"].get<double>() == Approx(2.12e-4).epsilon(1e-9));
+  CHECK(j["parameters"][2]["estimate"].get<double>() == Approx(0.96).epsilon(1e-9));
+  CHECK(j["parameters"][1]["estimate"].get<double>() == Approx(4.335e-5).epsilon(1e-7));  // BNUTA untouched
+  REQUIRE(j["pairs"].size() == 16);
+  for (const auto& p : j["pairs"])
+    for (const char* k : {"fe_mode", "test_mode", "fe_hz", "test_hz", "error_pct", "mac"}) CHECK(p.contains(k));
+  CHECK(j["correlation"].size() == 16);
+  CHECK(j["unpaired_test"].empty());
+  CHECK(j["unpaired_fe"].is_array());
+  CHECK(j["identifiability"]["rank"] == 4);
+
+  // update-deck: the written deck, solved, gives the estimator's final frequencies.
+  auto u = run_ssid("update-deck " + nominal.string() + " " + result.string() + " -o " + updated.string());
+  INFO(u.err);
+  REQUIRE(u.code == 0);
+  {
+    const auto m = estimate_test::load(updated);
+    const auto ops = m.fe->operators(m.fe->initial_parameters(), false);
+    ssid::estimator::EigenOptions eo;
+    eo.nd = 20;
+    const auto modes = ssid::estimator::solve_modes(ops.K, ops.M, eo);
+    REQUIRE(modes.ok());
+    for (const auto& p : j["pairs"]) {
+      const double f = std::sqrt(modes.eigenvalues(p["fe_mode"].get<int>() - 1)) / (2 * M_PI);
+      CHECK(std::abs(f / p["fe_hz"].get<double>() - 1) < 1e-9);
+    }
+  }
+  // ... and every card block but the changed DESVARs and the cards they design is byte-identical.
+  {
+    const auto a = blocks(cli_slurp(nominal)), b = blocks(cli_slurp(updated));
+    REQUIRE(a.size() == b.size());
+    std::set<std::string> kinds;
+    std::size_t differ = 0;
+    for (std::size_t k = 0; k < a.size(); ++k) {
+      if (a[k] == b[k]) continue;
+      ++differ;
+      kinds.insert(a[k].substr(0, a[k].find_first_of(" *")));
+    }
+    // STRUTA and JOINTM moved (PROD A, CONM2 M); BNUTA and KSUSP moved by round-off at most (PROD A, PELAS K).
+    for (const auto& k : kinds) CHECK(std::set<std::string>{"DESVAR", "PROD", "CONM2", "PELAS"}.count(k) == 1);
+    CHECK(kinds.count("DESVAR"));
+    CHECK(kinds.count("PROD"));
+    CHECK(kinds.count("CONM2"));
+    CHECK(differ > 40);
+  }
+
+  // translate: the problem file; estimating from it (Taylor model of the operators,
+  // exact here: K and M are linear in these parameters) gives the same answer.
+  auto t = run_ssid("translate " + nominal.string() + " " + unv.string() + " --study " + study.string() + " -o " +
+                    prob2.string());
+  INFO(t.err);
+  REQUIRE(t.code == 0);
+  CHECK_THAT(t.out, Catch::Contains("4 parameter(s), 1 configuration(s)"));
+  const auto p1 = ssid::formats::read_problem(prob.string()), p2 = ssid::formats::read_problem(prob2.string());
+  CHECK(p1.configurations[0].K.isApprox(p2.configurations[0].K, 0.0));
+  auto e2 = run_ssid("estimate " + prob2.string() + " --json -");
+  INFO(e2.err);
+  REQUIRE(e2.code == 0);
+  const json j2 = json::parse(e2.out);
+  CHECK(j2["operators"] == "taylor");
+  for (std::size_t k = 0; k < 4; ++k)
+    CHECK(j2["parameters"][k]["estimate"].get<double>() ==
+          Approx(j["parameters"][k]["estimate"].get<double>()).epsilon(1e-9));
+}
+
+TEST_CASE("ssid estimate and update-deck: usage and input errors", "[cli][estimate]") {
+  const fs::path dir = scratch();
+  const fs::path nominal = dir / "errors.bdf";
+  fs::remove(nominal);
+  REQUIRE(run_ssid("truss mpi --model rod -o " + nominal.string()).code == 0);
+  CHECK(run_ssid("estimate").code == 2);
+  CHECK(run_ssid("estimate --help").code == 0);
+  std::ofstream(dir / "junk.unv") << "junk\n";
+  auto a = run_ssid("estimate " + nominal.string() + " " + (dir / "junk.unv").string());
+  CHECK(a.code == 1);
+  CHECK_THAT(a.err, Catch::Contains("junk.unv"));
+  auto b = run_ssid("estimate " + nominal.string());
+  CHECK(b.code == 1);
+  CHECK_THAT(b.err, Catch::Contains("no measured modes"));
+  std::ofstream(dir / "bad_study.json") << R"({"pairing": {"mac": 0.9}})";
+  auto c = run_ssid("estimate " + nominal.string() + " " + (dir / "junk.unv").string() + " --study " +
+                    (dir / "bad_study.json").string());
+  CHECK(c.code == 1);
+  CHECK_THAT(c.err, Catch::Contains("bad_study.json: pairing.mac: unknown key"));
+  std::ofstream(dir / "bad_result.json") << R"({"parameters": [{"name": "NOPE", "estimate": 1}]})";
+  auto d = run_ssid("update-deck " + nominal.string() + " " + (dir / "bad_result.json").string() + " -o " +
+                    (dir / "x.bdf").string());
+  CHECK(d.code == 1);
+  CHECK_THAT(d.err, Catch::Contains("'NOPE' is not a DESVAR label") && Catch::Contains("STRUTA"));
+  auto f = run_ssid("update-deck " + nominal.string() + " " + (dir / "bad_result.json").string() + " -o " +
+                    nominal.string());
+  CHECK(f.code == 1);
+  CHECK(run_ssid("update-deck " + nominal.string()).code == 2);
+  CHECK(run_ssid("translate --help").code == 0);
+}
