@@ -23,5 +23,6 @@ int cmd_deck(const Args& args);
 int cmd_uff(const Args& args);
 int cmd_correlate(const Args& args);
 int cmd_truss(const Args& args);
+int cmd_diagnose(const Args& args);
 
 }  // namespace ssid::cli

@@ -16,6 +16,7 @@ const std::vector<Command>& commands() {
       {"uff", "universal files: list datasets, nodes, modes, functions", cmd_uff},
       {"correlate", "pair analysis and test modes: MAC table, unpaired modes", cmd_correlate},
       {"truss", "generate MPI-like truss decks, rod or beam, in the report's configurations", cmd_truss},
+      {"diagnose", "find what the model form gets wrong: test extensions, name the cause, measure the gain", cmd_diagnose},
   };
   return list;
 }
