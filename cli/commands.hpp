@@ -30,5 +30,6 @@ int cmd_assemble(const Args& args);
 int cmd_estimate(const Args& args);
 int cmd_translate(const Args& args);
 int cmd_update_deck(const Args& args);
+int cmd_diagnose(const Args& args);
 
 }  // namespace ssid::cli

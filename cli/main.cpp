@@ -23,6 +23,7 @@ const std::vector<Command>& commands() {
       {"estimate", "Bayesian model updating: deck + measured modes in, parameters with uncertainty out", cmd_estimate},
       {"translate", "gather operators, priors and measured modes into a problem file", cmd_translate},
       {"update-deck", "write estimated parameters into a deck (DESVAR and designed fields)", cmd_update_deck},
+      {"diagnose", "find what the model form gets wrong: test extensions, name the cause, measure the gain", cmd_diagnose},
   };
   return list;
 }
