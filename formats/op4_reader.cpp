@@ -788,7 +788,7 @@ private:
 };
 
 /// Finds marker size, byte order and word size from the first record, which must
-/// be a matrix header of 24 (4-byte words), 40 or 48 bytes (8-byte words).
+/// be a matrix header of 24-32 bytes (4-byte words) or 40-48 bytes (8-byte words).
 bool detect_binary(const unsigned char* d, std::size_t size, Op4FileInfo& info) {
   for (int mb : {4, 8})
     for (Endian e : {Endian::Little, Endian::Big}) {
@@ -802,12 +802,14 @@ bool detect_binary(const unsigned char* d, std::size_t size, Op4FileInfo& info) 
         return v;
       };
       const std::uint64_t len = get(0);
-      if (len != 24 && len != 40 && len != 48) continue;
+      // Four words and a name of 8 to 16 characters (longer names than NASTRAN's 8 included).
+      const bool w4 = len >= 24 && len <= 32, w8 = len >= 40 && len <= 48;
+      if (!w4 && !w8) continue;
       if (size < 2 * mb + len || get(mb + len) != len) continue;
       info.encoding = Op4Encoding::Binary;
       info.marker_bytes = mb;
       info.endian = e;
-      info.word_bytes = len == 24 ? 4 : 8;
+      info.word_bytes = w4 ? 4 : 8;
       return true;
     }
   return false;
@@ -880,7 +882,7 @@ std::vector<Op4Matrix> read_op4_buffer(const char* data, std::size_t size, const
     }
     throw ParseError(SourceLocation{name, 0, {}},
                      "byte offset 0: not an OP4 file: neither ASCII text nor a Fortran record holding a matrix header "
-                     "(24, 40 or 48 bytes) with 4- or 8-byte markers; first bytes " +
+                     "(24-32 or 40-48 bytes) with 4- or 8-byte markers; first bytes " +
                          first);
   }
   if (info) *info = fi;

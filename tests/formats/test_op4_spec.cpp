@@ -317,3 +317,20 @@ TEST_CASE("forms 3 (diagonal as one column), 9 (pseudo-identity without terms), 
   CHECK(r[0].cols == 1);
   CHECK(r[1].nonzeros() == 0);
 }
+
+TEST_CASE("binary header with a name longer than 8 characters (12 bytes), big-endian, 8-byte markers", "[op4]") {
+  Bytes h;
+  h.big = true;
+  h.word = 4;
+  h.i(1).i(2).i(2).i(2).text("STIFFNESS_AB");  // 28-byte header record
+  std::string f = record(h, 8);
+  f += record(words(true, 4).i(1).i(2).i(2).f64(-1.25), 8);
+  f += record(words(true, 4).i(2).i(1).i(2).f64(1.0), 8);
+  Op4FileInfo info;
+  auto m = read_op4_buffer(f.data(), f.size(), "long.op4", {}, &info).at(0);
+  CHECK(info.encoding == Op4Encoding::Binary);
+  CHECK(info.word_bytes == 4);
+  CHECK(m.name == "STIFFNESS_AB");
+  CHECK(m.real.coeff(1, 0) == -1.25);
+  CHECK(m.real.nonZeros() == 1);
+}
