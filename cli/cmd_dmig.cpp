@@ -36,8 +36,6 @@ nlohmann::json dmig_json(const Dmig& m, const formats::Deck& deck) {
   const translators::DmigDofs dofs = translators::dmig_dofs(m);
   const auto a = translators::assemble_dmig_complex(m, dofs.rows, dofs.cols, &deck);
   nlohmann::json j = matrix_json(m.name, m.ifo, ifo_name(m.ifo), m.tin, a);
-  if (!m.is_complex())
-    for (auto& e : j["entries"]) e[3] = 0.0;
   j["tout"] = m.tout;
   j["polar_input"] = m.polar;
   j["row_dofs"] = dofs_json(dofs.rows);
@@ -115,7 +113,7 @@ int dmig_dump(const Args& args) {
     const std::string name = vm["name"].as<std::string>();
     for (const Dmig& m : mats)
       if (m.name == name) {
-        write_json(vm["json"].as<std::string>(), dmig_json(m, deck));
+        write_matrix_json(vm["json"].as<std::string>(), dmig_json(m, deck));
         return 0;
       }
     std::string have;
@@ -125,7 +123,7 @@ int dmig_dump(const Args& args) {
   }
   nlohmann::json j = nlohmann::json::array();
   for (const Dmig& m : mats) j.push_back(dmig_json(m, deck));
-  write_json(vm["json"].as<std::string>(), j);
+  write_matrix_json(vm["json"].as<std::string>(), j);
   return 0;
 }
 

@@ -118,12 +118,12 @@ int op4_dump(const Args& args) {
       throw std::runtime_error(path + ": --index " + std::to_string(k) + " but " + std::to_string(chosen.size()) +
                                " matri" + (chosen.size() == 1 ? "x is" : "ces are") + " named " +
                                vm["name"].as<std::string>());
-    write_json(vm["json"].as<std::string>(), matrix_json(*chosen[static_cast<std::size_t>(k - 1)]));
+    write_matrix_json(vm["json"].as<std::string>(), matrix_json(*chosen[static_cast<std::size_t>(k - 1)]));
     return 0;
   }
   nlohmann::json j = nlohmann::json::array();
   for (const Op4Matrix* m : chosen) j.push_back(matrix_json(*m));
-  write_json(vm["json"].as<std::string>(), j);
+  write_matrix_json(vm["json"].as<std::string>(), j);
   return 0;
 }
 
