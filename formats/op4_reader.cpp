@@ -220,6 +220,19 @@ void complete_forms(Op4Matrix& m, const Op4ReadOptions& opt) {
   }
 }
 
+/// A header's column count (or, for a diagonal matrix kept as one column, its row
+/// count) sizes the column index array, 4 bytes per column, before any data is
+/// seen. A lying header in a small file must not allocate gigabytes: the count
+/// is refused when that array would exceed both 256 MiB and 16 times the file.
+/// Returns the message, or "" when the size is plausible.
+std::string implausible_size(std::int64_t ncol, std::int64_t nrow, std::int64_t form, std::size_t file_size) {
+  const std::int64_t n = (form == op4_form::Diagonal && ncol == 1) ? std::max(ncol, nrow) : ncol;
+  const std::uint64_t bytes = 4u * static_cast<std::uint64_t>(n);
+  if (bytes <= (256u << 20) || bytes <= 16u * static_cast<std::uint64_t>(file_size)) return "";
+  return "header gives " + std::to_string(n) + " columns, implausible for a file of " + std::to_string(file_size) +
+         " bytes (more than 64 M columns and 4 per byte of the file)";
+}
+
 std::string clean_name(std::string_view raw) {
   std::string s;
   for (char c : raw)
@@ -284,7 +297,7 @@ const char* scan_number(const char* p, const char* end, double& value) {
 class AsciiReader {
 public:
   AsciiReader(const char* data, std::size_t size, const std::string& file, const Op4ReadOptions& opt)
-      : m_p(data), m_end(data + size), m_file(file), m_opt(opt) {}
+      : m_begin(data), m_p(data), m_end(data + size), m_file(file), m_opt(opt) {}
 
   std::vector<Op4Matrix> read_all() {
     std::vector<Op4Matrix> out;
@@ -456,6 +469,9 @@ private:
     if (ncol < 0 || nrow_signed == 0 || std::llabs(nrow_signed) > 2147483647 || ncol > 2147483647)
       fail("header gives " + std::to_string(ncol) + " columns and " + std::to_string(nrow_signed) + " rows", header_line);
     if (type < 1 || type > 4) fail("TYPE must be 1-4 (precision), got " + std::to_string(type), header_line);
+    if (auto msg = implausible_size(ncol, std::llabs(nrow_signed), form, static_cast<std::size_t>(m_end - m_begin));
+        !msg.empty())
+      fail(msg, header_line);
 
     Op4Matrix m;
     m.name = name;
@@ -566,6 +582,7 @@ private:
     return m;
   }
 
+  const char* m_begin;
   const char* m_p;
   const char* m_end;
   const std::string& m_file;
@@ -659,6 +676,7 @@ private:
     if (ncol < 0 || nrow_signed == 0 || std::llabs(nrow_signed) > 2147483647 || ncol > 2147483647)
       fail("header gives " + std::to_string(ncol) + " columns and " + std::to_string(nrow_signed) + " rows", h.offset);
     if (type < 1 || type > 4) fail("TYPE must be 1-4 (precision), got " + std::to_string(type), h.offset);
+    if (auto msg = implausible_size(ncol, std::llabs(nrow_signed), form, m_size); !msg.empty()) fail(msg, h.offset);
 
     Op4Matrix m;
     m.name = name;
