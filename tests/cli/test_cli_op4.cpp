@@ -198,3 +198,30 @@ TEST_CASE("ssid dmig list and dump: complete matrices on their own DOFs", "[cli]
   CHECK(r.code == 1);
   CHECK(r.err.find("no DMIG named NOPE (the deck holds: KAAX, BAAX, MCOL)") != std::string::npos);
 }
+
+TEST_CASE("ssid dmig convert: DMIG to OP4 and MatrixMarket on the matrices' own DOFs", "[cli][dmig]") {
+  const fs::path d = scratch();
+  auto r = run_ssid("dmig convert " + kDmig + " " + (d / "dm.op4").string() + " --precision 4 --dofs " +
+                    (d / "dofs.json").string());
+  INFO(r.err);
+  REQUIRE(r.code == 0);
+  r = run_ssid("op4 dump " + (d / "dm.op4").string() + " --json -");
+  REQUIRE(r.code == 0);
+  json op4 = json::parse(r.out);
+  r = run_ssid("dmig dump " + kDmig + " --json -");
+  REQUIRE(r.code == 0);
+  json dmig = json::parse(r.out);
+  REQUIRE(op4.size() == 3);
+  for (std::size_t k = 0; k < 3; ++k) {
+    CHECK(op4[k]["name"] == dmig[k]["name"]);
+    CHECK(op4[k]["entries"] == dmig[k]["entries"]);  // complex double: the polar values exactly
+  }
+  json dofs = read_json(d / "dofs.json");
+  CHECK(dofs[0]["row_dofs"] == dmig[0]["row_dofs"]);
+  r = run_ssid("dmig convert " + kDmig + " " + (d / "k.mtx").string() + " --mtx --name KAAX");
+  REQUIRE(r.code == 0);
+  CHECK(cli_slurp(d / "k.mtx") ==
+        "%%MatrixMarket matrix coordinate real symmetric\n"
+        "% DMIG KAAX from " + kDmig + "\n"
+        "3 3 6\n1 1 4\n2 1 -1\n3 1 0.5\n2 2 3\n3 2 2\n3 3 5\n");
+}
