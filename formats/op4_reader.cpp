@@ -389,8 +389,16 @@ private:
   std::size_t numbers(std::vector<double>& values) {
     values.clear();
     std::string_view line;
-    while (peek_line(line) && is_numeric(line)) {
-      next_line(line);
+    while (true) {
+      // One scan per line: find its end, consume it only when it holds numbers.
+      if (m_p >= m_end) break;
+      const char* nl = static_cast<const char*>(std::memchr(m_p, '\n', static_cast<std::size_t>(m_end - m_p)));
+      const char* le = nl ? nl : m_end;
+      line = std::string_view(m_p, static_cast<std::size_t>(le - m_p));
+      if (!line.empty() && line.back() == '\r') line.remove_suffix(1);
+      if (!is_numeric(line)) break;
+      m_p = nl ? nl + 1 : m_end;
+      ++m_line;
       const char* p = line.data();
       const char* e = p + line.size();
       while (true) {
@@ -463,6 +471,15 @@ private:
         }
       }
       name = clean_name(nm);
+      // Declared width of a number ("1P,5E16.9" -> 16), for a reserve hint only.
+      if (k != std::string::npos) {
+        const std::size_t e = up.find_first_of("ED", k + 3);
+        if (e != std::string::npos) {
+          int w = 0;
+          for (std::size_t i = e + 1; i < up.size() && up[i] >= '0' && up[i] <= '9'; ++i) w = w * 10 + (up[i] - '0');
+          m_declared_width = w;
+        }
+      }
     }
     const std::int64_t ncol = h[0], nrow_signed = h[1], form = h[2], type = h[3];
     m_context = "matrix " + (name.empty() ? std::string("(unnamed)") : name) + ": ";
@@ -486,6 +503,12 @@ private:
     const int npt = cx ? 2 : 1;                           // numbers per term
     const int wpn = single ? 1 : 2;                       // words per number
     ColumnBuilder b(m.rows, m.cols, cx);
+    if (m_declared_width >= 8) {
+      // Numbers are at least as wide as declared: an upper bound on the terms left in the file.
+      const std::size_t left = static_cast<std::size_t>(m_end - m_p) / static_cast<std::size_t>(m_declared_width * npt);
+      b.reserve(std::min<std::size_t>(left, static_cast<std::size_t>(m.rows) * static_cast<std::size_t>(m.cols)));
+    }
+    m_declared_width = 0;
     std::vector<double> vals;
     std::int64_t last_col = 0;
     bool sparse_seen = false, dense_seen = false;
@@ -500,10 +523,11 @@ private:
       // (Rounded in place first: g++ 12 -O2 mis-vectorised the per-pair rounding.)
       if (single)
         for (std::size_t k = 0; k < n; ++k) vals[k] = static_cast<double>(static_cast<float>(vals[k]));
-      for (std::int64_t t = 0; t < terms; ++t) {
-        if (cx) b.add(row0 - 1 + t, vals[2 * t], vals[2 * t + 1]);
-        else b.add(row0 - 1 + t, vals[t]);
+      if (!cx) {
+        b.add_run(row0 - 1, terms, [&](std::int64_t t) { return vals[static_cast<std::size_t>(t)]; });
+        return;
       }
+      for (std::int64_t t = 0; t < terms; ++t) b.add(row0 - 1 + t, vals[2 * t], vals[2 * t + 1]);
     };
 
     std::string_view line;
@@ -589,6 +613,7 @@ private:
   const Op4ReadOptions& m_opt;
   std::uint32_t m_line = 0;
   std::int64_t m_col = 0;  ///< column being read, for messages
+  int m_declared_width = 0;  ///< width of a number in the header's format, 0 when unknown
   std::string m_context;
 };
 
