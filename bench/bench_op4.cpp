@@ -3,7 +3,8 @@
 /// throughput (MB of file per second) with copying the same file (read + write
 /// through a 4 MiB buffer, the page cache warm for both); best of three runs each.
 ///
-/// usage: bench_op4 [TARGET_MB] [--dir DIR]   (default 200 MB per file, /tmp)
+/// usage: bench_op4 [TARGET_MB] [--dir DIR] [--only binary-sparse|binary-bigmat|ascii-sparse]
+///        (default 200 MB per file, /tmp, all three)
 /// The matrix: real double, columns of 4 runs of 30 consecutive rows each
 /// (a banded FE-like pattern); the number of columns is chosen so each file is
 /// about TARGET_MB. The files are deleted at the end.
@@ -111,9 +112,10 @@ void bench(const std::string& label, const Op4WriteOptions& o, double target_mb,
 
 int main(int argc, char** argv) {
   double target = 200.0;
-  std::string dir = "/tmp";
+  std::string dir = "/tmp", only;
   for (int i = 1; i < argc; ++i) {
     if (!std::strcmp(argv[i], "--dir") && i + 1 < argc) dir = argv[++i];
+    else if (!std::strcmp(argv[i], "--only") && i + 1 < argc) only = argv[++i];
     else target = std::stod(argv[i]);
   }
   Op4WriteOptions bin;
@@ -124,8 +126,8 @@ int main(int argc, char** argv) {
   Op4WriteOptions asc;
   asc.encoding = Op4Encoding::Ascii;
   asc.storage = Op4Storage::Sparse;
-  bench("binary-sparse", bin, target, dir);
-  bench("binary-bigmat", big, target, dir);
-  bench("ascii-sparse", asc, target, dir);
+  if (only.empty() || only == "binary-sparse") bench("binary-sparse", bin, target, dir);
+  if (only.empty() || only == "binary-bigmat") bench("binary-bigmat", big, target, dir);
+  if (only.empty() || only == "ascii-sparse") bench("ascii-sparse", asc, target, dir);
   return 0;
 }

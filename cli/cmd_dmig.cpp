@@ -6,6 +6,8 @@
 #include "cli/cli_util.hpp"
 #include "cli/matrix_json.hpp"
 #include "formats/dmig.hpp"
+#include "formats/matrix_market.hpp"
+#include "formats/op4.hpp"
 #include "translators/dmig_assembly.hpp"
 
 namespace ssid::cli {
@@ -36,8 +38,6 @@ nlohmann::json dmig_json(const Dmig& m, const formats::Deck& deck) {
   const translators::DmigDofs dofs = translators::dmig_dofs(m);
   const auto a = translators::assemble_dmig_complex(m, dofs.rows, dofs.cols, &deck);
   nlohmann::json j = matrix_json(m.name, m.ifo, ifo_name(m.ifo), m.tin, a);
-  if (!m.is_complex())
-    for (auto& e : j["entries"]) e[3] = 0.0;
   j["tout"] = m.tout;
   j["polar_input"] = m.polar;
   j["row_dofs"] = dofs_json(dofs.rows);
@@ -115,7 +115,7 @@ int dmig_dump(const Args& args) {
     const std::string name = vm["name"].as<std::string>();
     for (const Dmig& m : mats)
       if (m.name == name) {
-        write_json(vm["json"].as<std::string>(), dmig_json(m, deck));
+        write_matrix_json(vm["json"].as<std::string>(), dmig_json(m, deck));
         return 0;
       }
     std::string have;
@@ -125,7 +125,79 @@ int dmig_dump(const Args& args) {
   }
   nlohmann::json j = nlohmann::json::array();
   for (const Dmig& m : mats) j.push_back(dmig_json(m, deck));
-  write_json(vm["json"].as<std::string>(), j);
+  write_matrix_json(vm["json"].as<std::string>(), j);
+  return 0;
+}
+
+/// `ssid dmig convert DECK OUT`: DMIG matrices as OP4 (or MatrixMarket) on their own DOFs.
+int dmig_convert(const Args& args) {
+  po::options_description desc("ssid dmig convert options");
+  desc.add_options()("deck", po::value<std::string>()->required(), "deck or punch file")(
+      "out", po::value<std::string>()->required(), "output OP4 file (or .mtx with --mtx)")(
+      "name", po::value<std::string>(), "only this matrix")("ascii", "OP4 in ASCII (default binary)")(
+      "precision", po::value<int>(), "OP4 precision 1-4 (default: each DMIG's TIN)")(
+      "mtx", "MatrixMarket instead of OP4 (one file per matrix: OUT, or OUT_NAME.mtx when several)")(
+      "dofs", po::value<std::string>(), "write the row and column DOFs of each matrix as JSON here");
+  po::positional_options_description pos;
+  pos.add("deck", 1).add("out", 1);
+  po::variables_map vm;
+  int rc = 0;
+  const std::string usage =
+      "ssid dmig convert DECK OUT [--name NAME] [--ascii] [--precision N] [--mtx] [--dofs JSON]";
+  if (!parse_options(args, usage, desc, pos, vm, rc)) return rc;
+  const std::string path = vm["deck"].as<std::string>(), out = vm["out"].as<std::string>();
+  const formats::Deck deck = formats::read_deck(path);
+  const auto all = formats::read_dmigs(deck);
+  std::vector<const Dmig*> mats;
+  for (const Dmig& m : all)
+    if (!vm.count("name") || m.name == vm["name"].as<std::string>()) mats.push_back(&m);
+  if (mats.empty())
+    throw std::runtime_error(path + (vm.count("name") ? ": no DMIG named " + vm["name"].as<std::string>() : ": no DMIG"));
+  std::vector<formats::Op4Matrix> op4;
+  nlohmann::json dofs = nlohmann::json::array();
+  for (const Dmig* m : mats) {
+    const translators::DmigDofs d = translators::dmig_dofs(*m);
+    const int form = m->ifo == formats::dmig_form::Symmetric ? formats::op4_form::Symmetric
+                     : m->ifo == formats::dmig_form::Square  ? formats::op4_form::Square
+                                                             : formats::op4_form::Rectangular;
+    if (m->is_complex())
+      op4.push_back(formats::Op4Matrix::from_complex(m->name, translators::assemble_dmig_complex(*m, d.rows, d.cols, &deck),
+                                                     form, static_cast<formats::Op4Precision>(m->tin)));
+    else
+      op4.push_back(formats::Op4Matrix::from_real(m->name, translators::assemble_dmig_real(*m, d.rows, d.cols, &deck),
+                                                  form, static_cast<formats::Op4Precision>(m->tin)));
+    dofs.push_back({{"name", m->name}, {"row_dofs", dofs_json(d.rows)}, {"col_dofs", dofs_json(d.cols)}});
+  }
+  if (vm.count("mtx")) {
+    for (const auto& m : op4) {
+      std::string p = out;
+      if (op4.size() > 1) {
+        const std::size_t dot = out.rfind('.');
+        p = (dot == std::string::npos ? out : out.substr(0, dot)) + "_" + m.name +
+            (dot == std::string::npos ? ".mtx" : out.substr(dot));
+      }
+      const std::string comment = "DMIG " + m.name + " from " + path;
+      if (m.is_complex())
+        formats::write_matrix_market(p, m.complex,
+                                     m.form == formats::op4_form::Symmetric ? formats::MtxSymmetry::Symmetric
+                                                                             : formats::MtxSymmetry::General,
+                                     comment);
+      else
+        formats::write_matrix_market(p, m.real,
+                                     m.form == formats::op4_form::Symmetric ? formats::MtxSymmetry::Symmetric
+                                                                             : formats::MtxSymmetry::General,
+                                     comment);
+      std::cout << "wrote " << p << " (" << m.name << ", " << m.rows << " x " << m.cols << ")\n";
+    }
+  } else {
+    formats::Op4WriteOptions o;
+    o.encoding = vm.count("ascii") ? formats::Op4Encoding::Ascii : formats::Op4Encoding::Binary;
+    o.storage = formats::Op4Storage::Sparse;
+    o.precision = vm.count("precision") ? vm["precision"].as<int>() : 0;
+    formats::write_op4(out, op4, o);
+    std::cout << "wrote " << out << ": " << op4.size() << " matri" << (op4.size() == 1 ? "x" : "ces") << "\n";
+  }
+  if (vm.count("dofs")) write_json(vm["dofs"].as<std::string>(), dofs);
   return 0;
 }
 
@@ -134,7 +206,8 @@ int dmig_dump(const Args& args) {
 int cmd_dmig(const Args& args) {
   const std::string usage =
       "usage: ssid dmig list DECK [--json OUT]\n"
-      "       ssid dmig dump DECK [--name NAME] --json OUT\n";
+      "       ssid dmig dump DECK [--name NAME] --json OUT\n"
+      "       ssid dmig convert DECK OUT [--name NAME] [--ascii] [--precision N] [--mtx] [--dofs JSON]\n";
   if (args.empty()) {
     std::cerr << usage;
     return 2;
@@ -143,13 +216,16 @@ int cmd_dmig(const Args& args) {
     std::cout << usage
               << "\n  list   name, form, precision, size and terms of every DMIG matrix of a deck or punch file"
                  "\n  dump   the complete matrix (symmetric forms expanded, polar input converted) as 1-based"
-                 "\n         triplets [row, col, re, im] on the matrix's own DOFs (row_dofs, col_dofs: [grid, component])\n"
+                 "\n         triplets [row, col, re, im] on the matrix's own DOFs (row_dofs, col_dofs: [grid, component])"
+                 "\n  convert  the complete matrices as an OP4 file (in each DMIG's TIN precision unless --precision)"
+                 "\n         or MatrixMarket, on their own DOFs (listed by --dofs)\n"
                  "\nSee docs/op4.md.\n";
     return 0;
   }
   const Args rest(args.begin() + 1, args.end());
   if (args[0] == "list") return dmig_list(rest);
   if (args[0] == "dump") return dmig_dump(rest);
+  if (args[0] == "convert") return dmig_convert(rest);
   std::cerr << "ssid dmig: unknown subcommand '" << args[0] << "'\n" << usage;
   return 2;
 }

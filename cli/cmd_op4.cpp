@@ -8,6 +8,9 @@
 #include "cli/matrix_json.hpp"
 #include "formats/matrix_market.hpp"
 #include "formats/op4.hpp"
+#include "translators/dmig_assembly.hpp"
+
+#include <fstream>
 
 namespace ssid::cli {
 
@@ -118,12 +121,12 @@ int op4_dump(const Args& args) {
       throw std::runtime_error(path + ": --index " + std::to_string(k) + " but " + std::to_string(chosen.size()) +
                                " matri" + (chosen.size() == 1 ? "x is" : "ces are") + " named " +
                                vm["name"].as<std::string>());
-    write_json(vm["json"].as<std::string>(), matrix_json(*chosen[static_cast<std::size_t>(k - 1)]));
+    write_matrix_json(vm["json"].as<std::string>(), matrix_json(*chosen[static_cast<std::size_t>(k - 1)]));
     return 0;
   }
   nlohmann::json j = nlohmann::json::array();
   for (const Op4Matrix* m : chosen) j.push_back(matrix_json(*m));
-  write_json(vm["json"].as<std::string>(), j);
+  write_matrix_json(vm["json"].as<std::string>(), j);
   return 0;
 }
 
@@ -211,13 +214,101 @@ int op4_convert(const Args& args) {
   return 0;
 }
 
+/// A DOF list [[grid, component], ...] from JSON.
+translators::DofMap dof_list(const nlohmann::json& j, const std::string& what) {
+  translators::DofMap m;
+  if (!j.is_array()) throw std::runtime_error(what + ": expected a list of [grid, component]");
+  for (const auto& d : j) {
+    if (!d.is_array() || d.size() != 2 || !d[0].is_number_integer() || !d[1].is_number_integer())
+      throw std::runtime_error(what + ": expected [grid, component], got " + d.dump());
+    const std::size_t before = m.size();
+    m.add({d[0].get<std::int64_t>(), d[1].get<int>()});
+    if (m.size() == before) throw std::runtime_error(what + ": DOF " + d.dump() + " listed twice");
+  }
+  return m;
+}
+
+/// `ssid op4 to-dmig IN OUT`: OP4 matrices as DMIG cards.
+int op4_to_dmig(const Args& args) {
+  po::options_description desc("ssid op4 to-dmig options");
+  desc.add_options()("in", po::value<std::string>()->required(), "input OP4 file")(
+      "out", po::value<std::string>()->required(), "output bulk data file (DMIG cards)")(
+      "name", po::value<std::string>(), "only the matrices of this name")(
+      "dofs", po::value<std::string>(),
+      "JSON DOFs: [[grid, component], ...] for rows and columns, or the list written by `ssid dmig convert "
+      "--dofs` ({name, row_dofs, col_dofs} per matrix). Default: scalar points 1..N")(
+      "large", "large field (default small, promoted to large where 8 characters cannot hold a value exactly)");
+  po::positional_options_description pos;
+  pos.add("in", 1).add("out", 1);
+  po::variables_map vm;
+  int rc = 0;
+  if (!parse_options(args, "ssid op4 to-dmig IN OUT [--name NAME] [--dofs JSON] [--large]", desc, pos, vm, rc))
+    return rc;
+  const std::string in = vm["in"].as<std::string>(), out = vm["out"].as<std::string>();
+  const auto mats = formats::read_op4(in);
+  const auto chosen = select(mats, vm, in);
+  nlohmann::json dofs;
+  if (vm.count("dofs")) {
+    std::ifstream f(vm["dofs"].as<std::string>());
+    if (!f) throw std::runtime_error("cannot read " + vm["dofs"].as<std::string>());
+    dofs = nlohmann::json::parse(f);
+  }
+  std::string text = "$ DMIG from " + in + " (ssid op4 to-dmig)\n";
+  for (const Op4Matrix* m : chosen) {
+    translators::DofMap rows, cols;
+    bool by_list = false;
+    if (dofs.is_array() && !dofs.empty() && dofs[0].is_object()) {
+      for (const auto& e : dofs)
+        if (e.value("name", "") == m->name) {
+          rows = dof_list(e.at("row_dofs"), "--dofs " + m->name + " row_dofs");
+          cols = dof_list(e.at("col_dofs"), "--dofs " + m->name + " col_dofs");
+          by_list = true;
+          break;
+        }
+      if (!by_list) throw std::runtime_error("--dofs has no entry for matrix " + m->name);
+    } else if (dofs.is_array()) {
+      rows = cols = dof_list(dofs, "--dofs");
+      by_list = true;
+    } else {
+      for (Eigen::Index i = 1; i <= std::max(m->rows, m->cols); ++i) {
+        if (i <= m->rows) rows.add({i, 0});
+        if (i <= m->cols) cols.add({i, 0});
+      }
+    }
+    translators::DmigFromMatrix o;
+    o.name = m->name;
+    const bool square_dofs =
+        rows.size() == cols.size() && std::equal(rows.dofs().begin(), rows.dofs().end(), cols.dofs().begin());
+    const bool symmetric = m->form == formats::op4_form::Symmetric && square_dofs &&
+                           (m->is_complex() ? formats::is_exactly_symmetric(m->complex)
+                                            : formats::is_exactly_symmetric(m->real));
+    o.ifo = symmetric ? formats::dmig_form::Symmetric
+            : square_dofs && m->rows == m->cols ? formats::dmig_form::Square
+            : by_list                           ? formats::dmig_form::Rectangular
+                                                : formats::dmig_form::RectangularByColumnNumber;
+    o.tin = static_cast<int>(m->precision);
+    const formats::Dmig d = m->is_complex() ? translators::dmig_from_matrix(m->complex, rows, cols, o)
+                                            : translators::dmig_from_matrix(m->real, rows, cols, o);
+    text += formats::format_dmig(d, vm.count("large") ? formats::FieldFormat::Large : formats::FieldFormat::Small);
+    std::cout << m->name << ": IFO " << d.ifo << ", " << d.columns.size() << " column entries, " << d.terms()
+              << " terms\n";
+  }
+  std::ofstream f(out, std::ios::binary);
+  if (!f) throw std::runtime_error("cannot write " + out);
+  f << text;
+  if (!f) throw std::runtime_error("error writing " + out);
+  std::cout << "wrote " << out << "\n";
+  return 0;
+}
+
 }  // namespace
 
 int cmd_op4(const Args& args) {
   const std::string usage =
       "usage: ssid op4 list FILE [--json OUT]\n"
       "       ssid op4 dump FILE [--name NAME] --json OUT\n"
-      "       ssid op4 convert IN OUT [--ascii|--binary] [--dense|--sparse|--bigmat] [--precision N] [--mtx]\n";
+      "       ssid op4 convert IN OUT [--ascii|--binary] [--dense|--sparse|--bigmat] [--precision N] [--mtx]\n"
+      "       ssid op4 to-dmig IN OUT [--name NAME] [--dofs JSON] [--large]\n";
   if (args.empty()) {
     std::cerr << usage;
     return 2;
@@ -226,7 +317,8 @@ int cmd_op4(const Args& args) {
     std::cout << usage
               << "\n  list      name, rows, columns, form, precision, storage, non-zeros of every matrix"
                  "\n  dump      the values as 1-based triplets [row, col, re, im] in JSON"
-                 "\n  convert   rewrite in another encoding, storage or precision, or as MatrixMarket (--mtx)\n"
+                 "\n  convert   rewrite in another encoding, storage or precision, or as MatrixMarket (--mtx)"
+                 "\n  to-dmig   write the matrices as DMIG cards (on DOFs from --dofs, or scalar points 1..N)\n"
                  "\nEach subcommand has --help. See docs/op4.md.\n";
     return 0;
   }
@@ -234,6 +326,7 @@ int cmd_op4(const Args& args) {
   if (args[0] == "list") return op4_list(rest);
   if (args[0] == "dump") return op4_dump(rest);
   if (args[0] == "convert") return op4_convert(rest);
+  if (args[0] == "to-dmig") return op4_to_dmig(rest);
   std::cerr << "ssid op4: unknown subcommand '" << args[0] << "'\n" << usage;
   return 2;
 }

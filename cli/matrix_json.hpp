@@ -22,6 +22,12 @@ nlohmann::json matrix_json(const std::string& name, int form, const std::string&
 /// An OP4 matrix in that layout (plus "storage").
 nlohmann::json matrix_json(const formats::Op4Matrix& m);
 
+/// JSON text of one matrix object or a list of them: two-space indentation with
+/// each entry [row, col, re, im] on one line (large matrices stay readable).
+std::string matrix_json_text(const nlohmann::json& j);
+/// Writes matrix_json_text to a file; "-" writes to stdout.
+void write_matrix_json(const std::string& path, const nlohmann::json& j);
+
 /// "real single", "real double", "complex single", "complex double".
 std::string precision_name(int precision);
 

@@ -198,3 +198,72 @@ TEST_CASE("ssid dmig list and dump: complete matrices on their own DOFs", "[cli]
   CHECK(r.code == 1);
   CHECK(r.err.find("no DMIG named NOPE (the deck holds: KAAX, BAAX, MCOL)") != std::string::npos);
 }
+
+TEST_CASE("ssid dmig convert: DMIG to OP4 and MatrixMarket on the matrices' own DOFs", "[cli][dmig]") {
+  const fs::path d = scratch();
+  auto r = run_ssid("dmig convert " + kDmig + " " + (d / "dm.op4").string() + " --precision 4 --dofs " +
+                    (d / "dofs.json").string());
+  INFO(r.err);
+  REQUIRE(r.code == 0);
+  r = run_ssid("op4 dump " + (d / "dm.op4").string() + " --json -");
+  REQUIRE(r.code == 0);
+  json op4 = json::parse(r.out);
+  r = run_ssid("dmig dump " + kDmig + " --json -");
+  REQUIRE(r.code == 0);
+  json dmig = json::parse(r.out);
+  REQUIRE(op4.size() == 3);
+  for (std::size_t k = 0; k < 3; ++k) {
+    CHECK(op4[k]["name"] == dmig[k]["name"]);
+    CHECK(op4[k]["entries"] == dmig[k]["entries"]);  // complex double: the polar values exactly
+  }
+  json dofs = read_json(d / "dofs.json");
+  CHECK(dofs[0]["row_dofs"] == dmig[0]["row_dofs"]);
+  r = run_ssid("dmig convert " + kDmig + " " + (d / "k.mtx").string() + " --mtx --name KAAX");
+  REQUIRE(r.code == 0);
+  CHECK(cli_slurp(d / "k.mtx") ==
+        "%%MatrixMarket matrix coordinate real symmetric\n"
+        "% DMIG KAAX from " + kDmig + "\n"
+        "3 3 6\n1 1 4\n2 1 -1\n3 1 0.5\n2 2 3\n3 2 2\n3 3 5\n");
+}
+
+TEST_CASE("ssid op4 to-dmig: DMIG -> OP4 -> DMIG through the CLI gives the same matrices", "[cli][dmig]") {
+  const fs::path d = scratch();
+  auto r = run_ssid("dmig convert " + kDmig + " " + (d / "rt.op4").string() + " --precision 4 --dofs " +
+                    (d / "rt.json").string());
+  REQUIRE(r.code == 0);
+  r = run_ssid("op4 to-dmig " + (d / "rt.op4").string() + " " + (d / "rt.bdf").string() + " --dofs " +
+               (d / "rt.json").string());
+  INFO(r.err);
+  REQUIRE(r.code == 0);
+  CHECK(r.out.find("KAAX: IFO 6, 3 column entries, 6 terms") != std::string::npos);
+  r = run_ssid("dmig dump " + (d / "rt.bdf").string() + " --json -");
+  REQUIRE(r.code == 0);
+  json back = json::parse(r.out);
+  r = run_ssid("dmig dump " + kDmig + " --json -");
+  json orig = json::parse(r.out);
+  for (std::size_t k = 0; k < 2; ++k) {  // KAAX (symmetric), BAAX (complex, from polar input)
+    CHECK(back[k]["name"] == orig[k]["name"]);
+    CHECK(back[k]["form"] == orig[k]["form"]);
+    CHECK(back[k]["row_dofs"] == orig[k]["row_dofs"]);
+    CHECK(back[k]["col_dofs"] == orig[k]["col_dofs"]);
+    if (k == 0) {
+      CHECK(back[k]["entries"] == orig[k]["entries"]);
+      continue;
+    }
+    // sqrt(3) needs 17 digits: a 16-character DMIG field holds 15 of them, 5e-15 relative (docs/op4.md).
+    REQUIRE(back[k]["entries"].size() == orig[k]["entries"].size());
+    for (std::size_t e = 0; e < orig[k]["entries"].size(); ++e)
+      for (std::size_t i = 0; i < 4; ++i)
+        CHECK(back[k]["entries"][e][i].get<double>() ==
+              Approx(orig[k]["entries"][e][i].get<double>()).epsilon(5e-15).margin(1e-300));
+  }
+  // Without --dofs: scalar points 1..N, a rectangular matrix by column number (IFO 9).
+  r = run_ssid("op4 to-dmig " + kOp4 + " " + (d / "s.bdf").string() + " --name BHH");
+  REQUIRE(r.code == 0);
+  r = run_ssid("dmig dump " + (d / "s.bdf").string() + " --name BHH --json -");
+  REQUIRE(r.code == 0);
+  json b = json::parse(r.out);
+  CHECK(b["form"] == 9);
+  CHECK(b["row_dofs"] == json::parse("[[1,0],[3,0],[4,0]]"));  // a DMIG holds only rows with terms
+  CHECK(b["entries"] == json::parse("[[1,1,1.5,-0.25],[2,2,0.0,1.0],[3,2,0.75,0.0]]"));
+}
