@@ -177,3 +177,28 @@ TEST_CASE("ssid modes --uff: synthetic test read back; noise reproducible by see
   CHECK(ta.frequency_hz[0] != j["modes"][0]["cycles"].get<double>());
   CHECK(ta.frequency_hz[0] == Approx(j["modes"][0]["cycles"].get<double>()).epsilon(0.05));
 }
+
+TEST_CASE("ssid modes --weight: grid point weight of the frame sample against hand sums", "[cli][modes][weight]") {
+  // samples/frame.bdf: lumped mass, each element's mass at its mid-point on average.
+  const double rho = 2700.0, a_tube = M_PI * (0.02 * 0.02 - 0.015 * 0.015), a_rod = 2.0e-4;
+  const double m_bar = rho * a_tube * 1.0, m_bat = rho * a_rod * 0.5, m_diag = rho * a_rod * std::sqrt(1.25);
+  const double total = 6.0 + 12 * m_bar + 12 * m_bat + 12 * m_diag;
+  const double xcg = (18 * m_bar + 24 * m_bat + 18 * m_diag + 18.0) / total;
+  auto r = run_ssid("modes " + std::string(SSID_SOURCE_DIR) + "/samples/frame.bdf --nmodes 1 --weight");
+  INFO(r.err);
+  REQUIRE(r.code == 0);
+  CHECK_THAT(r.out, Catch::Contains("O U T P U T   F R O M   G R I D   P O I N T   W E I G H T"));
+  // Direction Y row: mass, X-C.G., Y-C.G. (0: not seen by a Y mass), Z-C.G.
+  const auto at = r.out.find("                                  Y    ");
+  REQUIRE(at != std::string::npos);
+  std::istringstream row(r.out.substr(at + 36, 80));
+  double m = 0, x = 0, y = 0, z = 0;
+  row >> m >> x >> y >> z;
+  CHECK(m == Approx(total).epsilon(1e-6));
+  CHECK(x == Approx(xcg).epsilon(1e-6));
+  CHECK(y == 0.0);
+  CHECK(z == Approx(0.25).epsilon(1e-6));
+  // Without --weight and without PARAM GRDPNT: no weight output.
+  auto q = run_ssid("modes " + std::string(SSID_SOURCE_DIR) + "/samples/frame.bdf --nmodes 1");
+  CHECK(q.out.find("W E I G H T") == std::string::npos);
+}
