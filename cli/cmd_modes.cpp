@@ -66,7 +66,7 @@ int cmd_modes(const Args& args) {
   std::optional<int> nmodes;
   if (vm.count("nmodes")) nmodes = vm["nmodes"].as<int>();
   const estimator::EigenOptions eo = eigen_options(model, nmodes, n, source);
-  const estimator::EigenResult r = solve_model(op, eo);
+  const estimator::EigenResult r = solve_model(op, eo, a_set_dofs(model));
   for (const auto& w : r.warnings) std::cerr << "warning: " << w << "\n";
 
   nlohmann::json j;

@@ -202,3 +202,12 @@ TEST_CASE("ssid modes --weight: grid point weight of the frame sample against ha
   auto q = run_ssid("modes " + std::string(SSID_SOURCE_DIR) + "/samples/frame.bdf --nmodes 1");
   CHECK(q.out.find("W E I G H T") == std::string::npos);
 }
+
+TEST_CASE("ssid modes: a mechanism names its DOF", "[cli][modes][errors]") {
+  // Without AUTOSPC the rods' rotations have neither stiffness nor mass.
+  const fs::path dir = scratch();
+  const fs::path deck = write(dir / "mech.bdf", rod_chain(3, 1.0, "EIGRL,1,,,2\n", "PARAM,AUTOSPC,NO\n"));
+  auto r = run_ssid("modes " + deck.string());
+  CHECK(r.code == 1);
+  CHECK_THAT(r.err, Catch::Contains("not positive definite") && Catch::Contains(" component ") && Catch::Contains("(grid "));
+}
