@@ -211,3 +211,24 @@ TEST_CASE("ssid modes: a mechanism names its DOF", "[cli][modes][errors]") {
   CHECK(r.code == 1);
   CHECK_THAT(r.err, Catch::Contains("not positive definite") && Catch::Contains(" component ") && Catch::Contains("(grid "));
 }
+
+TEST_CASE("ssid modes --uff: sensor file, rotations, bad sensors", "[cli][modes][synthetic]") {
+  const fs::path dir = scratch();
+  const std::string deck = std::string(SSID_SOURCE_DIR) + "/samples/frame.bdf";
+  const fs::path sensors = write(dir / "sensors.txt", "# tip station\n31 THRU 34\n21, 22\n");
+  const fs::path out = dir / "rot.unv";
+  auto r = run_ssid("modes " + deck + " --nmodes 3 --uff " + out.string() + " --sensor-file " + sensors.string() +
+                    " --rotations");
+  INFO(r.err);
+  REQUIRE(r.code == 0);
+  auto t = ssid::translators::modes_from_uff(ssid::formats::uff::read_uff(out.string()));
+  CHECK(t.dofs.size() == 6 * 6);
+  CHECK(t.dofs[0].node == 31);
+  CHECK(t.dofs[5].direction == 6);
+  CHECK(t.dofs[30].node == 22);
+  auto bad = run_ssid("modes " + deck + " --nmodes 3 --uff " + out.string() + " --sensors 31,99");
+  CHECK(bad.code == 1);
+  CHECK_THAT(bad.err, Catch::Contains("sensor grid 99 is not a grid of the model"));
+  auto both = run_ssid("modes " + deck + " --uff " + out.string() + " --sensors 31 --sensor-file " + sensors.string());
+  CHECK(both.code == 2);
+}
