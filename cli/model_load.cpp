@@ -1,6 +1,8 @@
 /// \file model_load.cpp
 #include "cli/model_load.hpp"
 
+#include <algorithm>
+#include <cctype>
 #include <cmath>
 #include <iostream>
 #include <limits>
@@ -41,9 +43,41 @@ LoadedModel load_model(const std::string& path, const translators::AssemblyOptio
   return l;
 }
 
+namespace {
+/// Case-control output requests (DISPLACEMENT(PLOT) = ALL, STRESS = ...): their
+/// names in order of appearance, with counts.
+std::vector<std::pair<std::string, int>> output_requests(const formats::Deck& deck) {
+  static const char* kinds[] = {"DISPLACEMENT", "DISP", "VECTOR", "PRINT", "STRESS", "STRAIN", "FORCE", "ELFORCE",
+                                "SPCFORCES", "SPCF", "MPCFORCES", "OLOAD", "ESE", "EKE", "GPFORCE", "VELOCITY",
+                                "ACCELERATION", "ACCE", "SET", "ECHO", "GPSTRESS", "STRFIELD", "MEFFMASS", "OUTPUT"};
+  std::vector<std::pair<std::string, int>> out;
+  for (const auto& st : deck.statements) {
+    if (st.section != formats::Section::CaseControl) continue;
+    std::string key;
+    for (char c : st.text) {
+      if (!std::isalpha(static_cast<unsigned char>(c))) break;
+      key += c;
+    }
+    bool known = false;
+    for (const char* k : kinds) known |= key == k;
+    if (!known) continue;
+    auto it = std::find_if(out.begin(), out.end(), [&](const auto& p) { return p.first == key; });
+    if (it == out.end()) out.emplace_back(key, 1);
+    else ++it->second;
+  }
+  return out;
+}
+}  // namespace
+
 void print_model_notes(const LoadedModel& m) {
   for (const auto& w : m.warnings) std::cerr << "warning: " << w << "\n";
   for (const auto& n : m.model->notes()) std::cerr << "note: " << n << "\n";
+  const auto requests = output_requests(m.deck);
+  if (!requests.empty()) {
+    std::string list;
+    for (const auto& [k, n] : requests) list += (list.empty() ? "" : ", ") + k + (n > 1 ? " x" + std::to_string(n) : "");
+    std::cerr << "note: case control output requests ignored (they do not change K or M): " << list << "\n";
+  }
   if (!m.model->autospc().empty())
     std::cerr << "note: AUTOSPC constrained " << m.model->autospc().size()
               << " DOF(s) without stiffness (ssid assemble lists them in its manifest)\n";
