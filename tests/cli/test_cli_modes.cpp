@@ -233,3 +233,24 @@ TEST_CASE("ssid modes --uff: sensor file, rotations, bad sensors", "[cli][modes]
   auto both = run_ssid("modes " + deck + " --uff " + out.string() + " --sensors 31 --sensor-file " + sensors.string());
   CHECK(both.code == 2);
 }
+
+TEST_CASE("ssid modes honours EIGRL V1/V2 bands and EIGR", "[cli][modes]") {
+  const fs::path dir = scratch();
+  const int n = 40;
+  // Band [f2, f4] (widened by 1e-6): exactly modes 2..4 of the closed form.
+  const double f2 = std::sqrt(chain_lambda(n, 2.0, 2)) / (2 * M_PI), f4 = std::sqrt(chain_lambda(n, 2.0, 4)) / (2 * M_PI);
+  char eig[128];
+  std::snprintf(eig, sizeof eig, "EIGRL,1,%.9g,%.9g\n", f2 * (1 - 1e-6), f4 * (1 + 1e-6));
+  auto r = run_ssid("modes " + write(dir / "band.bdf", rod_chain(n, 2.0, eig)).string() + " --json -");
+  INFO(r.err);
+  REQUIRE(r.code == 0);
+  auto j = nlohmann::json::parse(r.out);
+  REQUIRE(j["modes"].size() == 3);
+  CHECK(j["modes"][0]["eigenvalue"].get<double>() == Approx(chain_lambda(n, 2.0, 2)).epsilon(1e-10));
+  CHECK(j["modes"][2]["eigenvalue"].get<double>() == Approx(chain_lambda(n, 2.0, 4)).epsilon(1e-10));
+  // EIGR: SID, METHOD, F1, F2, NE, ND.
+  auto e = run_ssid("modes " + write(dir / "eigr.bdf", rod_chain(n, 2.0, "EIGR,1,LAN,,,,5\n")).string() + " --json -");
+  INFO(e.err);
+  REQUIRE(e.code == 0);
+  CHECK(nlohmann::json::parse(e.out)["modes"].size() == 5);
+}
