@@ -96,7 +96,7 @@ int cmd_correlate(const Args& args) {
     std::string source;
     std::optional<int> nmodes;
     if (vm.count("nmodes")) nmodes = vm["nmodes"].as<int>();
-    fe_modes = solve_model(op, eigen_options(*lm.model, nmodes, op.K.rows(), source));
+    fe_modes = solve_model(op, eigen_options(*lm.model, nmodes, op.K.rows(), source), a_set_dofs(*lm.model));
     for (const auto& w : fe_modes.warnings) std::cerr << "warning: " << w << "\n";
     std::cerr << "note: " << fe_path << ": " << fe_modes.size() << " analysis mode(s) (" << source << ")\n";
   } else {

@@ -2,6 +2,7 @@
 /// `ssid modes DECK`: the real eigenvalue table as NASTRAN prints it, JSON, and
 /// the synthetic modal test (`--uff`): modes at sensors with reproducible noise.
 #include <fstream>
+#include <unordered_map>
 #include <iostream>
 #include <sstream>
 
@@ -9,6 +10,7 @@
 #include "cli/model_load.hpp"
 #include "estimator/eigen_table.hpp"
 #include "translators/synthetic_modes.hpp"
+#include "translators/weight_table.hpp"
 
 namespace ssid::cli {
 
@@ -26,6 +28,8 @@ int cmd_modes(const Args& args) {
       "noise-shape", po::value<double>()->default_value(0.0),
       "--uff: shape noise, % of each mode's largest sensor value (std)")(
       "seed", po::value<std::uint64_t>()->default_value(1), "--uff: noise seed (same seed, same file)")(
+      "weight", po::value<std::int64_t>()->implicit_value(0),
+      "print the grid point weight generator output about this grid (0: the origin; default: PARAM GRDPNT)")(
       "uff-precision", po::value<std::string>()->default_value("extended"),
       "--uff: extended (1P E25.16, exact round trip) or standard (E13.5 as test-lab software writes)");
   po::positional_options_description pos;
@@ -33,7 +37,7 @@ int cmd_modes(const Args& args) {
   po::variables_map vm;
   int rc = 0;
   if (!parse_options(args,
-                     "ssid modes DECK [--nmodes N] [--json FILE] [--uff OUT.unv [--sensors GRIDS|--sensor-file F] "
+                     "ssid modes DECK [--nmodes N] [--json FILE] [--weight [GRID]] [--uff OUT.unv [--sensors GRIDS|--sensor-file F] "
                      "[--noise-freq PCT --noise-shape PCT --seed N]]",
                      desc, pos, vm, rc))
     return rc;
@@ -62,7 +66,7 @@ int cmd_modes(const Args& args) {
   std::optional<int> nmodes;
   if (vm.count("nmodes")) nmodes = vm["nmodes"].as<int>();
   const estimator::EigenOptions eo = eigen_options(model, nmodes, n, source);
-  const estimator::EigenResult r = solve_model(op, eo);
+  const estimator::EigenResult r = solve_model(op, eo, a_set_dofs(model));
   for (const auto& w : r.warnings) std::cerr << "warning: " << w << "\n";
 
   nlohmann::json j;
@@ -88,6 +92,22 @@ int cmd_modes(const Args& args) {
     }
     std::cout << "\nchecks: max |K phi - lambda M phi| / |K phi| (elastic modes) " << res << ", max backward error "
               << be << ", M-orthogonality " << r.orthogonality << "\n";
+
+    // Grid point weight: --weight GRID, or PARAM GRDPNT >= 0 as NASTRAN does.
+    std::optional<std::int64_t> grdpnt;
+    if (vm.count("weight")) grdpnt = vm["weight"].as<std::int64_t>();
+    else
+      for (const auto& p : model.bulk().params)
+        if (p.name == "GRDPNT" && p.integer() && *p.integer() >= 0) grdpnt = *p.integer();
+    if (grdpnt) {
+      Eigen::Vector3d ref = Eigen::Vector3d::Zero();
+      if (*grdpnt != 0) ref = model.geometry().grid(*grdpnt, "GRDPNT").x;
+      std::unordered_map<std::int64_t, Eigen::Vector3d> pos;
+      for (const auto& g : model.geometry().grids()) pos.emplace(g.id, g.x);
+      // NASTRAN prints the mass before PARAM WTMASS is applied (the deck's units).
+      const auto w = translators::grid_point_weight(op.Mg / model.wtmass(), model.geometry().gset(), pos, ref);
+      std::cout << "\n" << translators::format_grid_point_weight(w, *grdpnt);
+    }
   }
   if (!json_path.empty()) write_json(json_path, j);
 

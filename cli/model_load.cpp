@@ -1,6 +1,8 @@
 /// \file model_load.cpp
 #include "cli/model_load.hpp"
 
+#include <algorithm>
+#include <cctype>
 #include <cmath>
 #include <iostream>
 #include <limits>
@@ -41,9 +43,41 @@ LoadedModel load_model(const std::string& path, const translators::AssemblyOptio
   return l;
 }
 
+namespace {
+/// Case-control output requests (DISPLACEMENT(PLOT) = ALL, STRESS = ...): their
+/// names in order of appearance, with counts.
+std::vector<std::pair<std::string, int>> output_requests(const formats::Deck& deck) {
+  static const char* kinds[] = {"DISPLACEMENT", "DISP", "VECTOR", "PRINT", "STRESS", "STRAIN", "FORCE", "ELFORCE",
+                                "SPCFORCES", "SPCF", "MPCFORCES", "OLOAD", "ESE", "EKE", "GPFORCE", "VELOCITY",
+                                "ACCELERATION", "ACCE", "SET", "ECHO", "GPSTRESS", "STRFIELD", "MEFFMASS", "OUTPUT"};
+  std::vector<std::pair<std::string, int>> out;
+  for (const auto& st : deck.statements) {
+    if (st.section != formats::Section::CaseControl) continue;
+    std::string key;
+    for (char c : st.text) {
+      if (!std::isalpha(static_cast<unsigned char>(c))) break;
+      key += c;
+    }
+    bool known = false;
+    for (const char* k : kinds) known |= key == k;
+    if (!known) continue;
+    auto it = std::find_if(out.begin(), out.end(), [&](const auto& p) { return p.first == key; });
+    if (it == out.end()) out.emplace_back(key, 1);
+    else ++it->second;
+  }
+  return out;
+}
+}  // namespace
+
 void print_model_notes(const LoadedModel& m) {
   for (const auto& w : m.warnings) std::cerr << "warning: " << w << "\n";
   for (const auto& n : m.model->notes()) std::cerr << "note: " << n << "\n";
+  const auto requests = output_requests(m.deck);
+  if (!requests.empty()) {
+    std::string list;
+    for (const auto& [k, n] : requests) list += (list.empty() ? "" : ", ") + k + (n > 1 ? " x" + std::to_string(n) : "");
+    std::cerr << "note: case control output requests ignored (they do not change K or M): " << list << "\n";
+  }
   if (!m.model->autospc().empty())
     std::cerr << "note: AUTOSPC constrained " << m.model->autospc().size()
               << " DOF(s) without stiffness (ssid assemble lists them in its manifest)\n";
@@ -78,12 +112,45 @@ estimator::EigenOptions eigen_options(const translators::FeModel& model, std::op
   return estimator::eigrl_options(nan, nan, default_nd);
 }
 
-estimator::EigenResult solve_model(const translators::FeOperators& op, const estimator::EigenOptions& options) {
+std::vector<translators::Dof> a_set_dofs(const translators::FeModel& model) {
+  std::vector<translators::Dof> d;
+  for (std::size_t g : model.reduction().a_to_g) d.push_back(model.geometry().gset().at(g));
+  return d;
+}
+
+namespace {
+[[noreturn]] void solve_failed(const estimator::EigenResult& r, const std::vector<translators::Dof>& dofs) {
+  std::string where;
+  if (r.failed_dof >= 0 && static_cast<std::size_t>(r.failed_dof) < dofs.size()) {
+    const auto& d = dofs[static_cast<std::size_t>(r.failed_dof)];
+    where = d.component ? " (grid " + std::to_string(d.point) + " component " + std::to_string(d.component) + ")"
+                        : " (scalar point " + std::to_string(d.point) + ")";
+  }
+  std::string msg = r.message;
+  const std::string at = "at DOF index " + std::to_string(r.failed_dof);
+  const auto k = msg.find(at);
+  if (!where.empty() && k != std::string::npos) msg.insert(k + at.size(), where);
+  else msg += where;
+  throw std::runtime_error("eigen-solve failed: " + msg);
+}
+}  // namespace
+
+estimator::EigenResult solve_model(const translators::FeOperators& op, const estimator::EigenOptions& options,
+                                   const std::vector<translators::Dof>& dofs) {
   const long n = op.K.rows();
   if (n == 0) throw std::runtime_error("the analysis set is empty: every DOF is constrained");
   if (n <= estimator::kDenseEigenLimit) {
     estimator::EigenResult r = estimator::solve_modes_dense(op.K, op.M, options);
-    if (!r.ok()) throw std::runtime_error("eigen-solve failed: " + r.message);
+    if (r.status == estimator::EigenResult::Status::NotPositiveDefinite) {
+      // The sparse factorisation names the column where it fails.
+      estimator::EigenOptions o = options;
+      o.nd = 1;
+      o.f_low = o.f_high = std::numeric_limits<double>::quiet_NaN();
+      o.shift = r.shift;
+      const estimator::EigenResult s = estimator::solve_modes(op.K, op.M, o);
+      if (!s.ok()) solve_failed(s, dofs);
+    }
+    if (!r.ok()) solve_failed(r, dofs);
     return r;
   }
   // Every mode is checked: a backward error above 1e-8 means a wrong mode (seen with
@@ -100,7 +167,7 @@ estimator::EigenResult solve_model(const translators::FeOperators& op, const est
                                               "; solved again with block Lanczos");
     r = std::move(b);
   }
-  if (!r.ok()) throw std::runtime_error("eigen-solve failed: " + r.message);
+  if (!r.ok()) solve_failed(r, dofs);
   if (worst(r) > 1e-8)
     throw std::runtime_error("eigen-solve: a mode has backward error " + std::to_string(worst(r)) +
                              " (above 1e-8): the modes are not reliable");

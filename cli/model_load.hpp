@@ -38,8 +38,13 @@ estimator::EigenOptions eigen_options(const translators::FeModel& model, std::op
 
 /// Dense solve for n ≤ estimator::kDenseEigenLimit (all modes exist there),
 /// Lanczos over CHOLMOD otherwise. A failed solve throws std::runtime_error with
-/// the solver's message.
-estimator::EigenResult solve_model(const translators::FeOperators& op, const estimator::EigenOptions& options);
+/// the solver's message and, for a mechanism, the DOF (grid, component) where
+/// the factorisation failed when `dofs` (the a-set, see a_set_dofs) is given.
+estimator::EigenResult solve_model(const translators::FeOperators& op, const estimator::EigenOptions& options,
+                                   const std::vector<translators::Dof>& dofs = {});
+
+/// The a-set DOFs of a model (index → grid, component).
+std::vector<translators::Dof> a_set_dofs(const translators::FeModel& model);
 
 /// Grids (basic position, displacement frame) as test mapping sees them.
 std::vector<translators::GridPosition> grid_positions(const translators::FeModel& model);

@@ -4,12 +4,12 @@
 # (ssid plays the other code here), writes spec.json and imports it with finite
 # differences.
 # Usage: samples/import/make_exports.sh [path/to/ssid [DECK]]   (default: ssid on PATH)
-# Output: samples/import/work/ (exports, spec.json, imported/ operators).
+# Output: samples/import/work/, or $SSID_IMPORT_WORK (exports, spec.json, imported/ and exact/ operators).
 set -eu
 SSID=${1:-ssid}
 HERE=$(cd "$(dirname "$0")" && pwd)
 DECK=$(cd "$(dirname "${2:-$HERE/../frame.bdf}")" && pwd)/$(basename "${2:-$HERE/../frame.bdf}")
-W="$HERE/work"
+W="${SSID_IMPORT_WORK:-$HERE/work}"
 rm -rf "$W"
 mkdir -p "$W"
 cd "$W"

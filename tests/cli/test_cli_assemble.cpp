@@ -175,3 +175,23 @@ TEST_CASE("ssid assemble --import: perturbed exports rebuild the analytic operat
   CHECK(b.code == 1);
   CHECK_THAT(b.err, Catch::Contains("bad.json: parameter 1 (ROUT) plus K"));
 }
+
+TEST_CASE("samples/import/make_exports.sh runs and its import matches the exact operators", "[cli][assemble][import]") {
+  const fs::path work = scratch() / "script";
+  const std::string cmd = "SSID_IMPORT_WORK=" + work.string() + " sh " + std::string(SSID_SOURCE_DIR) +
+                          "/samples/import/make_exports.sh " + std::string(SSID_EXE) + " >" +
+                          (scratch() / "script.log").string() + " 2>&1";
+  REQUIRE(std::system(cmd.c_str()) == 0);
+  const auto imp = translators::read_operator_set((work / "imported" / "manifest.json").string());
+  const auto exact = translators::read_operator_set((work / "exact" / "manifest.json").string());
+  REQUIRE(imp.parameters.size() == 6);
+  for (std::size_t p = 0; p < imp.parameters.size(); ++p) {
+    INFO("parameter " << imp.parameters[p].label);
+    CHECK(imp.parameters[p].id == exact.parameters[p].id);
+    CHECK(imp.parameters[p].method == "central");
+    if (exact.dK[p].norm() > 0) CHECK(rel(imp.dK[p], exact.dK[p]) < 1e-6);
+    else CHECK(imp.dK[p].norm() == 0.0);
+    if (exact.dM[p].norm() > 0) CHECK(rel(imp.dM[p], exact.dM[p]) < 1e-6);
+    else CHECK(imp.dM[p].norm() == 0.0);
+  }
+}

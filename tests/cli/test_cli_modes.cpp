@@ -57,6 +57,7 @@ TEST_CASE("ssid modes: table and JSON match the closed form of a lumped rod chai
   CHECK_THAT(r.out, Catch::Contains("R E A L   E I G E N V A L U E S"));
   CHECK_THAT(r.out, Catch::Contains("GENERALIZED"));
   CHECK_THAT(r.err, Catch::Contains("1 FORCE card ignored"));
+  CHECK_THAT(r.err, Catch::Contains("case control output requests ignored (they do not change K or M): DISPLACEMENT"));
   auto j = nlohmann::json::parse(cli_slurp(json));
   CHECK(j.size() == 2);
   CHECK(j["dof"] == n);
@@ -176,4 +177,80 @@ TEST_CASE("ssid modes --uff: synthetic test read back; noise reproducible by see
   CHECK(ta.dofs.size() == 9 * 3);  // default: every grid
   CHECK(ta.frequency_hz[0] != j["modes"][0]["cycles"].get<double>());
   CHECK(ta.frequency_hz[0] == Approx(j["modes"][0]["cycles"].get<double>()).epsilon(0.05));
+}
+
+TEST_CASE("ssid modes --weight: grid point weight of the frame sample against hand sums", "[cli][modes][weight]") {
+  // samples/frame.bdf: lumped mass, each element's mass at its mid-point on average.
+  const double rho = 2700.0, a_tube = M_PI * (0.02 * 0.02 - 0.015 * 0.015), a_rod = 2.0e-4;
+  const double m_bar = rho * a_tube * 1.0, m_bat = rho * a_rod * 0.5, m_diag = rho * a_rod * std::sqrt(1.25);
+  const double total = 6.0 + 12 * m_bar + 12 * m_bat + 12 * m_diag;
+  const double xcg = (18 * m_bar + 24 * m_bat + 18 * m_diag + 18.0) / total;
+  auto r = run_ssid("modes " + std::string(SSID_SOURCE_DIR) + "/samples/frame.bdf --nmodes 1 --weight");
+  INFO(r.err);
+  REQUIRE(r.code == 0);
+  CHECK_THAT(r.out, Catch::Contains("O U T P U T   F R O M   G R I D   P O I N T   W E I G H T"));
+  // Direction Y row: mass, X-C.G., Y-C.G. (0: not seen by a Y mass), Z-C.G.
+  const auto at = r.out.find("                                  Y    ");
+  REQUIRE(at != std::string::npos);
+  std::istringstream row(r.out.substr(at + 36, 80));
+  double m = 0, x = 0, y = 0, z = 0;
+  row >> m >> x >> y >> z;
+  CHECK(m == Approx(total).epsilon(1e-6));
+  CHECK(x == Approx(xcg).epsilon(1e-6));
+  CHECK(y == 0.0);
+  CHECK(z == Approx(0.25).epsilon(1e-6));
+  // Without --weight and without PARAM GRDPNT: no weight output.
+  auto q = run_ssid("modes " + std::string(SSID_SOURCE_DIR) + "/samples/frame.bdf --nmodes 1");
+  CHECK(q.out.find("W E I G H T") == std::string::npos);
+}
+
+TEST_CASE("ssid modes: a mechanism names its DOF", "[cli][modes][errors]") {
+  // Without AUTOSPC the rods' rotations have neither stiffness nor mass.
+  const fs::path dir = scratch();
+  const fs::path deck = write(dir / "mech.bdf", rod_chain(3, 1.0, "EIGRL,1,,,2\n", "PARAM,AUTOSPC,NO\n"));
+  auto r = run_ssid("modes " + deck.string());
+  CHECK(r.code == 1);
+  CHECK_THAT(r.err, Catch::Contains("not positive definite") && Catch::Contains(" component ") && Catch::Contains("(grid "));
+}
+
+TEST_CASE("ssid modes --uff: sensor file, rotations, bad sensors", "[cli][modes][synthetic]") {
+  const fs::path dir = scratch();
+  const std::string deck = std::string(SSID_SOURCE_DIR) + "/samples/frame.bdf";
+  const fs::path sensors = write(dir / "sensors.txt", "# tip station\n31 THRU 34\n21, 22\n");
+  const fs::path out = dir / "rot.unv";
+  auto r = run_ssid("modes " + deck + " --nmodes 3 --uff " + out.string() + " --sensor-file " + sensors.string() +
+                    " --rotations");
+  INFO(r.err);
+  REQUIRE(r.code == 0);
+  auto t = ssid::translators::modes_from_uff(ssid::formats::uff::read_uff(out.string()));
+  CHECK(t.dofs.size() == 6 * 6);
+  CHECK(t.dofs[0].node == 31);
+  CHECK(t.dofs[5].direction == 6);
+  CHECK(t.dofs[30].node == 22);
+  auto bad = run_ssid("modes " + deck + " --nmodes 3 --uff " + out.string() + " --sensors 31,99");
+  CHECK(bad.code == 1);
+  CHECK_THAT(bad.err, Catch::Contains("sensor grid 99 is not a grid of the model"));
+  auto both = run_ssid("modes " + deck + " --uff " + out.string() + " --sensors 31 --sensor-file " + sensors.string());
+  CHECK(both.code == 2);
+}
+
+TEST_CASE("ssid modes honours EIGRL V1/V2 bands and EIGR", "[cli][modes]") {
+  const fs::path dir = scratch();
+  const int n = 40;
+  // Band [f2, f4] (widened by 1e-6): exactly modes 2..4 of the closed form.
+  const double f2 = std::sqrt(chain_lambda(n, 2.0, 2)) / (2 * M_PI), f4 = std::sqrt(chain_lambda(n, 2.0, 4)) / (2 * M_PI);
+  char eig[128];
+  std::snprintf(eig, sizeof eig, "EIGRL,1,%.9g,%.9g\n", f2 * (1 - 1e-6), f4 * (1 + 1e-6));
+  auto r = run_ssid("modes " + write(dir / "band.bdf", rod_chain(n, 2.0, eig)).string() + " --json -");
+  INFO(r.err);
+  REQUIRE(r.code == 0);
+  auto j = nlohmann::json::parse(r.out);
+  REQUIRE(j["modes"].size() == 3);
+  CHECK(j["modes"][0]["eigenvalue"].get<double>() == Approx(chain_lambda(n, 2.0, 2)).epsilon(1e-10));
+  CHECK(j["modes"][2]["eigenvalue"].get<double>() == Approx(chain_lambda(n, 2.0, 4)).epsilon(1e-10));
+  // EIGR: SID, METHOD, F1, F2, NE, ND.
+  auto e = run_ssid("modes " + write(dir / "eigr.bdf", rod_chain(n, 2.0, "EIGR,1,LAN,,,,5\n")).string() + " --json -");
+  INFO(e.err);
+  REQUIRE(e.code == 0);
+  CHECK(nlohmann::json::parse(e.out)["modes"].size() == 5);
 }
