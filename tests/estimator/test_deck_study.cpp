@@ -545,3 +545,32 @@ TEST_CASE("rod deck: dK/dx and dM/dx of every DESVAR equal finite differences of
     CHECK((aM - dM).norm() <= 1e-7 * std::max(dM.norm(), 1e-300) + 1e-12 * aM.norm());
   }
 }
+
+TEST_CASE("problem file with operators \"exact\": the named deck is re-assembled; a changed deck is refused",
+          "[estimator][deck_study]") {
+  const fs::path dir = scratch("problem_exact");
+  const fs::path nominal = dir / "nominal.bdf", uff = dir / "test.unv";
+  write_rod_deck({"bare"}, nominal);
+  const DeckModel nm = load(nominal);
+  Synthetic syn;
+  syn.sensors = ball_sensors();
+  syn.modes = 12;
+  write_measured(nm, parameters_with(nm, {{"STRUTA", 2.1e-4}}), syn, uff);
+  const auto study = parse_study(json::parse(R"({"parameters": ["STRUTA", "JOINTM"],
+      "measurement": {"frequency_std_pct": 1e-5, "shape_std": 1e-6}, "convergence": {"tolerance": 1e-8}})"), "test");
+  auto from_deck = estimator::prepare_problem(study, nominal.string(), uff.string());
+  auto file = estimator::to_problem_file(from_deck);
+  CHECK(file.options.operators == "taylor");
+  file.options.operators = "exact";
+  auto exact = estimator::problem_from_file(file);
+  CHECK(exact.operators == "exact");
+  const auto r = estimator::run_problem(exact);
+  REQUIRE(r.update.converged);
+  CHECK(r.update.r(0) == Approx(2.1e-4).epsilon(1e-7));
+  CHECK(r.update.r(1) == Approx(1.0).epsilon(1e-7));
+  // The deck no longer has the file's analysis DOFs: refused, not silently used.
+  file.configurations[0].dofs.pop_back();
+  CHECK_THROWS_WITH(estimator::problem_from_file(file), Catch::Contains("analysis DOFs differ"));
+  file.parameters[0].desvar = 77;
+  CHECK_THROWS_WITH(estimator::problem_from_file(file), Catch::Contains("no DESVAR 77 (STRUTA)"));
+}
