@@ -23,13 +23,19 @@ bool is_problem_file(const std::string& path) {
   return in.gcount() == 8 && std::string(magic, 8) == "SSIDPROB";
 }
 
-estimator::EstimationProblem load_problem(const po::variables_map& vm) {
-  const std::string deck = vm["deck"].as<std::string>();
-  if (is_problem_file(deck)) {
+estimator::EstimationProblem load_problem(const po::variables_map& vm, bool allow_problem) {
+  std::string problem = allow_problem && vm.count("problem") ? vm["problem"].as<std::string>() : "";
+  const std::string deck = vm.count("deck") ? vm["deck"].as<std::string>() : "";
+  if (problem.empty() && allow_problem && !deck.empty() && is_problem_file(deck)) problem = deck;
+  if (!problem.empty()) {
     if (vm.count("study"))
-      throw std::invalid_argument("--study applies to decks; " + deck + " is a problem file that holds its own settings");
-    return estimator::problem_from_file(formats::read_problem(deck));
+      throw std::invalid_argument("--study applies to decks; " + problem + " is a problem file that holds its own settings");
+    if (vm.count("measured") || (!deck.empty() && deck != problem))
+      throw std::invalid_argument("give either a problem file (--problem) or DECK MEASURED.unv, not both");
+    return estimator::problem_from_file(formats::read_problem(problem));
   }
+  if (deck.empty()) throw std::invalid_argument("no deck: give DECK MEASURED.unv (or --problem FILE)");
+  if (is_problem_file(deck)) throw std::invalid_argument(deck + " is a problem file, not a deck");
   const std::string measured = vm.count("measured") ? vm["measured"].as<std::string>() : "";
   const estimator::Study study = vm.count("study") ? estimator::read_study(vm["study"].as<std::string>()) : estimator::Study{};
   if (measured.empty() && study.configurations.empty())
@@ -41,22 +47,21 @@ estimator::EstimationProblem load_problem(const po::variables_map& vm) {
 
 int cmd_estimate(const Args& args) {
   po::options_description desc("ssid estimate options");
-  desc.add_options()("deck", po::value<std::string>()->required(),
-                     "NASTRAN deck with DESVAR parameters (or a problem file from ssid translate)")(
+  desc.add_options()("deck", po::value<std::string>(), "NASTRAN deck with DESVAR parameters")(
       "measured", po::value<std::string>(), "measured modes: universal file with dataset 55 (+ nodes 15/2411)")(
       "study", po::value<std::string>(), "study file (JSON, docs/estimation.md): priors, weights, pairing, configurations")(
       "json", po::value<std::string>(), "write the result as JSON to this file ('-' for stdout)")(
-      "problem", po::value<std::string>(), "also write the problem file (operators at the prior mean) to this file")(
+      "problem", po::value<std::string>(),
+      "estimate from this problem file (ssid translate) instead of DECK MEASURED.unv: imported operators, Taylor model")(
       "quiet,q", "no progress lines on stderr");
   po::positional_options_description pos;
   pos.add("deck", 1).add("measured", 1);
   po::variables_map vm;
   int rc = 0;
-  if (!parse_options(args, "ssid estimate DECK MEASURED.unv [--study FILE] [--json FILE] [--problem FILE]", desc, pos,
-                     vm, rc))
+  if (!parse_options(args, "ssid estimate DECK MEASURED.unv [--study FILE] [--json FILE] | ssid estimate --problem FILE [--json FILE]",
+                     desc, pos, vm, rc))
     return rc;
-  estimator::EstimationProblem problem = load_problem(vm);
-  if (vm.count("problem")) formats::write_problem(vm["problem"].as<std::string>(), estimator::to_problem_file(problem));
+  estimator::EstimationProblem problem = load_problem(vm, true);
   const bool quiet = vm.count("quiet") != 0;
   estimator::Progress progress;
   if (!quiet)
@@ -87,9 +92,7 @@ int cmd_translate(const Args& args) {
   po::variables_map vm;
   int rc = 0;
   if (!parse_options(args, "ssid translate DECK MEASURED.unv [--study FILE] -o PROBLEM", desc, pos, vm, rc)) return rc;
-  if (is_problem_file(vm["deck"].as<std::string>()))
-    throw std::invalid_argument(vm["deck"].as<std::string>() + " is a problem file already");
-  const estimator::EstimationProblem problem = load_problem(vm);
+  const estimator::EstimationProblem problem = load_problem(vm, false);
   const formats::ProblemFile file = estimator::to_problem_file(problem);
   const std::string out = vm["output"].as<std::string>();
   formats::write_problem(out, file);

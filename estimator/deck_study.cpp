@@ -667,9 +667,40 @@ EstimationProblem problem_from_file(const formats::ProblemFile& file) {
       pc.test.push_back(mm);
       pc.test_numbers.push_back(m.id);
     }
-    Operators nominal{c.K, c.M, c.dK, c.dM};
-    pc.assemble = taylor_operators(nominal, problem.prior.mean);
     const std::string who = "configuration '" + c.name + "'";
+    if (file.options.operators == "exact") {
+      // Re-assemble the deck the file names (path as stored), on the same DOFs.
+      LoadedDeck ld = load_deck(c.deck);
+      const auto& params = ld.fe->parameters();
+      std::vector<std::size_t> index;
+      for (const auto& q : file.parameters) {
+        std::size_t found = params.size();
+        for (std::size_t j = 0; j < params.size(); ++j)
+          if (params[j].id == q.desvar) found = j;
+        if (found == params.size())
+          throw std::invalid_argument(c.deck + ": no DESVAR " + std::to_string(q.desvar) + " (" + q.name +
+                                      ") that the problem file's " + who + " needs");
+        index.push_back(found);
+      }
+      std::vector<std::pair<std::int64_t, int>> dofs;
+      for (std::size_t a : ld.fe->reduction().a_to_g) {
+        const auto& d = ld.fe->geometry().gset().at(a);
+        dofs.emplace_back(d.point, d.component);
+      }
+      if (dofs != c.dofs)
+        throw std::invalid_argument(c.deck + ": its analysis DOFs differ from those of the problem file's " + who +
+                                    " (the deck changed since the file was written?)");
+      Eigen::VectorXd x_fixed = ld.fe->initial_parameters();
+      for (std::size_t j = 0; j < index.size(); ++j)
+        x_fixed(static_cast<Eigen::Index>(index[j])) = problem.prior.mean(static_cast<Eigen::Index>(j));
+      auto exact = exact_assembly(ld.fe, x_fixed, index);
+      auto deck_keep = ld.deck;
+      pc.assemble = [exact, deck_keep](const Eigen::VectorXd& r) { return exact(r); };
+      problem.operators = "exact";
+    } else {
+      Operators nominal{c.K, c.M, c.dK, c.dM};
+      pc.assemble = taylor_operators(nominal, problem.prior.mean);
+    }
     pc.model = std::make_shared<OperatorModel>(pc.assemble, make_eigen_solve(who), pc.sensors, c.modes, sdk);
     problem.configurations.push_back(std::move(pc));
   }

@@ -141,7 +141,10 @@ EstimationProblem prepare_problem(const Study& study, const std::string& deck, c
 
 /// The problem as a problem file (operators at the prior mean).
 formats::ProblemFile to_problem_file(const EstimationProblem& problem);
-/// A problem from a problem file: imported operators, first-order Taylor model.
+/// A problem from a problem file: imported operators with their first-order
+/// Taylor model (options.operators "taylor", what `ssid translate` writes), or,
+/// for "exact", the deck each configuration names re-assembled every cycle (it
+/// must still have the file's DESVAR ids and analysis DOFs).
 EstimationProblem problem_from_file(const formats::ProblemFile& file);
 
 /// A strongly correlated pair of parameters in the posterior.

@@ -68,8 +68,10 @@ std::vector<UpdatePair> track_pairs(const std::vector<UpdatePair>& previous, con
   return out;
 }
 
+/// z, u, σ of the pairs and, with `with_T`, the sensitivities T (the costly part:
+/// a trial point of the line search needs only the objective).
 Residuals residuals(ModalModel& model, const std::vector<MeasuredMode>& test, const ModalSolution& fem,
-                    const std::vector<UpdatePair>& pairs, const UpdateOptions& options) {
+                    const std::vector<UpdatePair>& pairs, const UpdateOptions& options, bool with_T = true) {
   const int p = model.parameter_count();
   std::vector<double> z, u, sigma;
   std::vector<Eigen::VectorXd> rows;
@@ -78,7 +80,7 @@ Residuals residuals(ModalModel& model, const std::vector<MeasuredMode>& test, co
     const bool use_f = t.use_frequency && t.frequency_std_hz > 0;
     const bool use_s = options.shape_derivatives && t.use_shape && t.shape.size() > 0 && t.shape_std > 0;
     if (!use_f && !use_s) continue;
-    const ModeSensitivity s = model.sensitivity(pair.fem, use_s);
+    const ModeSensitivity s = with_T ? model.sensitivity(pair.fem, use_s) : ModeSensitivity{Eigen::VectorXd::Zero(p), Eigen::MatrixXd()};
     if (use_f) {
       const double f = hz(fem.eigenvalues(pair.fem));
       if (f <= 0) throw std::runtime_error("test mode " + std::to_string(t.id) + " is paired with a zero-frequency analysis mode");
@@ -94,7 +96,8 @@ Residuals residuals(ModalModel& model, const std::vector<MeasuredMode>& test, co
       Eigen::VectorXd zn = t.shape / t.shape.norm();
       if (zn.dot(un) < 0) zn = -zn;
       // d(φ/‖φ‖) = (I − û ûᵀ) dφ / ‖φ‖
-      const Eigen::MatrixXd d = (s.d_sensor_shape - un * (un.transpose() * s.d_sensor_shape)) / n;
+      const Eigen::MatrixXd d = with_T ? Eigen::MatrixXd((s.d_sensor_shape - un * (un.transpose() * s.d_sensor_shape)) / n)
+                                       : Eigen::MatrixXd::Zero(un.size(), p);
       for (Eigen::Index k = 0; k < un.size(); ++k) {
         z.push_back(zn(k));
         u.push_back(un(k));
@@ -224,8 +227,23 @@ UpdateResult update(const std::vector<Configuration>& configurations, const Para
   }
   std::vector<std::vector<UpdatePair>> pairs(nc);
   std::vector<Eigen::MatrixXd> tracking(nc);
-  for (int cycle = 0;; ++cycle) {
+  // Line search: the Gauss–Newton step of Eq. (7) is a descent direction of J;
+  // a step that raises J (the linearisation overshot: far from the answer, or
+  // along a poorly informed direction) is halved, from the last accepted point.
+  Eigen::LLT<Eigen::MatrixXd> prior_llt(cov_theta);
+  auto objective = [&](const Eigen::VectorXd& th, const Residuals& res) {
+    const Eigen::VectorXd e = ((res.z - res.u).array() / res.sigma.array()).matrix();
+    return e.squaredNorm() + th.dot(prior_llt.solve(th));
+  };
+  double J_accepted = INFINITY;
+  Eigen::VectorXd theta_accepted = theta;
+  std::vector<std::vector<UpdatePair>> pairs_accepted;
+  std::vector<Eigen::MatrixXd> tracking_accepted;
+  int halvings = 0;
+  constexpr int max_halvings = 12;
+  for (int cycle = 0;;) {
     const Eigen::VectorXd r = prior.mean + d.cwiseProduct(theta);
+    const std::size_t notes_before = result.notes.size(), dropped_before = result.dropped.size();
     std::vector<Residuals> parts;
     std::vector<ModalSolution> solutions;
     UpdateCycle c;
@@ -255,10 +273,48 @@ UpdateResult update(const std::vector<Configuration>& configurations, const Para
       }
       for (auto& q : pairs[k]) q.config = static_cast<int>(k);
       tracking[k] = fem.tracking_shapes;
-      parts.push_back(residuals(*conf.model, conf.test, fem, pairs[k], options));
       solutions.push_back(fem);
       c.pairs.insert(c.pairs.end(), pairs[k].begin(), pairs[k].end());
     }
+    // Trial point: accept when J did not grow (or the pairs changed, which changes J).
+    if (cycle > 0) {
+      bool same = true;
+      for (std::size_t k = 0; k < nc && same; ++k) {
+        same = pairs[k].size() == pairs_accepted[k].size();
+        for (std::size_t q = 0; same && q < pairs[k].size(); ++q) same = pairs[k][q].test == pairs_accepted[k][q].test;
+      }
+      double J_trial = 0;
+      if (same) {
+        Residuals trial;
+        std::vector<double> z, u, sg;
+        for (std::size_t k = 0; k < nc; ++k) {
+          const Residuals part = residuals(*configurations[k].model, configurations[k].test, solutions[k], pairs[k], options, false);
+          z.insert(z.end(), part.z.data(), part.z.data() + part.z.size());
+          u.insert(u.end(), part.u.data(), part.u.data() + part.u.size());
+          sg.insert(sg.end(), part.sigma.data(), part.sigma.data() + part.sigma.size());
+        }
+        const auto len = static_cast<Eigen::Index>(z.size());
+        trial.z = Eigen::Map<Eigen::VectorXd>(z.data(), len);
+        trial.u = Eigen::Map<Eigen::VectorXd>(u.data(), len);
+        trial.sigma = Eigen::Map<Eigen::VectorXd>(sg.data(), len);
+        J_trial = objective(theta, trial);
+      }
+      if (same && J_trial > J_accepted && halvings < max_halvings) {
+        ++halvings;
+        report(progress, "cycle " + std::to_string(cycle) + ": J = " + std::to_string(J_trial) + " > " +
+                             std::to_string(J_accepted) + " at the full step; step halved");
+        theta = theta_accepted + 0.5 * (theta - theta_accepted);
+        pairs = pairs_accepted;
+        tracking = tracking_accepted;
+        result.notes.resize(notes_before);
+        result.dropped.resize(dropped_before);
+        continue;
+      }
+    }
+    c.step_halvings = halvings;
+    halvings = 0;
+    for (std::size_t k = 0; k < nc; ++k)
+      parts.push_back(residuals(*configurations[k].model, configurations[k].test, solutions[k], pairs[k], options));
     Residuals res;
     Eigen::Index m = 0;
     result.final_solutions = std::move(solutions);
@@ -308,7 +364,12 @@ UpdateResult update(const std::vector<Configuration>& configurations, const Para
                                " cycles (last move " + std::to_string(move) + " prior standard deviations)");
       return result;
     }
+    J_accepted = step.objective;
+    theta_accepted = theta;
+    pairs_accepted = pairs;
+    tracking_accepted = tracking;
     theta = step.r_next;
+    ++cycle;
   }
 }
 

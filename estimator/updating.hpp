@@ -14,7 +14,11 @@
 ///     ∂u_shape = (I − u uᵀ) ∂φ_s / ‖φ_s‖;
 ///  5. the step of Eq. (7) in parameters scaled by their prior standard
 ///     deviations (so E ≈ 7e10 and an area ≈ 1e-4 are equally well conditioned),
-///     bounds honoured, posterior covariance of Eq. (8).
+///     bounds honoured, posterior covariance of Eq. (8);
+///  6. a line search: when J at the new point exceeds J at the last accepted
+///     one (with the same test modes paired), the step is halved (at most 12
+///     times) — the Gauss–Newton step is a descent direction, so this restores
+///     convergence where the linearisation overshoots.
 /// Stops when no parameter moves by more than `tolerance` prior standard
 /// deviations. The result carries the posterior, the Laplace evidence, the
 /// identifiability analysis and the history of every cycle.
@@ -82,6 +86,7 @@ struct UpdateCycle {
   double freq_rms_pct = 0; ///< RMS frequency error of the pairs
   double mean_mac = 0;
   bool clipped = false;
+  int step_halvings = 0;   ///< times the step to this point was halved (J had grown)
 };
 
 /// A test mode that left the update because its partner was lost.

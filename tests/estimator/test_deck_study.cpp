@@ -124,7 +124,7 @@ TEST_CASE("noise-free modes of a perturbed truth deck: the nominal rod deck is u
   const fs::path nominal = dir / "nominal.bdf", truth = dir / "truth.bdf", uff = dir / "truth.unv";
   write_rod_deck({"bare"}, nominal);
   const std::map<std::string, double> truth_values = {
-      {"STRUTA", 2.015e-4 * 1.06}, {"BNUTA", 4.335e-5 * 0.92}, {"ECAPA", 3e-4 * 1.1}, {"JOINTM", 1.04}, {"KSUSP", 690.0}};
+      {"STRUTA", 2.015e-4 * 1.06}, {"BNUTA", 4.335e-5 * 0.92}, {"JOINTM", 1.04}, {"KSUSP", 690.0}};
   write_truth(nominal, truth_values, truth);
   const DeckModel tm = load(truth);
   Synthetic syn;
@@ -132,13 +132,14 @@ TEST_CASE("noise-free modes of a perturbed truth deck: the nominal rod deck is u
   syn.modes = 18;
   write_measured(tm, tm.fe->initial_parameters(), syn, uff);
 
-  // Data far more precise than the prior: the prior's pull vanishes, and the
-  // answer is the truth to the precision of the eigen-solver.
-  const auto study = parse_study(json::parse(R"({
-      "measurement": {"frequency_std_pct": 1e-7, "shape_std": 1e-9},
-      "convergence": {"tolerance": 1e-9, "max_iterations": 30}})"), "test");
+  // Data far more precise than the prior (σ 1e-4 of realistic ones, in the
+  // realistic proportion of frequency to shape): the prior's pull vanishes and
+  // the answer is the truth to the precision of the eigen-solver.
+  const std::string weights = R"("measurement": {"frequency_std_pct": 1e-5, "shape_std": 1e-6},
+      "convergence": {"tolerance": 1e-7, "max_iterations": 30})";
+  const auto study = parse_study(json::parse(R"({"parameters": ["STRUTA", "BNUTA", "JOINTM", "KSUSP"], )" + weights + "}"), "test");
   auto problem = estimator::prepare_problem(study, nominal.string(), uff.string());
-  REQUIRE(problem.prior.names.size() == 5);
+  REQUIRE(problem.prior.names.size() == 4);
   CHECK(problem.configurations[0].sensor_labels.size() == 120);
   CHECK(problem.configurations[0].test.size() == 18);
   const auto r = estimator::run_problem(problem);
@@ -147,18 +148,32 @@ TEST_CASE("noise-free modes of a perturbed truth deck: the nominal rod deck is u
   CHECK(r.update.dropped.empty());
   for (const auto& [name, v] : truth_values) {
     INFO(name);
-    CHECK(std::abs(estimate_of(problem, r, name) / v - 1.0) < 1e-8);
+    CHECK(std::abs(estimate_of(problem, r, name) / v - 1.0) < 1e-7);
   }
   const auto& last = r.update.history.back();
   CHECK(last.pairs.size() == 18);
   for (const auto& q : last.pairs) {
-    CHECK(std::abs(q.error_pct) < 1e-8);
-    CHECK(q.mac > 1 - 1e-12);
+    CHECK(std::abs(q.error_pct) < 1e-7);
+    CHECK(q.mac > 1 - 1e-10);
   }
-  CHECK(r.update.identifiability.rank == 5);
+  CHECK(r.update.identifiability.rank == 4);
   CHECK(r.uninformed.empty());
-  // The first cycle saw the nominal model's errors.
-  CHECK(r.update.history.front().freq_rms_pct > 1.0);
+  CHECK(r.update.history.front().freq_rms_pct > 1.0);  // the nominal model was visibly off
+
+  // All five DESVARs: the rod form's series-equivalent strut area depends on the
+  // B-nut and end-cap areas in a fixed proportion, so the modes inform only their
+  // combination. The data are still fitted exactly, and the estimator says so:
+  // rank 4 of 5, BNUTA and ECAPA strongly correlated in the posterior.
+  auto all = estimator::prepare_problem(parse_study(json::parse("{" + weights + "}"), "test"), nominal.string(), uff.string());
+  REQUIRE(all.prior.names.size() == 5);
+  const auto ra = estimator::run_problem(all);
+  CHECK(ra.update.identifiability.rank == 4);
+  bool flagged = false;
+  for (const auto& c : ra.correlated)
+    flagged = flagged || (all.prior.names[static_cast<std::size_t>(c.a)] == "BNUTA" &&
+                          all.prior.names[static_cast<std::size_t>(c.b)] == "ECAPA");
+  CHECK(flagged);
+  for (const auto& q : ra.update.history.back().pairs) CHECK(std::abs(q.error_pct) < 1e-6);
 }
 
 TEST_CASE("with noisy data the truth lies within the posterior ±2σ in about 95 % of the cases",
@@ -255,7 +270,7 @@ TEST_CASE("a second configuration with a known tip mass makes a stiffness/mass p
   const fs::path bare = dir / "free.bdf", tip = dir / "tip.bdf";
   write_scaling_deck({"free"}, bare, designed);
   write_scaling_deck({"free", "metrology_tip_mass"}, tip, designed);
-  REQUIRE(designed.size() > 80);
+  REQUIRE(designed.size() == 80);  // the strut masses lumped at the balls (2001-2080)
   // Truth: E 5 % up, structural mass 3 % down.
   const std::map<std::string, double> truth = {{"EMOD", 6.89e10 * 1.05}, {"JOINTM", 0.97}};
   Synthetic syn;
@@ -308,43 +323,73 @@ TEST_CASE("a second configuration with a known tip mass makes a stiffness/mass p
   CHECK(j["configurations"].size() == 2);
 }
 
-TEST_CASE("suspension modes that cross the pendulum modes during the update stay with their test partners",
-          "[estimator][deck_study]") {
-  // Halving the suspension stiffness drops the bounce/pitch/roll modes (≈ 0.47 Hz)
-  // below the cable-pendulum modes (≈ 0.41 Hz): analysis modes change order
-  // between the nominal model and the answer.
+TEST_CASE("modes that cross during the update stay with their test partners", "[estimator][deck_study]") {
+  // The metrology tip mass is uncertain (TIPM scales the four 6 kg masses). The
+  // truth carries 2.5 times the nominal tip mass: the boom modes it loads drop
+  // below modes it hardly touches, so analysis modes change order between the
+  // nominal model and the answer.
   const fs::path dir = scratch("swap");
-  const fs::path nominal = dir / "nominal.bdf", uff = dir / "test.unv";
-  write_rod_deck({"bare"}, nominal);
+  const fs::path bare = dir / "bare.bdf", raw = dir / "raw.bdf", nominal = dir / "tip.bdf", uff = dir / "test.unv";
+  write_rod_deck({"bare"}, bare);
+  write_rod_deck({"bare", "metrology_tip_mass"}, raw);
+  std::set<std::int64_t> bare_ids;
+  {
+    const formats::Deck d = formats::read_deck(bare.string());
+    for (const auto& c : formats::parse_bulk(d).conm2s) bare_ids.insert(c.eid);
+  }
+  {
+    const formats::Deck d = formats::read_deck(raw.string());
+    const formats::BulkModel b = formats::parse_bulk(d);
+    std::ifstream in(raw);
+    std::string text((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+    std::string cards = "DESVAR  40      TIPM    1.      .1      10.\n";
+    int id = 950, added = 0;
+    for (const auto& c : b.conm2s)
+      if (!bare_ids.count(c.eid)) {
+        char buf[160];
+        std::snprintf(buf, sizeof buf, "DVPREL1 %-8dCONM2   %-8lldM\n+       40      %-8.6g\n", id++,
+                      static_cast<long long>(c.eid), c.m);
+        cards += buf;
+        ++added;
+      }
+    REQUIRE(added == 4);
+    text.insert(text.rfind("ENDDATA"), cards);
+    std::ofstream(nominal) << text;
+  }
   const DeckModel nm = load(nominal);
   Synthetic syn;
   syn.sensors = ball_sensors();
-  syn.modes = 12;
-  write_measured(nm, parameters_with(nm, {{"KSUSP", 300.0}}), syn, uff);
-  const auto study = parse_study(json::parse(R"({"parameters": ["KSUSP"],
-      "measurement": {"frequency_std_pct": 1e-6, "shape_std": 1e-8},
-      "convergence": {"tolerance": 1e-9}, "modes": {"max_hz": 2.0}})"), "test");
+  syn.modes = 20;
+  syn.min_hz = 1.0;
+  write_measured(nm, parameters_with(nm, {{"TIPM", 2.5}}), syn, uff);
+  const auto study = parse_study(json::parse(R"({"parameters": ["TIPM"], "priors": {"TIPM": {"std": 1}},
+      "measurement": {"frequency_std_pct": 1e-4, "shape_std": 1e-5},
+      "convergence": {"tolerance": 1e-8}, "modes": {"min_hz": 1.0, "max_hz": 40.0}})"), "test");
   auto problem = estimator::prepare_problem(study, nominal.string(), uff.string());
-  REQUIRE(problem.configurations[0].test.size() == 6);
   const auto r = estimator::run_problem(problem);
   INFO(notes_of(r));
+  if (std::getenv("SSID_DEBUG"))
+    for (const auto& c : r.update.history)
+      for (const auto& q : c.pairs)
+        std::fprintf(stderr, "cycle %d test %d fem %d mac %.6f err %.4f ftest %.4f ffe %.4f\n", c.cycle, q.test, q.fem,
+                     q.mac, q.error_pct, q.test_hz, q.fem_hz);
   REQUIRE(r.update.converged);
   CHECK(r.update.dropped.empty());
-  CHECK(estimate_of(problem, r, "KSUSP") == Approx(300.0).epsilon(1e-8));
-  // Some test mode was paired with a different analysis mode index at the start
-  // than at the end (the modes swapped), and every final pair is right.
+  CHECK(estimate_of(problem, r, "TIPM") == Approx(2.5).epsilon(1e-7));
+  // Some test mode was paired with another analysis mode index at the start than
+  // at the end (the modes changed order), and every final pair is the true one.
   const auto& first = r.update.history.front().pairs;
   const auto& last = r.update.history.back().pairs;
-  REQUIRE(last.size() == 6);
+  REQUIRE(last.size() == problem.configurations[0].test.size());
   bool swapped = false;
   for (const auto& a : first)
     for (const auto& b : last)
       if (a.test == b.test && a.fem != b.fem) swapped = true;
   CHECK(swapped);
   for (const auto& q : last) {
-    CHECK(q.mac > 0.999999);
+    CHECK(q.mac > 1 - 1e-9);
     CHECK(std::abs(q.error_pct) < 1e-6);
-    // The test numbering is the truth's FE order: a correct pair has the same number.
+    // The test numbering is the truth's analysis order: a correct pair has the same number.
     CHECK(problem.configurations[0].test_numbers[static_cast<std::size_t>(q.test)] == q.fem + 1);
   }
 }
@@ -447,7 +492,7 @@ TEST_CASE("garbage and mismatched inputs give clear errors", "[estimator][deck_s
   {
     std::ofstream(dir / "plain.bdf") << "BEGIN BULK\nGRID    1               0.      0.      0.\n"
                                         "GRID    2               1.      0.      0.\nCROD    1       1       1       2\n"
-                                        "PROD    1       1       1.\nMAT1    1       1.      .3      1.\nENDDATA\n";
+                                        "PROD    1       1       1.\nMAT1    1       1.              .3      1.\nENDDATA\n";
   }
   CHECK_THAT(error_of(none, dir / "plain.bdf", uff), Catch::Contains("plain.bdf: the deck has no DESVAR"));
   // A missing deck.
@@ -474,4 +519,58 @@ TEST_CASE("garbage and mismatched inputs give clear errors", "[estimator][deck_s
   }
   auto p = estimator::prepare_problem(strict, nominal.string(), (dir / "shifted.unv").string());
   CHECK_THROWS_WITH(estimator::run_problem(p), Catch::Contains("no test mode") && Catch::Contains("pairs"));
+}
+
+TEST_CASE("rod deck: dK/dx and dM/dx of every DESVAR equal finite differences of the assembly (linear model)",
+          "[estimator][deck_study]") {
+  // The estimator's exact re-assembly and its Taylor model both rest on these.
+  const fs::path dir = scratch("derivatives");
+  const fs::path nominal = dir / "nominal.bdf";
+  write_rod_deck({"bare"}, nominal);
+  const DeckModel nm = load(nominal);
+  const Eigen::VectorXd x = nm.fe->initial_parameters();
+  const auto ops = nm.fe->operators(x, true);
+  for (Eigen::Index j = 0; j < x.size(); ++j) {
+    INFO(nm.fe->parameters()[static_cast<std::size_t>(j)].label);
+    const double h = 1e-3 * std::abs(x(j));
+    Eigen::VectorXd xp = x, xm = x;
+    xp(j) += h;
+    xm(j) -= h;
+    const auto p = nm.fe->operators(xp, false), m = nm.fe->operators(xm, false);
+    const Eigen::MatrixXd dK = (Eigen::MatrixXd(p.K) - Eigen::MatrixXd(m.K)) / (2 * h);
+    const Eigen::MatrixXd dM = (Eigen::MatrixXd(p.M) - Eigen::MatrixXd(m.M)) / (2 * h);
+    const Eigen::MatrixXd aK(ops.dK[static_cast<std::size_t>(j)]), aM(ops.dM[static_cast<std::size_t>(j)]);
+    CHECK(dK.norm() + dM.norm() > 0);  // every parameter changes the model
+    CHECK((aK - dK).norm() <= 1e-7 * std::max(dK.norm(), 1e-300) + 1e-12 * aK.norm());
+    CHECK((aM - dM).norm() <= 1e-7 * std::max(dM.norm(), 1e-300) + 1e-12 * aM.norm());
+  }
+}
+
+TEST_CASE("problem file with operators \"exact\": the named deck is re-assembled; a changed deck is refused",
+          "[estimator][deck_study]") {
+  const fs::path dir = scratch("problem_exact");
+  const fs::path nominal = dir / "nominal.bdf", uff = dir / "test.unv";
+  write_rod_deck({"bare"}, nominal);
+  const DeckModel nm = load(nominal);
+  Synthetic syn;
+  syn.sensors = ball_sensors();
+  syn.modes = 12;
+  write_measured(nm, parameters_with(nm, {{"STRUTA", 2.1e-4}}), syn, uff);
+  const auto study = parse_study(json::parse(R"({"parameters": ["STRUTA", "JOINTM"],
+      "measurement": {"frequency_std_pct": 1e-5, "shape_std": 1e-6}, "convergence": {"tolerance": 1e-8}})"), "test");
+  auto from_deck = estimator::prepare_problem(study, nominal.string(), uff.string());
+  auto file = estimator::to_problem_file(from_deck);
+  CHECK(file.options.operators == "taylor");
+  file.options.operators = "exact";
+  auto exact = estimator::problem_from_file(file);
+  CHECK(exact.operators == "exact");
+  const auto r = estimator::run_problem(exact);
+  REQUIRE(r.update.converged);
+  CHECK(r.update.r(0) == Approx(2.1e-4).epsilon(1e-7));
+  CHECK(r.update.r(1) == Approx(1.0).epsilon(1e-7));
+  // The deck no longer has the file's analysis DOFs: refused, not silently used.
+  file.configurations[0].dofs.pop_back();
+  CHECK_THROWS_WITH(estimator::problem_from_file(file), Catch::Contains("analysis DOFs differ"));
+  file.parameters[0].desvar = 77;
+  CHECK_THROWS_WITH(estimator::problem_from_file(file), Catch::Contains("no DESVAR 77 (STRUTA)"));
 }

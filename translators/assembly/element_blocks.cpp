@@ -385,7 +385,8 @@ ElementBlock ElementSet::evaluate(std::size_t e, const BulkModel& v, const Value
         double value = 0;
         if (r.kind == ElementKind::Cmass1) value = d ? P("M") : v.pmasses[m_pmass.at(r.pid)].m;
         if (r.kind == ElementKind::Cmass2) value = d ? E("M") : v.cmass2s[r.index].m;
-        if (r.kind == ElementKind::Celas1) value = d ? P("K") : v.pelases[m_pelas.at(r.pid)].k;
+        // A DVPREL1 names the PELAS stiffness "K" or, as NASTRAN does, "K1": both are rates of k.
+        if (r.kind == ElementKind::Celas1) value = d ? P("K") + P("K1") : v.pelases[m_pelas.at(r.pid)].k;
         if (r.kind == ElementKind::Celas2) value = d ? E("K") : v.celas2s[r.index].k;
         const Eigen::MatrixXd s = el::scalar_element_matrix(value, grounded);
         const Eigen::MatrixXd z = Eigen::MatrixXd::Zero(s.rows(), s.cols());
