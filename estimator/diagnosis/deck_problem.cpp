@@ -1,6 +1,7 @@
 #include "estimator/diagnosis/deck_problem.hpp"
 
 #include <cmath>
+#include <limits>
 #include <set>
 #include <stdexcept>
 
@@ -106,13 +107,25 @@ DeckProblem make_deck_problem(const std::string& deck_text, const std::string& n
     ops.dM = std::move(o.dM);
     return ops;
   };
-  auto eigensolve = [solver, name](const SparseMatrix& K, const SparseMatrix& M, int nmodes) {
+  double f_max = 0;
+  for (const auto& t : pb.test) f_max = std::max(f_max, t.frequency_hz);
+  const double f_band = options.band_factor * f_max;
+  const int a_size = a;
+  auto eigensolve = [solver, name, f_band, a_size](const SparseMatrix& K, const SparseMatrix& M, int nmodes) {
+    // The lowest `nmodes`; when they do not reach the band's top, every mode in the band.
     solver->options().nd = nmodes;
+    solver->options().f_high = std::numeric_limits<double>::quiet_NaN();
     EigenResult r = solver->solve(K, M);
+    if (r.ok() && r.size() > 0 && r.cycles(r.size() - 1) < f_band && nmodes < a_size - 1) {
+      solver->options().nd = 0;
+      solver->options().f_high = f_band;
+      r = solver->solve(K, M);
+    }
     if (!r.ok()) throw std::runtime_error(name + ": eigen-solve failed: " + r.message);
     return std::make_pair(r.eigenvalues, r.modes);
   };
   pb.model = std::make_unique<OperatorModel>(assemble, eigensolve, pb.sensors, pb.nmodes);
+  pb.tracked = std::make_unique<SensorTracked>(*pb.model);
   return pb;
 }
 
@@ -123,7 +136,7 @@ UpdateResult estimate(std::vector<DeckProblem*> problems, const DeckProblemOptio
     if (pb->prior.names != problems.front()->prior.names)
       throw std::invalid_argument("estimate: configuration " + pb->name + " has other parameters than " +
                                   problems.front()->name);
-    confs.push_back({pb->name, pb->model.get(), pb->test});
+    confs.push_back({pb->name, pb->tracked.get(), pb->test});
   }
   UpdateOptions uo = options.update;
   uo.start = problems.front()->start;

@@ -36,8 +36,31 @@ struct DeckProblemOptions {
   /// on the unit-normalised shape this is (pct/100)/√n_s.
   double shape_std_pct = 3.0;
   double prior_rel_std = 0.3;      ///< σ of a DESVAR without override, relative to |XINIT|
-  int extra_modes = 12;            ///< analysis modes solved beyond the number of test modes (×2)
+  int extra_modes = 12;            ///< analysis modes solved beyond the number of test modes (×2) ...
+  /// ... and at least every mode up to this factor × the highest test frequency
+  /// (models with many local modes below the tested global ones need the band).
+  double band_factor = 1.25;
   UpdateOptions update;
+};
+
+/// The model as the update sees it: an OperatorModel whose modes are followed
+/// from cycle to cycle by their shapes at the sensors rather than everywhere.
+/// Strut-local modes crowd the spectrum of beam models; a global mode mixes
+/// with them as parameters move (veering) and its full shape changes a lot,
+/// while at the sensors — which see global motion only — it stays recognisable.
+class SensorTracked : public ModalModel {
+ public:
+  explicit SensorTracked(OperatorModel& inner) : m_inner(inner) {}
+  int parameter_count() const override { return m_inner.parameter_count(); }
+  ModalSolution solve(const Eigen::VectorXd& r) override {
+    ModalSolution s = m_inner.solve(r);
+    s.tracking_shapes = s.sensor_shapes;
+    return s;
+  }
+  ModeSensitivity sensitivity(int i, bool shapes) override { return m_inner.sensitivity(i, shapes); }
+
+ private:
+  OperatorModel& m_inner;
 };
 
 /// The measured modes as the estimator takes them (shapes in the order of `set.dofs`).
@@ -50,6 +73,7 @@ struct DeckProblem {
   std::unique_ptr<formats::Deck> deck;
   std::unique_ptr<translators::FeModel> fe;
   std::unique_ptr<OperatorModel> model;
+  std::unique_ptr<SensorTracked> tracked;      ///< `model`, followed at the sensors (what the update uses)
   std::vector<MeasuredMode> test;
   std::vector<translators::MeasuredDof> dofs;  ///< measured DOFs kept (those on model grids)
   std::vector<std::string> problems;           ///< unmapped test DOFs, …
