@@ -20,8 +20,8 @@
 /// CHOLMOD's own rule (flops/nnz(L) ≥ 500 and nnz(L)/nnz(A) ≥ 5) METIS and
 /// CHOLMOD's nested dissection (NESDIS) are tried too, every candidate is
 /// analysed on the rows, and the one with the fewest factorisation flops is
-/// kept. On 3D frame lattices this cuts the ordering time 3-10x and the
-/// factor's flops by 15-50 % (docs/eigen_solver.md).
+/// kept. On 3D beam-frame lattices this cuts the analysis time 4-6x and the
+/// factor's flops by 20-50 % (docs/eigen_solver.md).
 ///
 /// The 64-bit CHOLMOD interface (cholmod_l_*) is used so that factors of
 /// million-DOF models (more than 2³¹ entries in L) fit.
