@@ -1,8 +1,9 @@
 #pragma once
 /// \file dense_blas.hpp
 /// Tall-skinny dense products of the block Lanczos iteration through the
-/// system BLAS (cblas_dgemm), and its Ritz pairs through LAPACK (dsyevr). Why not Eigen's own product: Eigen is compiled for
-/// the baseline instruction set and runs on one thread, while the system BLAS
+/// system BLAS (cblas_dgemm), and its Ritz pairs through LAPACK (dsyevr).
+/// Why not Eigen's own product: Eigen is compiled for the baseline instruction
+/// set and runs on one thread, while the system BLAS
 /// (OpenBLAS on Debian, libopenblas0-pthread) dispatches at run time to the
 /// machine's widest vector kernels and uses every core. The same library is the
 /// one CHOLMOD's supernodal factorisation runs on.
