@@ -155,6 +155,13 @@ TEST_CASE("CholmodFactor with DOF groups: ordering on the group graph, same solu
   CHECK(grouped.analysis_count() == 2);
   CHECK(grouped.ordering().find("on 192 groups") != std::string::npos);
   CHECK((grouped.solve(B) - 0.5 * Xd).norm() <= 1e-10 * Xd.norm());
+  // NASTRAN-sized grid ids (up to 10^8) as group ids: sorted, not indexed.
+  std::vector<long> big_ids(groups);
+  for (long& id : big_ids) id = 99999999 - id;
+  grouped.set_dof_groups(big_ids);
+  REQUIRE(grouped.factorize(K2).ok());
+  CHECK(grouped.ordering().find("on 64 groups") != std::string::npos);
+  CHECK((grouped.solve(B) - 0.5 * Xd).norm() <= 1e-10 * Xd.norm());
 }
 
 TEST_CASE("CholmodFactor rejects bad DOF groups", "[cholmod]") {
