@@ -2,6 +2,7 @@
 
 #include <cholmod.h>
 
+#include <cstdio>
 #include <numeric>
 
 #include <algorithm>
@@ -310,6 +311,18 @@ FactorStatus CholmodFactor::factorize(const SparseMatrix& A, double near_singula
   auto& s = *m_state;
   s.A = sparse_header(s.n, s.p, s.i, low.valuePtr());
   FactorStatus st;
+  if (m_memory_limit > 0.0 && factor_bytes() > m_memory_limit) {
+    // Refused before any numeric work: on Linux an oversized factor is not a
+    // failed malloc but the out-of-memory killer, which may take other processes.
+    char buf[320];
+    std::snprintf(buf, sizeof buf,
+                  "the factor needs %.2f GiB (symbolic analysis: nnz(L) = %.4g, %.3g flops, ordering %s), "
+                  "more than the limit of %.2f GiB",
+                  factor_bytes() / 1073741824.0, m_lnz, m_fl, ordering().c_str(), m_memory_limit / 1073741824.0);
+    st.code = FactorStatus::Code::Failed;
+    st.message = buf;
+    return st;
+  }
   const auto t0 = std::chrono::steady_clock::now();
   const int ok = cholmod_l_factorize(&s.A, s.L, &s.cm);
   m_factorize_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();

@@ -82,6 +82,11 @@ struct EigenOptions {
   /// Callers that know the grids (the assembler's DofMap) should fill it: it
   /// cuts the factorisation's time and memory (docs/eigen_solver.md).
   std::vector<long> dof_groups;
+  /// Largest Cholesky factor to attempt, bytes, judged from the symbolic
+  /// analysis before any numeric work (a larger one gives FactorFailed with the
+  /// size in the message). 0: automatic, 80 % of the machine's physical memory;
+  /// negative: no limit.
+  double max_factor_bytes = 0.0;
   /// K − σM with a reciprocal condition estimate below this is reported near-singular.
   double near_singular_rcond = 1e-15;
   unsigned seed = 12345;  ///< start vector seed (results are deterministic)

@@ -185,3 +185,22 @@ TEST_CASE("CholmodFactor::factor_bytes from the symbolic analysis matches the nu
   CHECK(f.analysis_count() == 1);
   CHECK(f.factor_bytes() == before);
 }
+
+TEST_CASE("CholmodFactor refuses a factor above its memory limit before any numeric work", "[cholmod]") {
+  const auto [K0, M] = free_lattice_truss(4);
+  const SpMat K = K0 + SpMat(M);
+  CholmodFactor f;
+  f.set_memory_limit(1000.0);  // bytes: far below this factor's size
+  const FactorStatus st = f.factorize(K);
+  CHECK(st.code == FactorStatus::Code::Failed);
+  CHECK(st.message.find("GiB") != std::string::npos);
+  CHECK(st.message.find("limit") != std::string::npos);
+  CHECK(f.factorization_count() == 0);
+  CHECK(f.analysis_count() == 1);
+  CHECK(f.factor_bytes() > 1000.0);
+  f.set_memory_limit(2.0 * f.factor_bytes());
+  REQUIRE(f.factorize(K).ok());
+  CHECK(f.analysis_count() == 1);  // the analysis was kept
+  const Eigen::VectorXd b = Eigen::VectorXd::Ones(K.rows());
+  CHECK((K * f.solve(b) - b).norm() <= 1e-10 * b.norm());
+}
