@@ -319,7 +319,7 @@ FactorStatus CholmodFactor::factorize(const SparseMatrix& A, double near_singula
                   "the factor needs %.2f GiB (symbolic analysis: nnz(L) = %.4g, %.3g flops, ordering %s), "
                   "more than the limit of %.2f GiB",
                   factor_bytes() / 1073741824.0, m_lnz, m_fl, ordering().c_str(), m_memory_limit / 1073741824.0);
-    st.code = FactorStatus::Code::Failed;
+    st.code = FactorStatus::Code::TooLarge;
     st.message = buf;
     return st;
   }

@@ -36,7 +36,9 @@ namespace ssid::estimator {
 /// Outcome of a numeric factorisation: a numerical outcome the caller acts on,
 /// not an exception (bad input, such as a non-square matrix, throws).
 struct FactorStatus {
-  enum class Code { Ok, NotPositiveDefinite, NearSingular, Failed };
+  /// TooLarge: refused before numeric work, the factor would exceed the memory
+  /// limit (set_memory_limit); Failed: CHOLMOD failed (out of memory included).
+  enum class Code { Ok, NotPositiveDefinite, NearSingular, TooLarge, Failed };
   Code code = Code::Ok;
   /// For NotPositiveDefinite: the row/column index of the input matrix (original
   /// ordering) where the factorisation met a non-positive pivot; −1 otherwise.
@@ -88,7 +90,7 @@ class CholmodFactor {
   const std::vector<long>& dof_groups() const { return m_groups; }
 
   /// Largest factor (factor_bytes(), from the symbolic analysis) that factorize
-  /// will attempt; a larger one is refused with status Failed and a message
+  /// will attempt; a larger one is refused with status TooLarge and a message
   /// giving the size, before any numeric work. 0: no limit.
   void set_memory_limit(double bytes) { m_memory_limit = bytes; }
   double memory_limit() const { return m_memory_limit; }

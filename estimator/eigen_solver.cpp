@@ -193,6 +193,7 @@ EigenResult::Status to_status(FactorStatus::Code c) {
     case FactorStatus::Code::Ok: return EigenResult::Status::Ok;
     case FactorStatus::Code::NotPositiveDefinite: return EigenResult::Status::NotPositiveDefinite;
     case FactorStatus::Code::NearSingular: return EigenResult::Status::NearSingular;
+    case FactorStatus::Code::TooLarge:
     case FactorStatus::Code::Failed: break;
   }
   return EigenResult::Status::FactorFailed;
@@ -328,9 +329,7 @@ EigenResult EigenSolver::solve(const SparseMatrix& K, const SparseMatrix& M) {
                       "): a near-mechanism, or a massless DOF with almost no stiffness";
       else
         res.message = "K - sigma*M cannot be factorised: " + fs.message +
-                      (o.max_factor_bytes >= 0.0 && fs.message.find("limit") != std::string::npos
-                           ? " (EigenOptions::max_factor_bytes)"
-                           : "");
+                      (fs.code == FactorStatus::Code::TooLarge ? " (EigenOptions::max_factor_bytes)" : "");
       res.total_seconds = seconds_since(t0);
       return res;
     }

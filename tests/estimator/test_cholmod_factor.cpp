@@ -192,7 +192,7 @@ TEST_CASE("CholmodFactor refuses a factor above its memory limit before any nume
   CholmodFactor f;
   f.set_memory_limit(1000.0);  // bytes: far below this factor's size
   const FactorStatus st = f.factorize(K);
-  CHECK(st.code == FactorStatus::Code::Failed);
+  CHECK(st.code == FactorStatus::Code::TooLarge);
   CHECK(st.message.find("GiB") != std::string::npos);
   CHECK(st.message.find("limit") != std::string::npos);
   CHECK(f.factorization_count() == 0);
