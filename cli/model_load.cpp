@@ -158,9 +158,16 @@ estimator::EigenResult solve_model(const translators::FeOperators& op, const est
   auto worst = [](const estimator::EigenResult& r) {
     return r.backward_errors.size() ? r.backward_errors.maxCoeff() : 0.0;
   };
-  estimator::EigenResult r = estimator::solve_modes(op.K, op.M, options);
+  // Fill-reducing ordering on the grid-point graph: a grid's DOFs are eliminated
+  // together (GRID and SPOINT ids share one id space, so the ids serve as groups).
+  estimator::EigenOptions grouped = options;
+  if (grouped.dof_groups.empty() && dofs.size() == static_cast<std::size_t>(n)) {
+    grouped.dof_groups.reserve(dofs.size());
+    for (const auto& d : dofs) grouped.dof_groups.push_back(d.point);
+  }
+  estimator::EigenResult r = estimator::solve_modes(op.K, op.M, grouped);
   if (r.ok() && worst(r) > 1e-8 && options.method != estimator::EigenMethod::BlockLanczos) {
-    estimator::EigenOptions o = options;
+    estimator::EigenOptions o = grouped;
     o.method = estimator::EigenMethod::BlockLanczos;
     estimator::EigenResult b = estimator::solve_modes(op.K, op.M, o);
     b.warnings.insert(b.warnings.begin(), r.method + " gave a mode with backward error " + std::to_string(worst(r)) +

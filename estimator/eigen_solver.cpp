@@ -359,8 +359,13 @@ EigenResult EigenSolver::solve(const SparseMatrix& K, const SparseMatrix& M) {
   LanczosRun run;
   for (;;) {
     nev = std::min(nev, max_nev);
-    const long ncv = o.ncv > 0 ? std::min<long>(n, std::max<long>(o.ncv, nev + 1))
-                               : std::min<long>(n, std::max<long>(2 * nev + 1, nev + 20));
+    // The shift-invert operator (K − σM)⁻¹M has rank n_massive: a Lanczos basis
+    // wider than that runs out of the mass-carrying subspace and its extra
+    // vectors, M-orthogonal to everything only through round-off, give spurious
+    // Ritz pairs. So the basis never exceeds the number of DOFs with mass.
+    const long ncv_cap = std::max<long>(std::min<long>(n, n_massive), nev + 1);
+    const long ncv = o.ncv > 0 ? std::min<long>(ncv_cap, std::max<long>(o.ncv, nev + 1))
+                               : std::min<long>(ncv_cap, std::max<long>(2 * nev + 1, nev + 20));
     res.nev = static_cast<int>(nev);
     res.ncv = static_cast<int>(ncv);
     report(o.progress, res.method + ": nev " + std::to_string(nev), 0.4);
