@@ -61,6 +61,10 @@ int cmd_estimate(const Args& args) {
   if (!parse_options(args, "ssid estimate DECK MEASURED.unv [--study FILE] [--json FILE] | ssid estimate --problem FILE [--json FILE]",
                      desc, pos, vm, rc))
     return rc;
+  if (!vm.count("deck") && !vm.count("problem")) {
+    print_error("estimate: give DECK MEASURED.unv, or --problem FILE (ssid estimate --help)");
+    return 2;
+  }
   estimator::EstimationProblem problem = load_problem(vm, true);
   const bool quiet = vm.count("quiet") != 0;
   estimator::Progress progress;

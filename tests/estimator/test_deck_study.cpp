@@ -63,7 +63,7 @@ TEST_CASE("study file: defaults, every section, and errors naming the key", "[es
     "configurations": [{"name": "bare", "deck": "bare.bdf", "measured": "bare.unv"},
                        {"name": "tip", "deck": "/abs/tip.bdf", "measured": "tip.unv", "analysis_modes": 30}],
     "convergence": {"max_iterations": 5, "tolerance": 1e-6},
-    "recursive": true, "sensitivity": "modal-sum", "operators": "taylor", "analysis_modes": 40,
+    "recursive": true, "sensitivity": "modal-sum", "operators": "taylor", "analysis_modes": 40, "eigen_method": "spectra",
     "identifiability": {"uninformed_ratio": 0.8, "strong_correlation": 0.95}})");
   const estimator::Study s = parse_study(j, "dir/s.json");
   CHECK(s.parameters == std::vector<std::string>{"STRUTA", "KSUSP"});
@@ -85,6 +85,7 @@ TEST_CASE("study file: defaults, every section, and errors naming the key", "[es
   CHECK(s.shape_derivative == estimator::ShapeDerivative::ModalSum);
   CHECK(s.operators == estimator::OperatorUpdate::Taylor);
   CHECK(s.uninformed_ratio == 0.8);
+  CHECK(s.eigen_method == "spectra");
 
   auto error_of = [](const std::string& text) {
     try {
