@@ -369,11 +369,6 @@ TEST_CASE("modes that cross during the update stay with their test partners", "[
   auto problem = estimator::prepare_problem(study, nominal.string(), uff.string());
   const auto r = estimator::run_problem(problem);
   INFO(notes_of(r));
-  if (std::getenv("SSID_DEBUG"))
-    for (const auto& c : r.update.history)
-      for (const auto& q : c.pairs)
-        std::fprintf(stderr, "cycle %d test %d fem %d mac %.6f err %.4f ftest %.4f ffe %.4f\n", c.cycle, q.test, q.fem,
-                     q.mac, q.error_pct, q.test_hz, q.fem_hz);
   REQUIRE(r.update.converged);
   CHECK(r.update.dropped.empty());
   CHECK(estimate_of(problem, r, "TIPM") == Approx(2.5).epsilon(1e-7));
