@@ -134,7 +134,11 @@ int cmd_update_deck(const Args& args) {
   const translators::DeckUpdateReport rep = translators::update_deck(deck, values);
   const auto written = formats::write_deck(deck, vm["output"].as<std::string>());
   for (const auto& p : rep.parameters) std::cout << "DESVAR " << p << "\n";
-  std::cout << rep.fields.size() << " designed field(s) changed on " << rep.cards_changed << " card(s); wrote";
+  std::size_t desvar_fields = 0;
+  for (const auto& f : rep.fields) desvar_fields += f.rfind("DESVAR", 0) == 0;
+  std::cout << rep.fields.size() << " field(s) changed (" << desvar_fields << " DESVAR XINIT, "
+            << rep.fields.size() - desvar_fields << " designed through DVPREL1/DVMREL1) on " << rep.cards_changed
+            << " card(s); wrote";
   for (const auto& w : written) std::cout << " " << w;
   std::cout << "\n";
   return 0;
