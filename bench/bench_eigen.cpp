@@ -8,14 +8,26 @@
 /// as MatrixMarket (lower triangle, "symmetric") and the shift, for
 /// bench/eigs_scipy.py and bench/eigs_slepc.py.
 ///
-/// usage: bench_eigen N [--nd ND] [--export DIR] [--ncv NCV] [--tol TOL] [--sturm]
+/// usage: bench_eigen N [--nd ND] [--block B] [--ncv NCV] [--tol TOL] [--sturm]
+///                      [--dof-ordering] [--export DIR] [--export-only]
+///                      [--factor-only] [--analyze-only]
 ///   N = 12 → 10 368 DOF, 25 → 93 750 DOF, 55 → 998 250 DOF.
+///   By default the ordering is computed on the grid-point graph (EigenOptions::
+///   dof_groups = node of each DOF); --dof-ordering leaves it to CHOLMOD on the
+///   DOF graph. --factor-only: analyse and factor K − σM and time one block solve
+///   (the cost floor); --analyze-only: symbolic analysis only, with the memory L
+///   would take (how the 1M case is sized before anything is allocated);
+///   --export-only: write the MatrixMarket files without solving.
+///   Times are wall clock and CPU (user + system, all threads): on a shared
+///   machine the CPU time is the steadier figure.
 #include <sys/resource.h>
 
 #include <Eigen/Dense>
 #include <chrono>
 #include <cstdio>
 #include <cstring>
+#include <stdexcept>
+#include <utility>
 #include <fstream>
 #include <string>
 #include <vector>
@@ -26,6 +38,13 @@ namespace {
 
 using SpMat = Eigen::SparseMatrix<double>;
 using Mat12 = Eigen::Matrix<double, 12, 12>;
+
+double cpu_s() {
+  struct rusage ru {};
+  getrusage(RUSAGE_SELF, &ru);
+  return static_cast<double>(ru.ru_utime.tv_sec + ru.ru_stime.tv_sec) +
+         1e-6 * static_cast<double>(ru.ru_utime.tv_usec + ru.ru_stime.tv_usec);
+}
 
 long peak_rss_mib() {
   struct rusage ru {};
@@ -146,25 +165,65 @@ void write_mtx(const std::string& path, const SpMat& A) {
   std::fclose(f);
 }
 
+void export_mtx(const std::string& dir, const Model& m, double shift, const Eigen::VectorXd* eigenvalues) {
+  write_mtx(dir + "/K.mtx", m.K);
+  write_mtx(dir + "/M.mtx", m.M);
+  std::FILE* f = std::fopen((dir + "/shift.txt").c_str(), "w");
+  if (!f) throw std::runtime_error("cannot write " + dir + "/shift.txt");
+  std::fprintf(f, "%.17g\n", shift);
+  std::fclose(f);
+  if (eigenvalues) {
+    f = std::fopen((dir + "/eigenvalues_ssid.txt").c_str(), "w");
+    if (!f) throw std::runtime_error("cannot write " + dir + "/eigenvalues_ssid.txt");
+    for (Eigen::Index j = 0; j < eigenvalues->size(); ++j) std::fprintf(f, "%.17g\n", (*eigenvalues)(j));
+    std::fclose(f);
+  }
+  std::printf("exported K.mtx, M.mtx, shift.txt%s to %s\n", eigenvalues ? ", eigenvalues_ssid.txt" : "",
+              dir.c_str());
+}
+
+/// Wall and CPU seconds of one call.
+template <class F>
+std::pair<double, double> timed(F&& f) {
+  const double w = now_s(), c = cpu_s();
+  f();
+  return {now_s() - w, cpu_s() - c};
+}
+
 }  // namespace
 
 int main(int argc, char** argv) {
   using namespace ssid::estimator;
   if (argc < 2) {
-    std::fprintf(stderr, "usage: bench_eigen N [--nd ND] [--export DIR] [--ncv NCV] [--tol TOL] [--sturm]\n");
+    std::fprintf(stderr,
+                 "usage: bench_eigen N [--nd ND] [--block B] [--ncv NCV] [--tol TOL] [--sturm] [--dof-ordering]\n"
+                 "                   [--export DIR] [--export-only] [--factor-only] [--analyze-only]\n");
     return 2;
   }
   const int n = std::stoi(argv[1]);
-  int nd = 41, ncv = 0;
+  int nd = 41, ncv = 0, block = EigenOptions{}.block;
   double tol = 1e-10;
-  bool sturm = false;
+  bool sturm = false, dof_ordering = false, export_only = false, factor_only = false, analyze_only = false;
   std::string export_dir;
   for (int i = 2; i < argc; ++i) {
     if (!std::strcmp(argv[i], "--nd") && i + 1 < argc) nd = std::stoi(argv[++i]);
+    else if (!std::strcmp(argv[i], "--block") && i + 1 < argc) block = std::stoi(argv[++i]);
     else if (!std::strcmp(argv[i], "--ncv") && i + 1 < argc) ncv = std::stoi(argv[++i]);
     else if (!std::strcmp(argv[i], "--tol") && i + 1 < argc) tol = std::stod(argv[++i]);
     else if (!std::strcmp(argv[i], "--export") && i + 1 < argc) export_dir = argv[++i];
     else if (!std::strcmp(argv[i], "--sturm")) sturm = true;
+    else if (!std::strcmp(argv[i], "--dof-ordering")) dof_ordering = true;
+    else if (!std::strcmp(argv[i], "--export-only")) export_only = true;
+    else if (!std::strcmp(argv[i], "--factor-only")) factor_only = true;
+    else if (!std::strcmp(argv[i], "--analyze-only")) analyze_only = true;
+    else {
+      std::fprintf(stderr, "bench_eigen: unknown or incomplete option %s\n", argv[i]);
+      return 2;
+    }
+  }
+  if (export_only && export_dir.empty()) {
+    std::fprintf(stderr, "bench_eigen: --export-only needs --export DIR\n");
+    return 2;
   }
   const Section sec;
   double t = now_s();
@@ -172,38 +231,89 @@ int main(int argc, char** argv) {
   const double t_build = now_s() - t;
   std::printf("lattice %d^3: %ld nodes, %ld elements, %ld DOF, nnz(K) %ld, build %.2f s, RSS %ld MiB\n", n, m.nodes,
               m.elements, static_cast<long>(m.K.rows()), static_cast<long>(m.K.nonZeros()), t_build, peak_rss_mib());
+  const double sigma = automatic_shift(m.K, m.M);
+  if (export_only) {
+    export_mtx(export_dir, m, sigma, nullptr);
+    return 0;
+  }
+
+  std::vector<long> groups;
+  if (!dof_ordering) {
+    groups.resize(static_cast<size_t>(m.K.rows()));
+    for (size_t i = 0; i < groups.size(); ++i) groups[i] = static_cast<long>(i / 6);  // node of each DOF
+  }
+  std::printf("ordering on the %s graph, block %d\n", dof_ordering ? "DOF" : "grid-point", block);
+
+  if (factor_only || analyze_only) {
+    CholmodFactor f;
+    f.set_dof_groups(groups);
+    const SpMat A = SpMat(m.K.triangularView<Eigen::Lower>()) - sigma * SpMat(m.M.triangularView<Eigen::Lower>());
+    const auto ta = timed([&] { f.analyze(A); });
+    std::printf("analyse: %.3f s wall, %.3f s CPU; ordering %s, nnz(L) %.4g, flops %.4g, factor memory %.2f GiB\n",
+                ta.first, ta.second, f.ordering().c_str(), f.factor_nnz(), f.factor_flops(),
+                f.factor_bytes() / 1073741824.0);
+    std::printf("peak RSS %ld MiB\n", peak_rss_mib());
+    if (analyze_only) return 0;
+    FactorStatus st;
+    const auto tf = timed([&] { st = f.factorize(A); });
+    if (!st.ok()) {
+      std::printf("factorisation failed: %s\n", st.message.c_str());
+      return 1;
+    }
+    std::printf("factor: %.3f s wall, %.3f s CPU (%.1f GFlop/s wall)\n", tf.first, tf.second,
+                f.factor_flops() / tf.first * 1e-9);
+    // One solve with 1, 8, 16, 32, 64 right-hand sides: L is read once per
+    // solve, so the cost per column falls with the block width.
+    const Eigen::MatrixXd B = Eigen::MatrixXd::Random(m.K.rows(), 64);
+    Eigen::MatrixXd X(m.K.rows(), 64);
+    for (int w : {1, 8, 16, 32, 64}) {
+      const auto ts = timed([&] { f.solve(B.data(), X.data(), w); });
+      std::printf("one solve, %2d columns: %.4f s wall, %.4f s CPU, %.4f s wall per column\n", w, ts.first,
+                  ts.second, ts.first / w);
+    }
+    std::printf("peak RSS %ld MiB\n", peak_rss_mib());
+    return 0;
+  }
 
   EigenOptions o;
   o.nd = nd;
   o.ncv = ncv;
   o.tol = tol;
+  o.block = block;
   o.sturm_check = false;
+  o.dof_groups = groups;
   EigenSolver solver(o);
-  const EigenResult r = solver.solve(m.K, m.M);
+  EigenResult r;
+  const auto tsolve = timed([&] { r = solver.solve(m.K, m.M); });
   if (!r.ok()) {
     std::printf("solve failed: %s\n", r.message.c_str());
     return 1;
   }
-  // The floor: the factorisation plus the solves the iteration needed, each timed alone.
-  const Eigen::VectorXd b = Eigen::VectorXd::Random(m.K.rows());
-  Eigen::VectorXd x(m.K.rows());
-  const int reps = 5;
-  t = now_s();
-  for (int i = 0; i < reps; ++i) solver.factor().solve(b.data(), x.data(), 1);
-  const double t_solve = (now_s() - t) / reps;
+  // The floor: the factorisation plus the solves the iteration needed, each
+  // solve timed alone here with a block of the size the iteration used.
+  const Eigen::MatrixXd B = Eigen::MatrixXd::Random(m.K.rows(), block);
+  Eigen::MatrixXd X(m.K.rows(), block);
+  const int reps = 3;
+  const auto tb = timed([&] {
+    for (int i = 0; i < reps; ++i) solver.factor().solve(B.data(), X.data(), block);
+  });
+  const double t_block = tb.first / reps;
+  const double floor_s = r.factor_seconds + (static_cast<double>(r.solves) / block) * t_block;
   int rigid = 0;
   for (int j = 0; j < r.size(); ++j)
     if (std::abs(r.eigenvalues(j)) < 1e-6 * r.eigenvalues(r.size() - 1)) ++rigid;
-  std::printf("shift %.6g, ordering %s, nnz(L) %.4g, flops %.4g\n", r.shift, r.ordering.c_str(), r.factor_nnz,
-              r.factor_flops);
+  std::printf("shift %.6g, ordering %s, nnz(L) %.4g, flops %.4g, factor memory %.2f GiB\n", r.shift,
+              r.ordering.c_str(), r.factor_nnz, r.factor_flops, r.factor_bytes / 1073741824.0);
   std::printf("modes %d (rigid %d): f1 elastic %.6g Hz, f_last %.6g Hz\n", r.size(), rigid,
               rigid < r.size() ? r.cycles(rigid) : 0.0, r.cycles(r.size() - 1));
-  std::printf("nev %d ncv %d restarts %ld solves %ld\n", r.nev, r.ncv, r.iterations, r.solves);
-  std::printf("time: total %.3f s = analyse %.3f + factor %.3f + Lanczos, refinement and checks %.3f\n",
-              r.total_seconds, r.analyze_seconds, r.factor_seconds - r.analyze_seconds,
+  std::printf("method %s, nev %d, block solves %ld, columns solved %ld\n", r.method.c_str(), r.nev, r.iterations,
+              r.solves);
+  std::printf("time: total %.3f s wall (%.3f s CPU) = analyse %.3f + factor %.3f + Lanczos, refinement and checks %.3f\n",
+              r.total_seconds, tsolve.second, r.analyze_seconds, r.factor_seconds - r.analyze_seconds,
               r.total_seconds - r.factor_seconds);
-  std::printf("one solve %.4f s; floor = analyse + factor + solves x one solve = %.3f s; total / floor = %.2f\n",
-              t_solve, r.factor_seconds + r.solves * t_solve, r.total_seconds / (r.factor_seconds + r.solves * t_solve));
+  std::printf("one block solve (%d columns) %.4f s; floor = analyse + factor + %.1f block solves = %.3f s; "
+              "total / floor = %.2f\n",
+              block, t_block, static_cast<double>(r.solves) / block, floor_s, r.total_seconds / floor_s);
   std::printf("max residual (elastic) %.2e, max backward error %.2e, M-orthogonality %.2e\n",
               r.residuals.tail(r.size() - rigid).maxCoeff(), r.backward_errors.maxCoeff(), r.orthogonality);
   std::printf("peak RSS %ld MiB\n", peak_rss_mib());
@@ -217,16 +327,6 @@ int main(int argc, char** argv) {
     const long cnt = count_negative_pivots(m.K - s * m.M);
     std::printf("Sturm count below %.6g: %ld (expected %d), %.2f s\n", s, cnt, r.size() - 1, now_s() - t);
   }
-  if (!export_dir.empty()) {
-    write_mtx(export_dir + "/K.mtx", m.K);
-    write_mtx(export_dir + "/M.mtx", m.M);
-    std::FILE* f = std::fopen((export_dir + "/shift.txt").c_str(), "w");
-    std::fprintf(f, "%.17g\n", r.shift);
-    std::fclose(f);
-    f = std::fopen((export_dir + "/eigenvalues_ssid.txt").c_str(), "w");
-    for (int j = 0; j < r.size(); ++j) std::fprintf(f, "%.17g\n", r.eigenvalues(j));
-    std::fclose(f);
-    std::printf("exported K.mtx, M.mtx, shift.txt, eigenvalues_ssid.txt to %s\n", export_dir.c_str());
-  }
+  if (!export_dir.empty()) export_mtx(export_dir, m, r.shift, &r.eigenvalues);
   return 0;
 }

@@ -1,13 +1,17 @@
 /// \file cmd_correlate.cpp
-/// `ssid correlate FE.unv TEST.unv`: pairing table (reconciliation paper
-/// Tables 4–6 layout), MAC, auto-MAC, with --json.
+/// `ssid correlate DECK|FE.unv TEST.unv`: pairing table (reconciliation paper
+/// Tables 4–6 layout), MAC, auto-MAC, with --json. From a deck, the modes are
+/// solved and sampled at the grids the test nodes map to (in basic X, Y, Z, and
+/// rotations when the test has them).
 #include <fstream>
 #include <iostream>
 #include <set>
 
 #include "cli/cli_util.hpp"
+#include "cli/model_load.hpp"
 #include "estimator/correlate.hpp"
 #include "formats/uff.hpp"
+#include "translators/synthetic_modes.hpp"
 
 namespace ssid::cli {
 
@@ -41,7 +45,8 @@ nlohmann::json matrix_json(const Eigen::MatrixXd& m) {
 
 int cmd_correlate(const Args& args) {
   po::options_description desc("ssid correlate options");
-  desc.add_options()("fe", po::value<std::string>()->required(), "analysis modes: universal file with dataset 55")(
+  desc.add_options()("fe", po::value<std::string>()->required(),
+                     "analysis modes: a NASTRAN deck (solved here), or a universal file with dataset 55")(
       "test", po::value<std::string>()->required(), "test modes: universal file with dataset 55 (+ nodes 15/2411)")(
       "json", po::value<std::string>(), "write the results as JSON to this file ('-' for stdout)")(
       "mac", po::value<std::string>()->default_value("squared"),
@@ -51,22 +56,23 @@ int cmd_correlate(const Args& args) {
       "accept a pair only within this frequency error (%)")(
       "map", po::value<std::string>()->default_value("id"),
       "test node to analysis node: id, position, or id-then-position (positions from 15/2411 in both files)")(
-      "tol", po::value<double>()->default_value(0.0), "distance tolerance for position mapping (model units)");
+      "tol", po::value<double>()->default_value(0.0), "distance tolerance for position mapping (model units)")(
+      "nmodes", po::value<int>(), "deck: solve the lowest N modes (default: the deck's EIGRL/EIGR)");
   po::positional_options_description pos;
   pos.add("fe", 1).add("test", 1);
   po::variables_map vm;
   int rc = 0;
   if (!parse_options(args,
-                     "ssid correlate FE.unv TEST.unv [--json FILE] [--mac squared|ns] [--min-mac X] "
+                     "ssid correlate DECK|FE.unv TEST.unv [--json FILE] [--nmodes N] [--mac squared|ns] [--min-mac X] "
                      "[--max-freq-error PCT] [--map id|position|id-then-position --tol D]",
                      desc, pos, vm, rc))
     return rc;
   const std::string fe_path = vm["fe"].as<std::string>(), test_path = vm["test"].as<std::string>();
-  if (!looks_like_uff(fe_path))
-    throw std::runtime_error(fe_path +
-                             ": not a universal file. Correlating a NASTRAN deck directly needs model assembly, "
-                             "which this build does not have yet; write the analysis modes at the test nodes as "
-                             "UFF dataset 55 and pass that file");
+  const bool from_deck = !looks_like_uff(fe_path);
+  if (!from_deck && vm.count("nmodes")) {
+    print_error("--nmodes applies when the first argument is a deck");
+    return 2;
+  }
 
   estimator::PairingOptions opt;
   const std::string form = vm["mac"].as<std::string>();
@@ -79,12 +85,28 @@ int cmd_correlate(const Args& args) {
   opt.min_mac = vm["min-mac"].as<double>();
   opt.max_frequency_error_pct = vm["max-freq-error"].as<double>();
 
-  const uff::UffFile fe_file = uff::read_uff(fe_path);
+  // The analysis side: a universal file, or a deck solved here.
+  LoadedModel lm;
+  estimator::EigenResult fe_modes;
+  uff::UffFile fe_file;
+  if (from_deck) {
+    lm = load_model(fe_path);
+    print_model_notes(lm);
+    const auto op = lm.model->operators(lm.model->initial_parameters(), false);
+    std::string source;
+    std::optional<int> nmodes;
+    if (vm.count("nmodes")) nmodes = vm["nmodes"].as<int>();
+    fe_modes = solve_model(op, eigen_options(*lm.model, nmodes, op.K.rows(), source), a_set_dofs(*lm.model));
+    for (const auto& w : fe_modes.warnings) std::cerr << "warning: " << w << "\n";
+    std::cerr << "note: " << fe_path << ": " << fe_modes.size() << " analysis mode(s) (" << source << ")\n";
+  } else {
+    fe_file = uff::read_uff(fe_path);
+  }
   const uff::UffFile test_file = uff::read_uff(test_path);
   translators::ModeSetReport fe_rep, test_rep;
-  translators::ModeSet fe = translators::modes_from_uff(fe_file, &fe_rep);
+  translators::ModeSet fe = from_deck ? translators::ModeSet{} : translators::modes_from_uff(fe_file, &fe_rep);
   translators::ModeSet test = translators::modes_from_uff(test_file, &test_rep);
-  if (fe.frequency_hz.empty()) throw std::runtime_error(fe_path + ": no real normal modes (dataset 55, analysis type 2)");
+  if (!from_deck && fe.frequency_hz.empty()) throw std::runtime_error(fe_path + ": no real normal modes (dataset 55, analysis type 2)");
   if (test.frequency_hz.empty())
     throw std::runtime_error(test_path + ": no real normal modes (dataset 55, analysis type 2)");
   std::vector<std::string> problems;
@@ -108,6 +130,7 @@ int cmd_correlate(const Args& args) {
     }
     mo.tolerance = vm["tol"].as<double>();
     std::vector<translators::GridPosition> grids;
+    if (from_deck) grids = grid_positions(*lm.model);
     for (const auto& n : fe_file.nodes())
       grids.push_back({n.id, Eigen::Vector3d(n.xyz[0], n.xyz[1], n.xyz[2]), Eigen::Matrix3d::Identity()});
     std::vector<translators::TestNode> nodes;
@@ -118,17 +141,32 @@ int cmd_correlate(const Args& args) {
       // when the analysis file lists no nodes.
       std::set<std::int64_t> ids;
       for (const auto& d : test.dofs) ids.insert(d.node);
-      if (grids.empty())
+      if (grids.empty() && !from_deck)
         for (auto id : ids) grids.push_back({id, Eigen::Vector3d::Zero(), Eigen::Matrix3d::Identity()});
       if (nodes.empty())
         for (auto id : ids) nodes.push_back({id, Eigen::Vector3d::Zero(), 0});
     } else if (grids.empty() || nodes.empty()) {
-      throw std::runtime_error("--map " + map + " needs node positions (dataset 15 or 2411) in both files");
+      throw std::runtime_error("--map " + map + " needs node positions (dataset 15 or 2411) in both files" +
+                               std::string(from_deck ? " (the test file has none)" : ""));
     }
     auto m = translators::map_test_nodes(nodes, grids, mo);
     for (const auto& p : m.problems) problems.push_back(test_path + ": " + p);
     mapping_json = {{"by", map}, {"mapped", m.matches.size()}, {"unmapped", m.unmapped}};
     test = translators::relabel(test, m);
+    if (from_deck) {
+      // The analysis modes at the grids the test nodes map to, in basic directions.
+      translators::SyntheticTestOptions so;
+      for (const auto& match : m.matches) so.sensors.push_back(match.grid);
+      for (const auto& d : test.dofs) so.rotations |= std::abs(d.direction) > 3;
+      if (so.sensors.empty()) throw std::runtime_error(test_path + ": no test node maps to a grid of " + fe_path);
+      translators::FeModeData fd;
+      fd.shapes = fe_modes.modes;
+      for (int i = 0; i < fe_modes.size(); ++i) {
+        fd.frequency_hz.push_back(fe_modes.cycles(i));
+        fd.generalized_mass.push_back(fe_modes.generalized_mass(i));
+      }
+      fe = translators::synthetic_test(fd, lm.model->reduction(), lm.model->geometry().gset(), grids, so).modes;
+    }
   }
 
   const estimator::Correlation c = estimator::correlate(fe, test, opt);

@@ -23,8 +23,13 @@ int cmd_deck(const Args& args);
 int cmd_uff(const Args& args);
 int cmd_correlate(const Args& args);
 int cmd_truss(const Args& args);
+int cmd_op4(const Args& args);
+int cmd_dmig(const Args& args);
+int cmd_modes(const Args& args);
+int cmd_assemble(const Args& args);
 int cmd_estimate(const Args& args);
 int cmd_translate(const Args& args);
 int cmd_update_deck(const Args& args);
+int cmd_diagnose(const Args& args);
 
 }  // namespace ssid::cli

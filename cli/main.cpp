@@ -15,10 +15,15 @@ const std::vector<Command>& commands() {
       {"deck", "read, check and write NASTRAN bulk data (summary, write)", cmd_deck},
       {"uff", "universal files: list datasets, nodes, modes, functions", cmd_uff},
       {"correlate", "pair analysis and test modes: MAC table, unpaired modes", cmd_correlate},
+      {"modes", "solve a deck's modes: NASTRAN's real eigenvalue table, JSON, synthetic test (UFF)", cmd_modes},
+      {"assemble", "write K, M and their parameter derivatives as OP4 with a manifest (or import them)", cmd_assemble},
       {"truss", "generate MPI-like truss decks, rod or beam, in the report's configurations", cmd_truss},
+      {"op4", "OP4 matrix files: list, dump as JSON, convert (encoding, storage, precision, MatrixMarket)", cmd_op4},
+      {"dmig", "DMIG matrices of a deck or punch file: list, dump as JSON", cmd_dmig},
       {"estimate", "Bayesian model updating: deck + measured modes in, parameters with uncertainty out", cmd_estimate},
       {"translate", "gather operators, priors and measured modes into a problem file", cmd_translate},
       {"update-deck", "write estimated parameters into a deck (DESVAR and designed fields)", cmd_update_deck},
+      {"diagnose", "find what the model form gets wrong: test extensions, name the cause, measure the gain", cmd_diagnose},
   };
   return list;
 }

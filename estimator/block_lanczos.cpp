@@ -1,5 +1,7 @@
 #include "estimator/block_lanczos.hpp"
 
+#include "estimator/dense_blas.hpp"
+
 #include <Eigen/Eigenvalues>
 
 #include <algorithm>
@@ -51,26 +53,39 @@ BlockLanczosResult block_lanczos(const std::function<MatrixXd(const MatrixXd&)>&
   // columns [col0, col0 + W.cols()) when col0 >= 0.
   auto orthonormalise = [&](MatrixXd& W, long col0) -> MatrixXd {
     const long act = m;
-    for (int pass = 0; pass < 2 && act > 0; ++pass) {
-      const MatrixXd C = V.leftCols(act).transpose() * mass(W);
-      W.noalias() -= V.leftCols(act) * C;
-      if (col0 >= 0) H.block(0, col0, act, W.cols()) += C;
+    // Against the basis: first the newest two blocks, which hold the large
+    // components (the block tridiagonal part of T); then one full classical
+    // Gram–Schmidt pass, and a second only when that pass removed more than
+    // half of a column's squared norm (the DGKS "twice is enough" test:
+    // cancellation there leaves round-off along older vectors). The n x m by
+    // m x b products are the iteration's dense work: system BLAS.
+    auto project = [&](long lo, long hi) -> bool {
+      const MatrixXd MW = mass(W);
+      const MatrixXd C = detail::at_b(V.middleCols(lo, hi - lo), MW);
+      const VectorXd before = W.cwiseProduct(MW).colwise().sum().transpose();
+      detail::gemm(false, false, -1.0, V.middleCols(lo, hi - lo), C, 1.0, W);
+      if (col0 >= 0) H.block(lo, col0, hi - lo, W.cols()) += C;
+      for (long c = 0; c < W.cols(); ++c)  // ‖w − V c‖²_M = ‖w‖²_M − ‖c‖² (V M-orthonormal)
+        if (before(c) - C.col(c).squaredNorm() < 0.5 * before(c)) return true;
+      return false;
+    };
+    if (act > 0) {
+      const long lo = std::max<long>(0, act - 2L * b);
+      project(lo, act);
+      if (project(0, act)) project(0, act);
     }
     MatrixXd R = MatrixXd::Zero(W.cols(), W.cols());
     const MatrixXd MW0 = mass(W);
     long kept = 0;
     for (long c = 0; c < W.cols(); ++c) {
-      VectorXd w = W.col(c);
-      const double before = std::sqrt(std::max(0.0, w.dot(MW0.col(c))));
-      for (int pass = 0; pass < 2; ++pass) {
-        const VectorXd Mw = mass(w).col(0);
-        for (long k = 0; k < kept; ++k) {
-          const double r = W.col(k).dot(Mw);
-          w -= r * W.col(k);
-          R(k, c) += r;
-        }
+      MatrixXd w = W.col(c);
+      const double before = std::sqrt(std::max(0.0, w.col(0).dot(MW0.col(c))));
+      for (int pass = 0; pass < 2 && kept > 0; ++pass) {  // classical Gram–Schmidt twice, BLAS-2
+        const VectorXd r = W.leftCols(kept).transpose() * mass(w).col(0);
+        w.col(0).noalias() -= W.leftCols(kept) * r;
+        R.col(c).head(kept) += r;
       }
-      const double nrm = std::sqrt(std::max(0.0, w.dot(mass(w).col(0))));
+      const double nrm = std::sqrt(std::max(0.0, w.col(0).dot(mass(w).col(0))));
       if (nrm > 1e-8 * before && nrm > 0.0) {
         R(kept, c) = nrm;
         W.col(kept) = w / nrm;
@@ -134,7 +149,8 @@ BlockLanczosResult block_lanczos(const std::function<MatrixXd(const MatrixXd&)>&
     }
     const long take = conv;
     res.lambda.resize(take);
-    res.vectors = V.leftCols(k) * es.eigenvectors().rightCols(take).rowwise().reverse();
+    const MatrixXd Y = es.eigenvectors().rightCols(take).rowwise().reverse();
+    res.vectors = detail::a_b(V.leftCols(k), Y);
     for (long i = 0; i < take; ++i) res.lambda(i) = sigma + 1.0 / theta(k - 1 - i);
     res.basis = k;
     return res;

@@ -11,8 +11,10 @@
 /// (the six rigid-body modes, the symmetric pairs and triples of regular
 /// structures) directly instead of through round-off.
 ///
-/// Recurrence (full reorthogonalisation, classical Gram–Schmidt twice):
-///   W = S V_j;  W ← W − V C (C = Vᵀ M W, twice);  W = V_{j+1} B_{j+1} (M-orthonormal QR)
+/// Recurrence (full reorthogonalisation by classical Gram–Schmidt: against the
+/// newest two blocks, then the whole basis, then the whole basis again only where
+/// the DGKS test sees cancellation; the n x m products go to the system BLAS):
+///   W = S V_j;  W ← W − V C (C = Vᵀ M W);  W = V_{j+1} B_{j+1} (M-orthonormal QR)
 /// so S V = V T + V_{j+1} B_{j+1} E_jᵀ with T = Vᵀ M S V symmetric. A Ritz pair
 /// (θ, V y) has residual ‖S V y − θ V y‖_M = ‖B_{j+1} y_j‖ (y_j: the last block of y),
 /// converged when ≤ tol·|θ|. The basis grows (no restart) until the `nev` largest θ
@@ -26,7 +28,7 @@ namespace ssid::estimator {
 
 struct BlockLanczosOptions {
   int nev = 1;          ///< eigenpairs wanted
-  int block = 8;        ///< block size b
+  int block = 16;       ///< block size b
   long max_basis = 0;   ///< basis cap (columns); 0: min(n, max(20 nev, 200))
   double tol = 1e-10;   ///< relative residual of the Ritz values θ
   unsigned seed = 12345;

@@ -2,6 +2,8 @@
 
 #include <cholmod.h>
 
+#include <numeric>
+
 #include <algorithm>
 #include <chrono>
 #include <cstring>
@@ -132,10 +134,169 @@ void CholmodFactor::analyze(const SparseMatrix& A) {
   s.A = sparse_header(s.n, s.p, s.i, low.valuePtr());
   if (s.L) cholmod_l_free_factor(&s.L, &s.cm);
   const auto t0 = std::chrono::steady_clock::now();
-  s.L = cholmod_l_analyze(&s.A, &s.cm);
+  m_ordering.clear();
+  if (!m_groups.empty()) {
+    analyze_grouped(s.n);
+  } else {
+    s.L = cholmod_l_analyze(&s.A, &s.cm);
+    if (!s.L) throw std::runtime_error("CHOLMOD analysis failed (status " + std::to_string(s.cm.status) + ")");
+    m_lnz = s.cm.lnz;
+    m_fl = s.cm.fl;
+  }
   m_analyze_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
-  if (!s.L) throw std::runtime_error("CHOLMOD analysis failed (status " + std::to_string(s.cm.status) + ")");
   ++m_analyses;
+}
+
+void CholmodFactor::set_dof_groups(std::vector<long> groups) {
+  for (size_t i = 0; i < groups.size(); ++i)
+    if (groups[i] < 0)
+      throw std::invalid_argument("CholmodFactor::set_dof_groups: row " + std::to_string(i) + " has group " +
+                                  std::to_string(groups[i]) + ", expected a group id >= 0");
+  if (groups == m_groups) return;
+  m_groups = std::move(groups);
+  auto& s = *m_state;  // the analysis no longer applies: the next factorize analyses again
+  if (s.L) cholmod_l_free_factor(&s.L, &s.cm);
+  s.n = 0;
+}
+
+/// Ordering on the group (grid-point) graph, expanded to the rows; see the
+/// header. s.A holds the pattern of tril(A) on entry; on return s.L is the
+/// analysis of the candidate ordering with the fewest flops.
+void CholmodFactor::analyze_grouped(long n) {
+  auto& s = *m_state;
+  if (static_cast<long>(m_groups.size()) != n)
+    throw std::invalid_argument("CholmodFactor: " + std::to_string(m_groups.size()) +
+                                " DOF groups given for a matrix of " + std::to_string(n) + " rows");
+  // Compact group ids, numbered by first appearance.
+  const long gmax = n > 0 ? *std::max_element(m_groups.begin(), m_groups.end()) : -1;
+  std::vector<long> compact(static_cast<size_t>(gmax + 1), -1), g(static_cast<size_t>(n));
+  long ng = 0;
+  for (long r = 0; r < n; ++r) {
+    long& c = compact[static_cast<size_t>(m_groups[static_cast<size_t>(r)])];
+    if (c < 0) c = ng++;
+    g[static_cast<size_t>(r)] = c;
+  }
+  std::vector<long>().swap(compact);
+  // Rows of each group (CSR: gp, gr).
+  std::vector<long> gp(static_cast<size_t>(ng + 1), 0), gr(static_cast<size_t>(n));
+  for (long r = 0; r < n; ++r) ++gp[static_cast<size_t>(g[static_cast<size_t>(r)] + 1)];
+  std::partial_sum(gp.begin(), gp.end(), gp.begin());
+  {
+    std::vector<long> next(gp.begin(), gp.end() - 1);
+    for (long r = 0; r < n; ++r) gr[static_cast<size_t>(next[static_cast<size_t>(g[static_cast<size_t>(r)])]++)] = r;
+  }
+  // Lower triangle of the group graph: the pair {G, H} goes to column min, row
+  // max. Each pair is met from G's side and from H's side at most once each
+  // (a marker per group), so duplicates are removed per column afterwards.
+  const auto* Ap = s.p.data();
+  const auto* Ai = s.i.data();
+  std::vector<SuiteSparse_long> cp(static_cast<size_t>(ng + 1), 0), ci;
+  std::vector<long> mark(static_cast<size_t>(ng), -1);
+  auto for_each_pair = [&](auto&& visit) {
+    std::fill(mark.begin(), mark.end(), -1);
+    for (long G = 0; G < ng; ++G)
+      for (long k = gp[static_cast<size_t>(G)]; k < gp[static_cast<size_t>(G + 1)]; ++k) {
+        const long j = gr[static_cast<size_t>(k)];
+        for (SuiteSparse_long q = Ap[j]; q < Ap[j + 1]; ++q) {
+          const long H = g[static_cast<size_t>(Ai[q])];
+          if (H == G || mark[static_cast<size_t>(H)] == G) continue;
+          mark[static_cast<size_t>(H)] = G;
+          visit(std::min(G, H), std::max(G, H));
+        }
+      }
+  };
+  for_each_pair([&](long c, long) { ++cp[static_cast<size_t>(c + 1)]; });
+  std::partial_sum(cp.begin(), cp.end(), cp.begin());
+  ci.resize(static_cast<size_t>(cp[static_cast<size_t>(ng)]));
+  {
+    std::vector<SuiteSparse_long> next(cp.begin(), cp.end() - 1);
+    for_each_pair([&](long c, long r) { ci[static_cast<size_t>(next[static_cast<size_t>(c)]++)] = r; });
+  }
+  SuiteSparse_long w = 0;  // sort and deduplicate each column in place
+  for (long c = 0; c < ng; ++c) {
+    const auto b = ci.begin() + cp[static_cast<size_t>(c)], e = ci.begin() + cp[static_cast<size_t>(c + 1)];
+    std::sort(b, e);
+    const SuiteSparse_long start = w;
+    for (auto it = b; it != e; ++it)
+      if (it == b || *it != *(it - 1)) ci[static_cast<size_t>(w++)] = *it;
+    cp[static_cast<size_t>(c)] = start;
+  }
+  cp[static_cast<size_t>(ng)] = w;
+  ci.resize(static_cast<size_t>(w));
+  std::vector<long>().swap(mark);
+
+  cholmod_sparse Gs{};
+  Gs.nrow = Gs.ncol = static_cast<size_t>(ng);
+  Gs.nzmax = std::max<size_t>(ci.size(), 1);
+  if (ci.empty()) ci.push_back(0);
+  Gs.p = cp.data();
+  Gs.i = ci.data();
+  Gs.stype = -1;
+  Gs.itype = CHOLMOD_LONG;
+  Gs.xtype = CHOLMOD_PATTERN;
+  Gs.dtype = CHOLMOD_DOUBLE;
+  Gs.sorted = 1;
+  Gs.packed = 1;
+
+  // Candidates: AMD and METIS on the group graph; analyse each expanded
+  // ordering on the rows and keep the one with fewer flops.
+  const int saved_nmethods = s.cm.nmethods;
+  const auto saved_method0 = s.cm.method[0];
+  const int saved_postorder = s.cm.postorder;
+  s.cm.nmethods = 1;
+  s.cm.method[0].ordering = CHOLMOD_GIVEN;
+  s.cm.postorder = 1;
+  std::vector<SuiteSparse_long> gperm(static_cast<size_t>(ng)), perm(static_cast<size_t>(n));
+  double best_fl = 0.0;
+  std::string first_failure;
+  std::vector<SuiteSparse_long> cparent, cmember;
+  const double anz = static_cast<double>(s.i.size());
+  for (const int method : {CHOLMOD_AMD, CHOLMOD_METIS, CHOLMOD_NESDIS}) {
+    // CHOLMOD's own rule: AMD's ordering is kept without trying nested
+    // dissection when it is already good (fl/lnz < 500 or lnz/anz < 5).
+    if (method != CHOLMOD_AMD && s.L && m_ordering.rfind("AMD", 0) == 0 && (m_fl < 500.0 * m_lnz || m_lnz < 5.0 * anz))
+      break;
+    int ok = 0;
+    if (method == CHOLMOD_AMD) {
+      ok = cholmod_l_amd(&Gs, nullptr, 0, gperm.data(), &s.cm);
+    } else if (method == CHOLMOD_METIS) {
+      ok = cholmod_l_metis(&Gs, nullptr, 0, 1, gperm.data(), &s.cm);
+    } else {
+      cparent.resize(static_cast<size_t>(ng));
+      cmember.resize(static_cast<size_t>(ng));
+      ok = cholmod_l_nested_dissection(&Gs, nullptr, 0, gperm.data(), cparent.data(), cmember.data(), &s.cm) >= 0;
+    }
+    if (!ok) {  // METIS not installed: AMD alone
+      if (first_failure.empty()) first_failure = std::to_string(s.cm.status);
+      continue;
+    }
+    long k = 0;
+    for (long q = 0; q < ng; ++q) {
+      const long G = gperm[static_cast<size_t>(q)];
+      for (long t = gp[static_cast<size_t>(G)]; t < gp[static_cast<size_t>(G + 1)]; ++t)
+        perm[static_cast<size_t>(k++)] = gr[static_cast<size_t>(t)];
+    }
+    cholmod_factor* L = cholmod_l_analyze_p(&s.A, perm.data(), nullptr, 0, &s.cm);
+    if (!L) {
+      if (first_failure.empty()) first_failure = std::to_string(s.cm.status);
+      continue;
+    }
+    if (!s.L || s.cm.fl < best_fl) {
+      if (s.L) cholmod_l_free_factor(&s.L, &s.cm);
+      s.L = L;
+      best_fl = s.cm.fl;
+      m_fl = s.cm.fl;
+      m_lnz = s.cm.lnz;
+      m_ordering = std::string(method == CHOLMOD_AMD ? "AMD" : method == CHOLMOD_METIS ? "METIS" : "NESDIS") +
+                   " on " + std::to_string(ng) + " groups";
+    } else {
+      cholmod_l_free_factor(&L, &s.cm);
+    }
+  }
+  s.cm.nmethods = saved_nmethods;
+  s.cm.method[0] = saved_method0;
+  s.cm.postorder = saved_postorder;
+  if (!s.L) throw std::runtime_error("CHOLMOD analysis on DOF groups failed (status " + first_failure + ")");
 }
 
 FactorStatus CholmodFactor::factorize(const SparseMatrix& A, double near_singular_rcond) {
@@ -210,12 +371,23 @@ bool CholmodFactor::factorized() const {
   return L && L->minor == L->n && (L->is_super || L->xtype != CHOLMOD_PATTERN);
 }
 long CholmodFactor::solve_count() const { return m_state->solves; }
-double CholmodFactor::factor_nnz() const { return m_state->cm.lnz; }
-double CholmodFactor::factor_flops() const { return m_state->cm.fl; }
+double CholmodFactor::factor_nnz() const { return m_lnz; }
+double CholmodFactor::factor_flops() const { return m_fl; }
+double CholmodFactor::factor_bytes() const {
+  const cholmod_factor* L = m_state->L;
+  if (!L) return 0.0;
+  const double n = static_cast<double>(L->n);
+  const double idx = sizeof(SuiteSparse_long);
+  if (L->is_super)
+    return 8.0 * (static_cast<double>(L->xsize) + static_cast<double>(L->maxcsize)) +
+           idx * (static_cast<double>(L->ssize) + 3.0 * static_cast<double>(L->nsuper) + 4.0 * n);
+  return (8.0 + idx) * m_lnz + idx * 6.0 * n;  // simplicial: x, i, and p, nz, next, prev, Perm, ColCount
+}
 bool CholmodFactor::supernodal() const { return m_state->L && m_state->L->is_super; }
 
 std::string CholmodFactor::ordering() const {
   if (!m_state->L) return "none";
+  if (!m_ordering.empty()) return m_ordering;
   switch (m_state->L->ordering) {
     case CHOLMOD_NATURAL: return "natural";
     case CHOLMOD_GIVEN: return "given";

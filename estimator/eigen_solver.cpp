@@ -193,6 +193,14 @@ EigenResult::Status to_status(FactorStatus::Code c) {
 
 }  // namespace
 
+double automatic_shift(const SparseMatrix& K, const SparseMatrix& M) {
+  const Eigen::VectorXd kd = K.diagonal(), md = M.diagonal();
+  double sk = 0.0, sm = 0.0;
+  for (Eigen::Index i = 0; i < md.size(); ++i)
+    if (md(i) > 0.0) sk += std::abs(kd(i)), sm += md(i);
+  return (sm > 0.0 && sk > 0.0) ? -1e-5 * sk / sm : -1.0;
+}
+
 double hz_to_eigenvalue(double f) { return (kTwoPi * f) * (kTwoPi * f); }
 double eigenvalue_to_hz(double lambda) { return std::sqrt(std::abs(lambda)) / kTwoPi; }
 double EigenResult::radians(int i) const { return std::sqrt(std::abs(eigenvalues(i))); }
@@ -268,24 +276,20 @@ EigenResult EigenSolver::solve(const SparseMatrix& K, const SparseMatrix& M) {
   const double lam_lo = has_low ? hz_to_eigenvalue(o.f_low) : -std::numeric_limits<double>::infinity();
   const double lam_hi = has_high ? hz_to_eigenvalue(o.f_high) : std::numeric_limits<double>::infinity();
 
+  if (!o.dof_groups.empty() && static_cast<Eigen::Index>(o.dof_groups.size()) != K.rows())
+    throw std::invalid_argument("EigenSolver: dof_groups has " + std::to_string(o.dof_groups.size()) +
+                                " entries for " + std::to_string(K.rows()) + " DOFs");
+  if (o.dof_groups != m_factor.dof_groups()) m_factor.set_dof_groups(o.dof_groups);
+
   EigenResult res;
   const long n = K.rows();
   const MassOp mass(M);
 
   // Shift: below zero, scaled to the model (see EigenOptions::shift).
-  double sigma = o.shift;
-  if (std::isnan(sigma)) {
-    double sk = 0.0, sm = 0.0;
-    for (long i = 0; i < n; ++i) {
-      const double mi = M.coeff(i, i);
-      if (mi > 0.0) sk += std::abs(K.coeff(i, i)), sm += mi;
-    }
-    sigma = (sm > 0.0 && sk > 0.0) ? -1e-5 * sk / sm : -1.0;
-  }
+  const double sigma = std::isnan(o.shift) ? automatic_shift(K, M) : o.shift;
   res.shift = sigma;
-  long n_massive = 0;
-  for (long i = 0; i < n; ++i)
-    if (M.coeff(i, i) > 0.0) ++n_massive;
+  const Eigen::VectorXd mdiag = M.diagonal();
+  const long n_massive = (mdiag.array() > 0.0).count();
 
   // Factor K − σM (lower triangles only; the analysis is reused when the pattern is).
   report(o.progress, "factorising K - sigma M", 0.0);
@@ -299,6 +303,7 @@ EigenResult EigenSolver::solve(const SparseMatrix& K, const SparseMatrix& M) {
     res.analyze_seconds = res.analyses ? m_factor.last_analyze_seconds() : 0.0;
     res.factor_nnz = m_factor.factor_nnz();
     res.factor_flops = m_factor.factor_flops();
+    res.factor_bytes = m_factor.factor_bytes();
     res.ordering = m_factor.ordering();
     if (!fs.ok()) {
       res.status = to_status(fs.code);

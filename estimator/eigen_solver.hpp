@@ -66,13 +66,20 @@ struct EigenOptions {
   /// at the speed of a zero shift). K − σM must be positive definite.
   double shift = std::numeric_limits<double>::quiet_NaN();
   EigenMethod method = EigenMethod::Auto;
-  int block = 8;          ///< block size for BlockLanczos (≥ the largest multiplicity helps)
+  int block = 16;         ///< block size for BlockLanczos: one solve with 16 columns costs about one with 8 (L is read once); ≥ the largest multiplicity helps
   int ncv = 0;            ///< Spectra: Lanczos basis size; 0: automatic (2 nev + 1 or nev + 20, ≤ n)
   double tol = 1e-10;     ///< Spectra's relative tolerance on the Ritz values ν
   int maxit = 1000;       ///< Spectra's restart limit
   bool sturm_check = true;  ///< verify band completeness by an inertia count
   bool refine = true;       ///< one block solve + Rayleigh–Ritz after Lanczos
   FactorKind factor_kind = FactorKind::Supernodal;
+  /// Grid point of every DOF (row of K), for the fill-reducing ordering: when
+  /// given, the ordering is computed on the grid-point graph and expanded, the
+  /// DOFs of a grid point eliminated together (CholmodFactor::set_dof_groups).
+  /// Any ids ≥ 0 (grid ids will do); empty: CHOLMOD orders the DOF graph.
+  /// Callers that know the grids (the assembler's DofMap) should fill it: it
+  /// cuts the factorisation's time and memory (docs/eigen_solver.md).
+  std::vector<long> dof_groups;
   /// K − σM with a reciprocal condition estimate below this is reported near-singular.
   double near_singular_rcond = 1e-15;
   unsigned seed = 12345;  ///< start vector seed (results are deterministic)
@@ -118,6 +125,7 @@ struct EigenResult {
   int analyses = 0;      ///< symbolic analyses done by this solve (0 when reused)
   double analyze_seconds = 0, factor_seconds = 0 /* analysis included */, lanczos_seconds = 0, total_seconds = 0;
   double factor_nnz = 0, factor_flops = 0;
+  double factor_bytes = 0;  ///< memory of L and the factorisation workspace, from the symbolic analysis
   std::string ordering;
 
   bool ok() const { return status == Status::Ok; }
@@ -149,6 +157,10 @@ class EigenSolver {
 /// One-shot convenience: EigenSolver(options).solve(K, M).
 EigenResult solve_modes(const Eigen::SparseMatrix<double>& K, const Eigen::SparseMatrix<double>& M,
                         const EigenOptions& options = {});
+
+/// The automatic shift (EigenOptions::shift NaN): −1e-5 × Σ|K_ii| / Σ M_ii over
+/// the DOFs with mass; −1 when there is no mass or no stiffness there.
+double automatic_shift(const Eigen::SparseMatrix<double>& K, const Eigen::SparseMatrix<double>& M);
 
 /// λ ↔ Hz: λ = (2πf)².
 double hz_to_eigenvalue(double f);

@@ -221,6 +221,10 @@ UpdateResult update(const std::vector<Configuration>& configurations, const Para
 
   UpdateResult result;
   Eigen::VectorXd theta = Eigen::VectorXd::Zero(p);
+  if (options.start.size()) {
+    if (options.start.size() != p) throw std::invalid_argument("update: the start point and the prior disagree in size");
+    theta = ((options.start - prior.mean).array() / d.array()).matrix().cwiseMax(lo).cwiseMin(hi);
+  }
   std::vector<std::vector<UpdatePair>> pairs(nc);
   std::vector<Eigen::MatrixXd> tracking(nc);
   // Line search: the Gauss–Newton step of Eq. (7) is a descent direction of J;

@@ -60,6 +60,11 @@ struct UpdateOptions {
   double freq_tol_pct = 50.0;    ///< and a frequency error below this
   double track_mac_min = 0.5;    ///< cycle-to-cycle tracking MAC
   bool shape_derivatives = true; ///< use shapes in the update (needs ∂φ)
+  /// Where the iteration starts (and the first pairing is made); empty: the
+  /// prior mean. The prior itself is unchanged, so the estimate and evidence
+  /// stay those of the same posterior — a start only helps reach it (e.g. a
+  /// new mode placed near the test mode it should explain).
+  Eigen::VectorXd start;
 };
 
 /// One test–analysis pair.

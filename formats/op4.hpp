@@ -57,6 +57,27 @@ struct Op4Matrix {
   SparseReal real;
   SparseComplex complex;
 
+  Op4Matrix() = default;
+  Op4Matrix(const Op4Matrix&) = default;
+  Op4Matrix& operator=(const Op4Matrix&) = default;
+  /// Moves swap the storage: Eigen 3.4's SparseMatrix has no move constructor,
+  /// and copying a matrix of hundreds of MB on every vector growth costs seconds.
+  Op4Matrix(Op4Matrix&& o) noexcept { swap(o); }
+  Op4Matrix& operator=(Op4Matrix&& o) noexcept {
+    swap(o);
+    return *this;
+  }
+  void swap(Op4Matrix& o) noexcept {
+    name.swap(o.name);
+    std::swap(rows, o.rows);
+    std::swap(cols, o.cols);
+    std::swap(form, o.form);
+    std::swap(precision, o.precision);
+    std::swap(storage, o.storage);
+    real.swap(o.real);
+    complex.swap(o.complex);
+  }
+
   bool is_complex() const { return precision == Op4Precision::ComplexSingle || precision == Op4Precision::ComplexDouble; }
   /// Stored non-zero terms (a complex term counts once).
   Eigen::Index nonzeros() const { return is_complex() ? complex.nonZeros() : real.nonZeros(); }

@@ -22,36 +22,123 @@ namespace {
 bool complex_type(int t) { return t == 3 || t == 4; }
 bool single_type(int t) { return t == 1 || t == 3; }
 
+/// Asks the kernel for transparent huge pages on a large fresh allocation: the
+/// first touch of hundreds of MB in 4 KiB pages costs more than parsing them
+/// (measured in bench_op4, docs/performance.md). Advisory; no effect elsewhere.
+void advise_huge_pages(void* p, std::size_t bytes) {
+#ifdef MADV_HUGEPAGE
+  constexpr std::uintptr_t huge = 2u << 20;
+  if (bytes < 4 * huge) return;
+  const std::uintptr_t b = (reinterpret_cast<std::uintptr_t>(p) + huge - 1) & ~(huge - 1);
+  const std::uintptr_t e = (reinterpret_cast<std::uintptr_t>(p) + bytes) & ~(huge - 1);
+  if (e > b) ::madvise(reinterpret_cast<void*>(b), e - b, MADV_HUGEPAGE);
+#else
+  (void)p;
+  (void)bytes;
+#endif
+}
+
+/// Compressed-column storage of one Eigen sparse matrix, filled in place (no
+/// intermediate copy: at hundreds of MB the copy and its page faults cost more
+/// than the parsing).
+template <class T>
+class CscTarget {
+public:
+  void start(Eigen::Index rows, Eigen::Index cols) {
+    m.resize(rows, cols);  // compressed, outer indices zero
+    m_outer = m.outerIndexPtr();
+  }
+  void reserve(std::size_t n) {
+    if (n > m_cap) grow(n);
+  }
+  void push(int row, const T& v) {
+    if (m_n == m_cap) grow(std::max<std::size_t>(1024, 2 * m_cap));
+    m_inner[m_n] = row;
+    m_val[m_n] = v;
+    ++m_n;
+  }
+  /// Room for `extra` more terms (push_unchecked may then be used that many times).
+  void ensure(std::size_t extra) {
+    if (m_n + extra > m_cap) grow(std::max<std::size_t>(m_n + extra, 2 * m_cap));
+  }
+  /// Stores a term unless it is an exact zero; ensure() first.
+  void push_unchecked(int row, const T& v) {
+    m_inner[m_n] = row;
+    m_val[m_n] = v;
+    m_n += v != T(0);
+  }
+  std::size_t size() const { return m_n; }
+  int* outer() { return m_outer; }
+  const int* inner() const { return m_inner; }
+  const T* values() const { return m_val; }
+  /// Sets the final size; frees the unused reserve when it is large.
+  Eigen::SparseMatrix<T>& done() {
+    m.data().resize(static_cast<Eigen::Index>(m_n));
+    if (m_cap > m_n + m_n / 4 + 4096) m.data().squeeze();
+    return m;
+  }
+  Eigen::SparseMatrix<T> m;
+
+private:
+  void grow(std::size_t cap) {
+    m.data().resize(static_cast<Eigen::Index>(m_n));  // the terms so far (no reallocation)
+    m.data().resize(static_cast<Eigen::Index>(cap));  // reallocates keeping them
+    m_cap = cap;
+    m_inner = m.innerIndexPtr();
+    m_val = m.valuePtr();
+    advise_huge_pages(m_inner + m_n, (cap - m_n) * sizeof(int));
+    advise_huge_pages(m_val + m_n, (cap - m_n) * sizeof(T));
+  }
+  int* m_outer = nullptr;
+  int* m_inner = nullptr;
+  T* m_val = nullptr;
+  std::size_t m_n = 0, m_cap = 0;
+};
+
 /// Collects the terms of one matrix column by column (columns arrive in increasing
-/// order) straight into compressed-column arrays; exact zeros are dropped.
+/// order) straight into the matrix's compressed-column arrays; exact zeros are dropped.
 class ColumnBuilder {
 public:
   ColumnBuilder(Eigen::Index rows, Eigen::Index cols, bool is_complex)
-      : m_rows(rows), m_cols(cols), m_complex(is_complex), m_outer(static_cast<std::size_t>(cols) + 1, 0) {}
+      : m_rows(rows), m_cols(cols), m_complex(is_complex) {
+    if (m_complex) m_cx.start(rows, cols);
+    else m_re.start(rows, cols);
+  }
 
   /// Starts column c (0-based); columns must increase.
   void begin_column(Eigen::Index c) {
-    for (Eigen::Index k = m_current + 1; k <= c; ++k) m_outer[static_cast<std::size_t>(k)] = static_cast<int>(m_inner.size());
+    int* outer = m_complex ? m_cx.outer() : m_re.outer();
+    const int n = static_cast<int>(m_complex ? m_cx.size() : m_re.size());
+    for (Eigen::Index k = m_current + 1; k <= c; ++k) outer[k] = n;
     m_current = c;
     m_last_row = -1;
   }
   void add(Eigen::Index row, double re) {
     if (re == 0.0) return;
     note_row(row);
-    m_re.push_back(re);
+    m_re.push(static_cast<int>(row), re);
   }
   void add(Eigen::Index row, double re, double im) {
     if (re == 0.0 && im == 0.0) return;
     note_row(row);
-    m_cx.emplace_back(re, im);
+    m_cx.push(static_cast<int>(row), std::complex<double>(re, im));
   }
   void reserve(std::size_t n) {
-    m_inner.reserve(n);
-    (m_complex ? static_cast<void>(m_cx.reserve(n)) : m_re.reserve(n));
+    if (m_complex) m_cx.reserve(n);
+    else m_re.reserve(n);
+  }
+  /// Real terms of rows row0, row0+1, ... (0-based), value(t) for t < terms; zeros dropped.
+  template <class Value>
+  void add_run(Eigen::Index row0, std::int64_t terms, Value value) {
+    if (terms <= 0) return;
+    if (row0 <= m_last_row) m_sorted = false;
+    m_last_row = row0 + terms - 1;
+    m_re.ensure(static_cast<std::size_t>(terms));
+    for (std::int64_t t = 0; t < terms; ++t) m_re.push_unchecked(static_cast<int>(row0 + t), value(t));
   }
 
   void finish(Op4Matrix& m) {
-    for (Eigen::Index k = m_current + 1; k <= m_cols; ++k) m_outer[static_cast<std::size_t>(k)] = static_cast<int>(m_inner.size());
+    begin_column(m_cols);  // outer[last+1 .. cols] = number of terms
     if (m_complex) fill(m.complex, m_cx);
     else fill(m.real, m_re);
   }
@@ -60,34 +147,29 @@ private:
   void note_row(Eigen::Index row) {
     if (row <= m_last_row) m_sorted = false;
     m_last_row = row;
-    m_inner.push_back(static_cast<int>(row));
   }
   template <class T>
-  void fill(Eigen::SparseMatrix<T>& out, std::vector<T>& values) {
+  void fill(Eigen::SparseMatrix<T>& out, CscTarget<T>& a) {
     if (!m_sorted) {
       // Strings given out of row order (allowed by the format, never written by NASTRAN).
       std::vector<Eigen::Triplet<T>> t;
-      t.reserve(values.size());
+      t.reserve(a.size());
+      const int* outer = a.outer();
       for (Eigen::Index c = 0; c < m_cols; ++c)
-        for (int k = m_outer[c]; k < m_outer[c + 1]; ++k) t.emplace_back(m_inner[k], static_cast<int>(c), values[k]);
+        for (int k = outer[c]; k < outer[c + 1]; ++k) t.emplace_back(a.inner()[k], static_cast<int>(c), a.values()[k]);
       out.resize(m_rows, m_cols);
       out.setFromTriplets(t.begin(), t.end(), [](const T&, const T& b) { return b; });
       return;
     }
-    out.resize(m_rows, m_cols);
-    out.resizeNonZeros(static_cast<Eigen::Index>(values.size()));
-    std::copy(m_outer.begin(), m_outer.end(), out.outerIndexPtr());
-    std::copy(m_inner.begin(), m_inner.end(), out.innerIndexPtr());
-    std::copy(values.begin(), values.end(), out.valuePtr());
+    out.swap(a.done());
   }
 
   Eigen::Index m_rows, m_cols;
   bool m_complex;
   Eigen::Index m_current = -1, m_last_row = -1;
   bool m_sorted = true;
-  std::vector<int> m_outer, m_inner;
-  std::vector<double> m_re;
-  std::vector<std::complex<double>> m_cx;
+  CscTarget<double> m_re;
+  CscTarget<std::complex<double>> m_cx;
 };
 
 /// Form-specific completion (documented in docs/op4.md).
@@ -136,6 +218,19 @@ void complete_forms(Op4Matrix& m, const Op4ReadOptions& opt) {
     else diag(m.real);
     m.cols = m.rows;
   }
+}
+
+/// A header's column count (or, for a diagonal matrix kept as one column, its row
+/// count) sizes the column index array, 4 bytes per column, before any data is
+/// seen. A lying header in a small file must not allocate gigabytes: the count
+/// is refused when that array would exceed both 256 MiB and 16 times the file.
+/// Returns the message, or "" when the size is plausible.
+std::string implausible_size(std::int64_t ncol, std::int64_t nrow, std::int64_t form, std::size_t file_size) {
+  const std::int64_t n = (form == op4_form::Diagonal && ncol == 1) ? std::max(ncol, nrow) : ncol;
+  const std::uint64_t bytes = 4u * static_cast<std::uint64_t>(n);
+  if (bytes <= (256u << 20) || bytes <= 16u * static_cast<std::uint64_t>(file_size)) return "";
+  return "header gives " + std::to_string(n) + " columns, implausible for a file of " + std::to_string(file_size) +
+         " bytes (more than 64 M columns and 4 per byte of the file)";
 }
 
 std::string clean_name(std::string_view raw) {
@@ -202,7 +297,7 @@ const char* scan_number(const char* p, const char* end, double& value) {
 class AsciiReader {
 public:
   AsciiReader(const char* data, std::size_t size, const std::string& file, const Op4ReadOptions& opt)
-      : m_p(data), m_end(data + size), m_file(file), m_opt(opt) {}
+      : m_begin(data), m_p(data), m_end(data + size), m_file(file), m_opt(opt) {}
 
   std::vector<Op4Matrix> read_all() {
     std::vector<Op4Matrix> out;
@@ -294,8 +389,16 @@ private:
   std::size_t numbers(std::vector<double>& values) {
     values.clear();
     std::string_view line;
-    while (peek_line(line) && is_numeric(line)) {
-      next_line(line);
+    while (true) {
+      // One scan per line: find its end, consume it only when it holds numbers.
+      if (m_p >= m_end) break;
+      const char* nl = static_cast<const char*>(std::memchr(m_p, '\n', static_cast<std::size_t>(m_end - m_p)));
+      const char* le = nl ? nl : m_end;
+      line = std::string_view(m_p, static_cast<std::size_t>(le - m_p));
+      if (!line.empty() && line.back() == '\r') line.remove_suffix(1);
+      if (!is_numeric(line)) break;
+      m_p = nl ? nl + 1 : m_end;
+      ++m_line;
       const char* p = line.data();
       const char* e = p + line.size();
       while (true) {
@@ -368,12 +471,24 @@ private:
         }
       }
       name = clean_name(nm);
+      // Declared width of a number ("1P,5E16.9" -> 16), for a reserve hint only.
+      if (k != std::string::npos) {
+        const std::size_t e = up.find_first_of("ED", k + 3);
+        if (e != std::string::npos) {
+          int w = 0;
+          for (std::size_t i = e + 1; i < up.size() && up[i] >= '0' && up[i] <= '9'; ++i) w = w * 10 + (up[i] - '0');
+          m_declared_width = w;
+        }
+      }
     }
     const std::int64_t ncol = h[0], nrow_signed = h[1], form = h[2], type = h[3];
     m_context = "matrix " + (name.empty() ? std::string("(unnamed)") : name) + ": ";
     if (ncol < 0 || nrow_signed == 0 || std::llabs(nrow_signed) > 2147483647 || ncol > 2147483647)
       fail("header gives " + std::to_string(ncol) + " columns and " + std::to_string(nrow_signed) + " rows", header_line);
     if (type < 1 || type > 4) fail("TYPE must be 1-4 (precision), got " + std::to_string(type), header_line);
+    if (auto msg = implausible_size(ncol, std::llabs(nrow_signed), form, static_cast<std::size_t>(m_end - m_begin));
+        !msg.empty())
+      fail(msg, header_line);
 
     Op4Matrix m;
     m.name = name;
@@ -388,6 +503,12 @@ private:
     const int npt = cx ? 2 : 1;                           // numbers per term
     const int wpn = single ? 1 : 2;                       // words per number
     ColumnBuilder b(m.rows, m.cols, cx);
+    if (m_declared_width >= 8) {
+      // Numbers are at least as wide as declared: an upper bound on the terms left in the file.
+      const std::size_t left = static_cast<std::size_t>(m_end - m_p) / static_cast<std::size_t>(m_declared_width * npt);
+      b.reserve(std::min<std::size_t>(left, static_cast<std::size_t>(m.rows) * static_cast<std::size_t>(m.cols)));
+    }
+    m_declared_width = 0;
     std::vector<double> vals;
     std::int64_t last_col = 0;
     bool sparse_seen = false, dense_seen = false;
@@ -402,10 +523,11 @@ private:
       // (Rounded in place first: g++ 12 -O2 mis-vectorised the per-pair rounding.)
       if (single)
         for (std::size_t k = 0; k < n; ++k) vals[k] = static_cast<double>(static_cast<float>(vals[k]));
-      for (std::int64_t t = 0; t < terms; ++t) {
-        if (cx) b.add(row0 - 1 + t, vals[2 * t], vals[2 * t + 1]);
-        else b.add(row0 - 1 + t, vals[t]);
+      if (!cx) {
+        b.add_run(row0 - 1, terms, [&](std::int64_t t) { return vals[static_cast<std::size_t>(t)]; });
+        return;
       }
+      for (std::int64_t t = 0; t < terms; ++t) b.add(row0 - 1 + t, vals[2 * t], vals[2 * t + 1]);
     };
 
     std::string_view line;
@@ -484,12 +606,14 @@ private:
     return m;
   }
 
+  const char* m_begin;
   const char* m_p;
   const char* m_end;
   const std::string& m_file;
   const Op4ReadOptions& m_opt;
   std::uint32_t m_line = 0;
   std::int64_t m_col = 0;  ///< column being read, for messages
+  int m_declared_width = 0;  ///< width of a number in the header's format, 0 when unknown
   std::string m_context;
 };
 
@@ -577,6 +701,7 @@ private:
     if (ncol < 0 || nrow_signed == 0 || std::llabs(nrow_signed) > 2147483647 || ncol > 2147483647)
       fail("header gives " + std::to_string(ncol) + " columns and " + std::to_string(nrow_signed) + " rows", h.offset);
     if (type < 1 || type > 4) fail("TYPE must be 1-4 (precision), got " + std::to_string(type), h.offset);
+    if (auto msg = implausible_size(ncol, std::llabs(nrow_signed), form, m_size); !msg.empty()) fail(msg, h.offset);
 
     Op4Matrix m;
     m.name = name;
@@ -620,10 +745,20 @@ private:
         std::memcpy(&d, &u, 8);
         return round_single ? static_cast<double>(static_cast<float>(d)) : d;
       };
-      for (std::int64_t t = 0; t < terms; ++t) {
-        if (cx) b.add(row0 - 1 + t, num(p + 2 * t * bpn), num(p + (2 * t + 1) * bpn));
-        else b.add(row0 - 1 + t, num(p + t * bpn));
+      if (!cx && bpn == 8 && !round_single && !m_swap) {
+        // The common case (real double in the host's byte order): one tight loop.
+        b.add_run(row0 - 1, terms, [p](std::int64_t t) {
+          double d;
+          std::memcpy(&d, p + 8 * t, 8);
+          return d;
+        });
+        return;
       }
+      if (!cx) {
+        b.add_run(row0 - 1, terms, [&](std::int64_t t) { return num(p + t * bpn); });
+        return;
+      }
+      for (std::int64_t t = 0; t < terms; ++t) b.add(row0 - 1 + t, num(p + 2 * t * bpn), num(p + (2 * t + 1) * bpn));
     };
 
     while (true) {
@@ -696,7 +831,7 @@ private:
 };
 
 /// Finds marker size, byte order and word size from the first record, which must
-/// be a matrix header of 24 (4-byte words), 40 or 48 bytes (8-byte words).
+/// be a matrix header of 24-32 bytes (4-byte words) or 40-48 bytes (8-byte words).
 bool detect_binary(const unsigned char* d, std::size_t size, Op4FileInfo& info) {
   for (int mb : {4, 8})
     for (Endian e : {Endian::Little, Endian::Big}) {
@@ -710,12 +845,14 @@ bool detect_binary(const unsigned char* d, std::size_t size, Op4FileInfo& info) 
         return v;
       };
       const std::uint64_t len = get(0);
-      if (len != 24 && len != 40 && len != 48) continue;
+      // Four words and a name of 8 to 16 characters (longer names than NASTRAN's 8 included).
+      const bool w4 = len >= 24 && len <= 32, w8 = len >= 40 && len <= 48;
+      if (!w4 && !w8) continue;
       if (size < 2 * mb + len || get(mb + len) != len) continue;
       info.encoding = Op4Encoding::Binary;
       info.marker_bytes = mb;
       info.endian = e;
-      info.word_bytes = len == 24 ? 4 : 8;
+      info.word_bytes = w4 ? 4 : 8;
       return true;
     }
   return false;
@@ -743,7 +880,7 @@ public:
     }
     m_size = static_cast<std::size_t>(st.st_size);
     if (m_size > 0) {
-      void* p = ::mmap(nullptr, m_size, PROT_READ, MAP_PRIVATE, m_fd, 0);
+      void* p = ::mmap(nullptr, m_size, PROT_READ, MAP_PRIVATE | MAP_POPULATE, m_fd, 0);
       if (p == MAP_FAILED) {
         ::close(m_fd);
         throw ParseError(SourceLocation{path, 0, {}}, "cannot map file: " + std::string(std::strerror(errno)));
@@ -788,7 +925,7 @@ std::vector<Op4Matrix> read_op4_buffer(const char* data, std::size_t size, const
     }
     throw ParseError(SourceLocation{name, 0, {}},
                      "byte offset 0: not an OP4 file: neither ASCII text nor a Fortran record holding a matrix header "
-                     "(24, 40 or 48 bytes) with 4- or 8-byte markers; first bytes " +
+                     "(24-32 or 40-48 bytes) with 4- or 8-byte markers; first bytes " +
                          first);
   }
   if (info) *info = fi;

@@ -1,10 +1,12 @@
 /// \file op4_writer.cpp
 /// Writing OP4 files in every encoding, storage and precision.
 #include <cerrno>
+#include <charconv>
 #include <cmath>
 #include <cstring>
 #include <fcntl.h>
 #include <stdexcept>
+#include <type_traits>
 #include <unistd.h>
 
 #include <fmt/format.h>
@@ -164,6 +166,12 @@ private:
     // nrows_span terms starting at first_row; rows not in `rows` are zero (dense gaps).
     const std::size_t bytes = static_cast<std::size_t>(nrows_span) * m_l.npt * m_l.bpn;
     char* p = m_out.grow(bytes);
+    if constexpr (std::is_same_v<T, double>) {
+      if (count == nrows_span && m_l.bpn == 8 && !m_l.single && !m_swap) {
+        std::memcpy(p, values, bytes);  // real double in the host's byte order: the values as they are
+        return;
+      }
+    }
     if (count == nrows_span) {
       for (int t = 0; t < count; ++t) {
         put_number(p, re_of(values[t]));
@@ -184,6 +192,7 @@ private:
   void number_text(char* p, double v) {
     if (!std::isfinite(v)) throw std::invalid_argument("OP4 ASCII cannot hold the value " + std::to_string(v));
     if (m_l.single) v = to_single(v);
+    if (fast_number_text(p, v)) return;
     char buf[64];
     auto r = fmt::format_to_n(buf, sizeof buf - 1, "{:.{}E}", v, m_digits);
     std::size_t n = r.size;
@@ -196,6 +205,68 @@ private:
     const std::size_t pad = static_cast<std::size_t>(m_width) > n ? m_width - n : 0;
     std::memset(p, ' ', pad);
     std::memcpy(p + pad, buf, n);
+  }
+  /// The fast path: the shortest digits that read back to the value (Ryu, through
+  /// std::to_chars; of the float for single precision), padded with zeros
+  /// to the field's digits. The text reads back to exactly the same value as the
+  /// correctly rounded "%.*E" would (both are exact), at a tenth of the cost.
+  /// Returns false when the shortest form has more digits than the field.
+  bool fast_number_text(char* p, double v) const {
+    // std::to_chars without precision: the shortest round-trip form ("5.4532186e+16").
+    char buf[48];
+    const std::to_chars_result r =
+        m_l.single ? std::to_chars(buf, buf + sizeof buf, static_cast<float>(v), std::chars_format::scientific)
+                   : std::to_chars(buf, buf + sizeof buf, v, std::chars_format::scientific);
+    if (r.ec != std::errc()) return false;
+    const char* q = buf;
+    const char* end = r.ptr;
+    const bool neg = *q == '-';
+    if (neg) ++q;
+    char digits[40];
+    int nd = 0, point = -1;
+    for (; q < end && *q != 'e'; ++q) {
+      if (*q == '.') {
+        point = nd;
+        continue;
+      }
+      if (*q < '0' || *q > '9' || nd == 40) return false;  // inf, nan
+      digits[nd++] = *q;
+    }
+    if (nd == 0) return false;
+    if (point < 0) point = nd;
+    int ex = 0;
+    if (q < end) {  // 'e', sign, digits
+      ++q;
+      const bool eneg = q < end && *q == '-';
+      if (q < end && (*q == '-' || *q == '+')) ++q;
+      for (; q < end; ++q) ex = ex * 10 + (*q - '0');
+      if (eneg) ex = -ex;
+    }
+    // Normalise to d.ddd x 10^ex10: drop leading and trailing zeros.
+    int first = 0;
+    while (first < nd - 1 && digits[first] == '0') ++first;
+    int last = nd;
+    while (last > first + 1 && digits[last - 1] == '0') --last;
+    const bool zero = digits[first] == '0';
+    const int ex10 = zero ? 0 : point - first - 1 + ex;
+    const int nsig = last - first;
+    if (nsig > m_digits + 1) return false;
+    char out[48];
+    std::size_t n = 0;
+    if (neg) out[n++] = '-';
+    out[n++] = digits[first];
+    out[n++] = '.';
+    for (int k = 1; k <= m_digits; ++k) out[n++] = k < nsig ? digits[first + k] : '0';
+    const int aex = ex10 < 0 ? -ex10 : ex10;
+    if (aex < 100) out[n++] = 'E';  // Fortran drops the letter for 3-digit exponents
+    out[n++] = ex10 < 0 ? '-' : '+';
+    if (aex >= 100) out[n++] = static_cast<char>('0' + aex / 100);
+    out[n++] = static_cast<char>('0' + aex / 10 % 10);
+    out[n++] = static_cast<char>('0' + aex % 10);
+    const std::size_t pad = static_cast<std::size_t>(m_width) > n ? m_width - n : 0;
+    std::memset(p, ' ', pad);
+    std::memcpy(p + pad, out, n);
+    return true;
   }
   /// Writes `numbers` (already flattened re/im) as lines of m_per_line fields.
   void ascii_numbers(const std::vector<double>& numbers) {

@@ -134,12 +134,16 @@ TEST_CASE("ssid correlate: pairing table, unpaired modes, JSON; position mapping
   CHECK(k["unpaired_fe"] == nlohmann::json::array({3}));
 }
 
-TEST_CASE("ssid correlate: a deck where a universal file is expected is refused clearly", "[cli][correlate][errors]") {
+TEST_CASE("ssid correlate: a deck is solved first; one with nothing to solve is refused clearly", "[cli][correlate][errors]") {
   const fs::path dir = scratch();
   std::ofstream(dir / "model.bdf") << "GRID    1               0.      0.      0.\n";
   auto r = run_ssid("correlate " + (dir / "model.bdf").string() + " " + kMixed);
   CHECK(r.code == 1);
-  CHECK_THAT(r.err, Catch::Contains("not a universal file"));
+  CHECK_THAT(r.err, Catch::Contains("the analysis set is empty"));
+  // A deck where the test universal file is expected.
+  auto t = run_ssid("correlate " + kMixed + " " + (dir / "model.bdf").string());
+  CHECK(t.code == 1);
+  CHECK_THAT(t.err, Catch::Contains("model.bdf"));
   auto bad = run_ssid("correlate " + kMixed + " " + kMixed + " --mac cubed");
   CHECK(bad.code == 2);
 }

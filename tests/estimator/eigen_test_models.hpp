@@ -93,4 +93,37 @@ inline std::pair<SpMat, SpMat> free_box_truss() {
   return {from_triplets(24, t), diagonal(Eigen::VectorXd::Constant(24, 2.0))};
 }
 
+/// A free 3D pin-jointed lattice truss: nodes on an n x n x n grid 1 m apart,
+/// each unit cube's 8 corners joined pairwise by rods (EA/L = 1000/L), so the
+/// lattice is rigid: exactly six zero eigenvalues. 3 DOF per node, lumped mass
+/// 2 per DOF. DOF (node a, component c) is row perm[3a + c] when `perm` is
+/// given (a scrambled numbering), 3a + c otherwise.
+inline std::pair<SpMat, SpMat> free_lattice_truss(int n, const std::vector<int>& perm = {}) {
+  auto node = [n](int i, int j, int k) { return (k * n + j) * n + i; };
+  const int nn = n * n * n;
+  auto dof = [&perm](int a, int c) { return perm.empty() ? 3 * a + c : perm[static_cast<size_t>(3 * a + c)]; };
+  Triplets t;
+  for (int k = 0; k + 1 < n; ++k)
+    for (int j = 0; j + 1 < n; ++j)
+      for (int i = 0; i + 1 < n; ++i)
+        for (int p = 0; p < 8; ++p)
+          for (int q = p + 1; q < 8; ++q) {
+            const Eigen::Vector3d xp(i + (p & 1), j + ((p >> 1) & 1), k + ((p >> 2) & 1));
+            const Eigen::Vector3d xq(i + (q & 1), j + ((q >> 1) & 1), k + ((q >> 2) & 1));
+            const int a = node(i + (p & 1), j + ((p >> 1) & 1), k + ((p >> 2) & 1));
+            const int b = node(i + (q & 1), j + ((q >> 1) & 1), k + ((q >> 2) & 1));
+            const Eigen::Vector3d d = xq - xp;
+            const double L = d.norm();
+            const Eigen::Matrix3d ke = (1000.0 / L) * (d / L) * (d / L).transpose();
+            for (int r = 0; r < 3; ++r)
+              for (int c = 0; c < 3; ++c) {
+                t.emplace_back(dof(a, r), dof(a, c), ke(r, c));
+                t.emplace_back(dof(b, r), dof(b, c), ke(r, c));
+                t.emplace_back(dof(a, r), dof(b, c), -ke(r, c));
+                t.emplace_back(dof(b, r), dof(a, c), -ke(r, c));
+              }
+          }
+  return {from_triplets(3 * nn, t), diagonal(Eigen::VectorXd::Constant(3 * nn, 2.0))};
+}
+
 }  // namespace ssid::test

@@ -3,7 +3,10 @@
 #include <catch2/catch.hpp>
 
 #include <Eigen/Dense>
+#include <algorithm>
 #include <cmath>
+#include <random>
+#include <vector>
 
 #include "eigen_test_models.hpp"
 
@@ -284,4 +287,56 @@ TEST_CASE("Progress is reported", "[eigen]") {
   check_modes(K, M, r);
   CHECK(calls >= 4);
   CHECK(last == 1.0);
+}
+
+TEST_CASE("DOF groups (grid points) give the same modes as the DOF-graph ordering", "[eigen]") {
+  BOTH_METHODS();
+  // Lattice truss of 5^3 nodes, 375 DOF, six rigid-body modes; rows numbered
+  // node by node (groups = row / 3) and in a scrambled order.
+  const int nn = 125;
+  for (bool scrambled : {false, true}) {
+    CAPTURE(scrambled);
+    std::vector<int> perm;
+    if (scrambled) {
+      perm.resize(3 * nn);
+      for (int i = 0; i < 3 * nn; ++i) perm[static_cast<size_t>(i)] = i;
+      std::mt19937 rng(17u);
+      std::shuffle(perm.begin(), perm.end(), rng);
+    }
+    const auto [K, M] = free_lattice_truss(5, perm);
+    std::vector<long> groups(3 * nn);
+    for (int a = 0; a < nn; ++a)
+      for (int c = 0; c < 3; ++c) groups[static_cast<size_t>(scrambled ? perm[static_cast<size_t>(3 * a + c)] : 3 * a + c)] = a;
+    const EigenResult plain = solve_modes(K, M, lowest(20, method));
+    EigenOptions og = lowest(20, method);
+    og.dof_groups = groups;
+    EigenSolver solver(og);
+    const EigenResult grouped = solver.solve(K, M);
+    check_modes(K, M, plain, 1e-6);
+    check_modes(K, M, grouped, 1e-6);
+    REQUIRE(grouped.size() == 20);
+    CHECK(grouped.ordering.find("on 125 groups") != std::string::npos);
+    const double top = plain.eigenvalues(19);
+    int zeros = 0;
+    for (int j = 0; j < 20; ++j) {
+      if (std::abs(grouped.eigenvalues(j)) < 1e-8 * top) ++zeros;
+      CHECK(grouped.eigenvalues(j) == Approx(plain.eigenvalues(j)).epsilon(1e-10).margin(1e-10 * top));
+    }
+    CHECK(zeros == 6);
+    // Values change only: the grouped analysis is reused.
+    const SpMat K2 = 3.0 * K;
+    const EigenResult again = solver.solve(K2, M);
+    check_modes(K2, M, again, 1e-6);
+    CHECK(again.analyses == 0);
+    CHECK(solver.factor().analysis_count() == 1);
+    for (int j = 6; j < 20; ++j) CHECK(again.eigenvalues(j) == Approx(3.0 * grouped.eigenvalues(j)).epsilon(1e-10));
+  }
+}
+
+TEST_CASE("DOF groups of the wrong size throw", "[eigen]") {
+  const SpMat K = chain_stiffness(10, 1.0, true);
+  const SpMat M = diagonal(Eigen::VectorXd::Ones(10));
+  EigenOptions o = lowest(2);
+  o.dof_groups = {0, 0, 1};
+  CHECK_THROWS_AS(solve_modes(K, M, o), std::invalid_argument);
 }

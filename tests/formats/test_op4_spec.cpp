@@ -317,3 +317,46 @@ TEST_CASE("forms 3 (diagonal as one column), 9 (pseudo-identity without terms), 
   CHECK(r[0].cols == 1);
   CHECK(r[1].nonzeros() == 0);
 }
+
+TEST_CASE("binary header with a name longer than 8 characters (12 bytes), big-endian, 8-byte markers", "[op4]") {
+  Bytes h;
+  h.big = true;
+  h.word = 4;
+  h.i(1).i(2).i(2).i(2).text("STIFFNESS_AB");  // 28-byte header record
+  std::string f = record(h, 8);
+  f += record(words(true, 4).i(1).i(2).i(2).f64(-1.25), 8);
+  f += record(words(true, 4).i(2).i(1).i(2).f64(1.0), 8);
+  Op4FileInfo info;
+  auto m = read_op4_buffer(f.data(), f.size(), "long.op4", {}, &info).at(0);
+  CHECK(info.encoding == Op4Encoding::Binary);
+  CHECK(info.word_bytes == 4);
+  CHECK(m.name == "STIFFNESS_AB");
+  CHECK(m.real.coeff(1, 0) == -1.25);
+  CHECK(m.real.nonZeros() == 1);
+}
+
+TEST_CASE("ASCII number text: shortest exact digits padded to the field, Fortran 3-digit exponents", "[op4]") {
+  // Golden text of one dense column; every value reads back bit for bit.
+  SparseReal a(6, 1);
+  const double v[] = {0.1, -1e-300, 6.02214076e23, 5e-324, 1.0 / 3.0, -0.0};
+  for (int i = 0; i < 6; ++i) a.insert(i, 0) = v[i] == 0.0 ? 1.0 : v[i];
+  a.coeffRef(5, 0) = 123456789.0;
+  Op4WriteOptions o;
+  o.encoding = Op4Encoding::Ascii;
+  o.storage = Op4Storage::Dense;
+  const std::string w = write_op4_string({Op4Matrix::from_real("N", a)}, o);
+  CHECK(w ==
+        "       1       6       2       2N       1P,3E23.16\n"
+        "       1       1       6\n"
+        " 1.0000000000000000E-01-1.0000000000000000-300 6.0221407600000000E+23\n"
+        " 5.0000000000000000-324 3.3333333333333330E-01 1.2345678900000000E+08\n"
+        "       2       1       1\n"
+        " 1.0000000000000000E+00\n");
+  CHECK(read_text(w)[0].real.isApprox(a, 0.0));
+  for (int i = 0; i < 6; ++i) CHECK(read_text(w)[0].real.coeff(i, 0) == a.coeff(i, 0));
+  // Single precision: the float's shortest digits (0.1f is written 1.000000000E-01 and read back as 0.1f).
+  o.precision = 1;
+  const std::string s = write_op4_string({Op4Matrix::from_real("N", a)}, o);
+  CHECK(s.find(" 1.000000000E-01") != std::string::npos);
+  CHECK(read_text(s)[0].real.coeff(0, 0) == static_cast<double>(0.1f));
+}

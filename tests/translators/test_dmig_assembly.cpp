@@ -126,3 +126,35 @@ TEST_CASE("matrix -> DMIG -> cards -> DMIG -> matrix is exact (IFO 6 upper trian
   CHECK(d9.cols.size() == 3);
   CHECK(assemble_dmig_dense(b9[0], dofs, d9.cols) == r);
 }
+
+#include "formats/bulk_model.hpp"
+#include "translators/assembly/model_geometry.hpp"
+
+TEST_CASE("DMIG assembled on a deck's g-set (GRID 6 DOFs, SPOINT 1 DOF) as NASTRAN sequences it", "[dmig]") {
+  const std::string text = std::string(
+                               "BEGIN BULK\n"
+                               "GRID    10              0.      0.      0.\n"
+                               "SPOINT  20\n"
+                               "GRID    30              1.      0.      0.\n") +
+                           kSym + "ENDDATA\n";
+  Deck d = read_deck_text(text, "g.bdf");
+  const BulkModel model = parse_bulk(d);
+  const ModelGeometry geo(d, model);
+  REQUIRE(geo.gset().size() == 13);  // grid 10 (6), spoint 20 (1), grid 30 (6)
+  auto v = read_dmigs(d);
+  SparseReal k = assemble_dmig_real(v[0], geo.gset(), geo.gset(), &d);
+  CHECK(k.rows() == 13);
+  CHECK(k.nonZeros() == 9);
+  const auto a = geo.dof(10, 1, "t"), b = geo.dof(10, 2, "t"), c = geo.dof(20, 0, "t");
+  CHECK(k.coeff(a, a) == 4.0);
+  CHECK(k.coeff(a, b) == -1.0);
+  CHECK(k.coeff(b, a) == -1.0);
+  CHECK(k.coeff(c, a) == 0.5);
+  CHECK(k.coeff(a, c) == 0.5);
+  CHECK(k.coeff(c, b) == 2.0);
+  CHECK(k.coeff(c, c) == 5.0);
+  // And back: the g-set matrix as DMIG cards gives the same matrix.
+  Dmig w = dmig_from_matrix(k, geo.gset(), geo.gset(), {"KAAX", 6, 0, 0});
+  auto again = read_dmigs(read_deck_text(format_dmig(w), "w.bdf"));
+  CHECK(Eigen::MatrixXd(assemble_dmig_real(again[0], geo.gset(), geo.gset())) == Eigen::MatrixXd(k));
+}

@@ -301,6 +301,9 @@ FeModel::FeModel(const Deck& deck, BulkModel model, AssemblyOptions options) : m
         throw ModelError(who + ": field number " + std::to_string(d.fid) + " of " + type +
                          " is not supported; give the field name (PNAME)");
     }
+    // The QRG names the first property of a PELAS/PMASS card K1 / M1 (a card holds
+    // two); ssid types one property per id, whose value is K / M.
+    if ((type == "PELAS" && name == "K1") || (type == "PMASS" && name == "M1")) name = name.substr(0, 1);
     const bool element = type == "CONM2" || type == "CELAS2" || type == "CMASS2" || type == "CONROD";
     if (!element) {
       const std::string actual = property_type(m, d.pid);

@@ -1,0 +1,278 @@
+/// \file cmd_diagnose.cpp
+/// `ssid diagnose DECK MEASURED.unv [--study FILE] [--json FILE] [-o DIR]`:
+/// what the model gets wrong, which model-form extension explains it, the
+/// gain, and the extended, updated deck (docs/diagnosis.md).
+#include <filesystem>
+#include <fstream>
+#include <iomanip>
+#include <iostream>
+#include <sstream>
+
+#include "cli/cli_util.hpp"
+#include "estimator/diagnosis/diagnosis.hpp"
+#include "formats/uff.hpp"
+#include "translators/test_modes.hpp"
+
+namespace ssid::cli {
+
+namespace {
+
+namespace dx = estimator::diagnosis;
+
+std::string read_text(const std::string& path) {
+  std::ifstream in(path, std::ios::binary);
+  if (!in) throw std::runtime_error(path + ": cannot open");
+  std::ostringstream s;
+  s << in.rdbuf();
+  return s.str();
+}
+
+dx::ConfigurationInput load_configuration(const std::string& deck, const std::string& unv) {
+  dx::ConfigurationInput c;
+  c.name = deck;
+  c.deck_text = read_text(deck);
+  translators::ModeSetReport rep;
+  c.measured = translators::modes_from_uff(formats::uff::read_uff(unv), &rep);
+  for (const auto& p : rep.problems) std::cerr << "warning: " << unv << ": " << p << "\n";
+  if (c.measured.frequency_hz.empty()) throw std::runtime_error(unv + ": no real normal modes (dataset 55, analysis type 2)");
+  return c;
+}
+
+nlohmann::json location_json(const translators::extensions::Location& l) {
+  return {{"grids", l.grids}, {"elements", l.elements}, {"properties", l.properties}, {"text", l.text}};
+}
+
+nlohmann::json fit_json(const dx::Fit& f) {
+  return {{"freq_rms_pct", f.freq_rms_pct}, {"mean_mac", f.mean_mac}, {"paired", f.paired}, {"measured", f.measured}};
+}
+
+std::string fx(double x, int d) {
+  std::ostringstream s;
+  s << std::fixed << std::setprecision(d) << x;
+  return s.str();
+}
+
+}  // namespace
+
+int cmd_diagnose(const Args& args) {
+  po::options_description desc("ssid diagnose options");
+  desc.add_options()("deck", po::value<std::string>()->required(), "the nominal deck with its DESVAR parameters")(
+      "measured", po::value<std::string>()->required(), "measured modes: universal file, dataset 55 at grid ids")(
+      "study", po::value<std::string>(), "study file (JSON, docs/diagnosis.md): noise, priors, kinds, configurations")(
+      "json", po::value<std::string>(), "write the diagnosis as JSON to this file ('-' for stdout)")(
+      "output,o", po::value<std::string>(), "write the extended, updated deck into this folder")(
+      "also", po::value<std::vector<std::string>>()->composing(),
+      "another tested configuration sharing the parameters: DECK=MEASURED.unv (repeatable)")(
+      "kinds", po::value<std::string>(), "comma-separated extension kinds to try (default: all)")(
+      "freq-std", po::value<double>(), "measured frequency standard deviation, % (default 0.5)")(
+      "shape-std", po::value<double>(), "measured shape standard deviation, % of the RMS component (default 3)")(
+      "prior-std", po::value<double>(), "prior standard deviation of the deck's parameters, relative (default 0.3)")(
+      "shortlist", po::value<int>(), "candidates per kind re-estimated exactly (default 3)")(
+      "margin", po::value<double>(), "decision margin in nats (default 3)")(
+      "hold-back", po::value<int>(), "hold back the N highest test modes and report their prediction");
+  po::positional_options_description pos;
+  pos.add("deck", 1).add("measured", 1);
+  po::variables_map vm;
+  int rc = 0;
+  if (!parse_options(args, "ssid diagnose DECK MEASURED.unv [--study FILE] [--json FILE] [-o DIR]", desc, pos, vm, rc))
+    return rc;
+
+  dx::DiagnosisOptions opt;
+  std::vector<std::pair<std::string, std::string>> extra;
+  if (vm.count("study")) {
+    const std::string path = vm["study"].as<std::string>();
+    nlohmann::json s;
+    try {
+      s = nlohmann::json::parse(read_text(path));
+    } catch (const nlohmann::json::parse_error& e) {
+      throw std::runtime_error(path + ": not valid JSON: " + e.what());
+    }
+    static const std::set<std::string> known = {"frequency_std_pct", "shape_std_pct", "prior_rel_std", "kinds",
+                                                "shortlist", "decision_margin", "hold_back", "mass_prior_fraction",
+                                                "stiffness_prior_fraction", "configurations", "max_iterations"};
+    for (auto it = s.begin(); it != s.end(); ++it)
+      if (!known.count(it.key())) throw std::runtime_error(path + ": unknown key \"" + it.key() + "\"");
+    try {
+      if (s.count("frequency_std_pct")) opt.problem.frequency_std_pct = s["frequency_std_pct"].get<double>();
+      if (s.count("shape_std_pct")) opt.problem.shape_std_pct = s["shape_std_pct"].get<double>();
+      if (s.count("prior_rel_std")) opt.problem.prior_rel_std = s["prior_rel_std"].get<double>();
+      if (s.count("max_iterations")) opt.problem.update.max_iterations = s["max_iterations"].get<int>();
+      if (s.count("kinds")) opt.kinds = s["kinds"].get<std::vector<std::string>>();
+      if (s.count("shortlist")) opt.shortlist = s["shortlist"].get<int>();
+      if (s.count("decision_margin")) opt.decision_margin = s["decision_margin"].get<double>();
+      if (s.count("hold_back")) opt.hold_back = s["hold_back"].get<int>();
+      if (s.count("mass_prior_fraction")) opt.extension.mass_prior_fraction = s["mass_prior_fraction"].get<double>();
+      if (s.count("stiffness_prior_fraction"))
+        opt.extension.stiffness_prior_fraction = s["stiffness_prior_fraction"].get<double>();
+      if (s.count("configurations"))
+        for (const auto& c : s["configurations"]) extra.emplace_back(c.at("deck").get<std::string>(), c.at("measured").get<std::string>());
+    } catch (const nlohmann::json::exception& e) {
+      throw std::runtime_error(path + ": " + e.what());
+    }
+  }
+  if (vm.count("freq-std")) opt.problem.frequency_std_pct = vm["freq-std"].as<double>();
+  if (vm.count("shape-std")) opt.problem.shape_std_pct = vm["shape-std"].as<double>();
+  if (vm.count("prior-std")) opt.problem.prior_rel_std = vm["prior-std"].as<double>();
+  if (vm.count("shortlist")) opt.shortlist = vm["shortlist"].as<int>();
+  if (vm.count("margin")) opt.decision_margin = vm["margin"].as<double>();
+  if (vm.count("hold-back")) opt.hold_back = vm["hold-back"].as<int>();
+  if (vm.count("kinds")) {
+    opt.kinds.clear();
+    std::stringstream ss(vm["kinds"].as<std::string>());
+    for (std::string k; std::getline(ss, k, ',');) opt.kinds.push_back(k);
+  }
+  static const std::set<std::string> kinds = {"local_stiffness", "missing_mass", "support_dynamics", "joint_flexibility"};
+  for (const auto& k : opt.kinds)
+    if (!kinds.count(k)) {
+      print_error("unknown extension kind \"" + k + "\" (local_stiffness, missing_mass, support_dynamics, joint_flexibility)");
+      return 2;
+    }
+  if (vm.count("also"))
+    for (const auto& a : vm["also"].as<std::vector<std::string>>()) {
+      const auto eq = a.find('=');
+      if (eq == std::string::npos) {
+        print_error("--also: expected DECK=MEASURED.unv, got \"" + a + "\"");
+        return 2;
+      }
+      extra.emplace_back(a.substr(0, eq), a.substr(eq + 1));
+    }
+  const bool quiet_json = vm.count("json") && vm["json"].as<std::string>() == "-";
+  opt.progress = [quiet_json](const std::string& what, double) {
+    if (!quiet_json) std::cerr << "  " << what << "\n";
+  };
+
+  std::vector<dx::ConfigurationInput> configs;
+  configs.push_back(load_configuration(vm["deck"].as<std::string>(), vm["measured"].as<std::string>()));
+  for (const auto& [d, m] : extra) configs.push_back(load_configuration(d, m));
+
+  const dx::Diagnosis dg = dx::diagnose(configs, opt);
+  const dx::Hypothesis& cause = dg.cause >= 0 ? dg.ranking[static_cast<std::size_t>(dg.cause)] : dg.nominal;
+
+  // The extended, updated deck.
+  std::string deck_path;
+  if (vm.count("output")) {
+    const std::filesystem::path dir = vm["output"].as<std::string>();
+    std::filesystem::create_directories(dir);
+    const auto stem = std::filesystem::path(configs.front().name).stem().string();
+    deck_path = (dir / (stem + "_diagnosed.bdf")).string();
+    std::ofstream out(deck_path, std::ios::binary);
+    out << dg.updated_deck;
+    if (!out) throw std::runtime_error(deck_path + ": cannot write");
+  }
+
+  nlohmann::json j;
+  {
+    nlohmann::json c;
+    c["kind"] = dg.cause_kind;
+    c["location"] = location_json(cause.location);
+    const auto p0 = cause.names.size() - cause.added.size();
+    if (!cause.added.empty()) {
+      c["value"] = cause.estimate(static_cast<Eigen::Index>(p0));
+      c["std"] = cause.posterior_std(static_cast<Eigen::Index>(p0));
+      c["parameters"] = nlohmann::json::array();
+      for (std::size_t k = 0; k < cause.added.size(); ++k)
+        c["parameters"].push_back({{"name", cause.added[k].label},
+                                   {"meaning", cause.added[k].meaning},
+                                   {"estimate", cause.estimate(static_cast<Eigen::Index>(p0 + k))},
+                                   {"std", cause.posterior_std(static_cast<Eigen::Index>(p0 + k))}});
+    } else {
+      c["value"] = nullptr;
+      c["std"] = nullptr;
+    }
+    c["summary"] = dg.summary;
+    c["margin_nats"] = dg.margin;
+    j["cause"] = c;
+  }
+  j["ranking"] = nlohmann::json::array();
+  for (const auto& h : dg.ranking) {
+    nlohmann::json r = {{"kind", h.kind},
+                        {"location", location_json(h.location)},
+                        {"log_evidence", h.score},
+                        {"laplace_log_evidence", h.log_evidence},
+                        {"unpaired_penalty", h.miss_penalty},
+                        {"look_elsewhere", h.look_elsewhere},
+                        {"freq_rms_pct", h.after.freq_rms_pct},
+                        {"mean_mac", h.after.mean_mac},
+                        {"paired", h.after.paired},
+                        {"converged", h.converged}};
+    if (h.prediction_rms_pct >= 0) r["prediction_rms_pct"] = h.prediction_rms_pct;
+    j["ranking"].push_back(r);
+  }
+  j["gain"] = {{"before", fit_json(dg.nominal.before)}, {"after", fit_json(cause.after)}};
+  j["nominal"] = {{"log_evidence", dg.nominal.score}};
+  j["searched"] = dg.searched;
+  {
+    nlohmann::json e;
+    e["findings"] = dg.evidence.findings;
+    e["unpaired_test"] = nlohmann::json::array();
+    for (const auto& u : dg.evidence.unpaired_test) {
+      nlohmann::json moves = nlohmann::json::array();
+      for (const auto& g : u.moves) moves.push_back({{"grid", g.grid}, {"share", g.share}});
+      e["unpaired_test"].push_back({{"test_mode", u.id}, {"hz", u.frequency_hz}, {"mems_error", u.mems_error}, {"moves", moves}});
+    }
+    e["unpaired_fe"] = nlohmann::json::array();
+    for (const auto& u : dg.evidence.unpaired_fe) e["unpaired_fe"].push_back({{"fe_mode", u.mode}, {"hz", u.frequency_hz}});
+    e["modes"] = nlohmann::json::array();
+    for (const auto& m : dg.evidence.modes)
+      e["modes"].push_back({{"test_mode", m.test_id}, {"test_hz", m.test_hz}, {"fe_mode", m.fem}, {"fe_hz", m.fem_hz},
+                            {"error_pct", m.error_pct}, {"mac", m.mac}, {"mems_error", m.mems_error}});
+    e["frequency_error"] = {{"mean_pct", dg.evidence.mean_error_pct}, {"rms_pct", dg.evidence.rms_error_pct},
+                            {"slope_pct_per_hz", dg.evidence.error_slope_pct_per_hz}};
+    e["grid_misfit"] = nlohmann::json::array();
+    for (std::size_t k = 0; k < std::min<std::size_t>(10, dg.evidence.grid_misfit.size()); ++k)
+      e["grid_misfit"].push_back({{"grid", dg.evidence.grid_misfit[k].grid}, {"share", dg.evidence.grid_misfit[k].share}});
+    j["evidence"] = e;
+  }
+  j["notes"] = dg.notes;
+  j["deck"] = deck_path.empty() ? nlohmann::json(nullptr) : nlohmann::json(deck_path);
+
+  if (quiet_json) {
+    write_json("-", j);
+    return 0;
+  }
+  std::cout << "ssid diagnose: " << configs.front().name << " against " << vm["measured"].as<std::string>();
+  if (configs.size() > 1) std::cout << " (+" << configs.size() - 1 << " configuration(s))";
+  std::cout << "\n\n1. What the updated model gets wrong (after the ordinary update):\n";
+  for (const auto& f : dg.evidence.findings) std::cout << "   - " << f << "\n";
+  std::cout << "\n   test mode   test Hz   FE mode     FE Hz   error %    MAC   MEMS e^2\n";
+  for (const auto& m : dg.evidence.modes) {
+    std::cout << "   " << std::setw(9) << m.test_id << std::setw(10) << fx(m.test_hz, 3);
+    if (m.fem) std::cout << std::setw(10) << m.fem << std::setw(10) << fx(m.fem_hz, 3) << std::setw(10) << fx(m.error_pct, 2)
+                         << std::setw(7) << fx(m.mac, 3);
+    else std::cout << std::setw(37) << "(no partner)";
+    std::cout << std::setw(11) << fx(m.mems_error, 3) << "\n";
+  }
+  std::cout << "\n2-3. Hypotheses tested (searched:";
+  for (const auto& [k, n] : dg.searched) std::cout << " " << k << " " << n;
+  std::cout << " locations)\n   score = Laplace log-evidence + unpaired-mode penalty - log(#locations)\n";
+  std::cout << "   rank  kind               location                                  score [nats]  freq RMS %  mean MAC  paired\n";
+  std::cout << "      -  none               deck as given                            " << std::setw(13)
+            << fx(dg.nominal.score, 1) << std::setw(12) << fx(dg.nominal.before.freq_rms_pct, 3) << std::setw(10)
+            << fx(dg.nominal.before.mean_mac, 4) << std::setw(8) << dg.nominal.before.paired << "\n";
+  for (std::size_t i = 0; i < dg.ranking.size() && i < 12; ++i) {
+    const auto& h = dg.ranking[i];
+    std::string loc = h.location.text;
+    if (loc.size() > 40) loc = loc.substr(0, 37) + "...";
+    std::cout << "   " << std::setw(4) << i + 1 << "  " << std::left << std::setw(19) << h.kind << std::setw(41) << loc
+              << std::right << std::setw(13) << fx(h.score, 1) << std::setw(12) << fx(h.after.freq_rms_pct, 3)
+              << std::setw(10) << fx(h.after.mean_mac, 4) << std::setw(8) << h.after.paired;
+    if (h.prediction_rms_pct >= 0) std::cout << "  held-back RMS " << fx(h.prediction_rms_pct, 2) << " %";
+    std::cout << (static_cast<int>(i) == dg.cause ? "  <- cause" : "") << "\n";
+  }
+  std::cout << "\n4. Cause: " << dg.cause_kind << " — " << dg.summary << "\n";
+  std::cout << "\n5. Gain:              before     after\n";
+  std::cout << "   freq RMS error %  " << std::setw(8) << fx(dg.nominal.before.freq_rms_pct, 3) << std::setw(10)
+            << fx(cause.after.freq_rms_pct, 3) << "\n";
+  std::cout << "   mean MAC          " << std::setw(8) << fx(dg.nominal.before.mean_mac, 4) << std::setw(10)
+            << fx(cause.after.mean_mac, 4) << "\n";
+  std::cout << "   paired modes      " << std::setw(8) << dg.nominal.before.paired << std::setw(10) << cause.after.paired << " of "
+            << cause.after.measured << "\n";
+  std::cout << "   log evidence      " << std::setw(8) << fx(dg.nominal.score, 1) << std::setw(10) << fx(cause.score, 1)
+            << "\n";
+  for (const auto& n : dg.notes) std::cout << "note: " << n << "\n";
+  if (!deck_path.empty()) std::cout << "\nextended, updated deck: " << deck_path << "\n";
+  if (vm.count("json")) write_json(vm["json"].as<std::string>(), j);
+  return 0;
+}
+
+}  // namespace ssid::cli

@@ -1,0 +1,472 @@
+#include "estimator/diagnosis/diagnosis.hpp"
+
+#include <Eigen/Dense>
+#include <algorithm>
+#include <cmath>
+#include <set>
+#include <sstream>
+
+#include "estimator/sensitivity.hpp"
+#include "formats/deck_writer.hpp"
+
+namespace ssid::estimator::diagnosis {
+
+namespace ext = translators::extensions;
+
+namespace {
+
+double hz(double lambda) { return std::sqrt(std::max(lambda, 0.0)) / (2.0 * M_PI); }
+
+std::string fixed(double x, int digits) {
+  std::ostringstream s;
+  s.setf(std::ios::fixed);
+  s.precision(digits);
+  s << x;
+  return s.str();
+}
+
+/// Columns `keep` of a mode set.
+translators::ModeSet select_modes(const translators::ModeSet& s, const std::vector<std::size_t>& keep) {
+  translators::ModeSet out;
+  out.dofs = s.dofs;
+  out.shapes.resize(s.shapes.rows(), static_cast<Eigen::Index>(keep.size()));
+  for (std::size_t k = 0; k < keep.size(); ++k) {
+    const auto i = keep[k];
+    out.shapes.col(static_cast<Eigen::Index>(k)) = s.shapes.col(static_cast<Eigen::Index>(i));
+    out.frequency_hz.push_back(s.frequency_hz[i]);
+    if (i < s.numbers.size()) out.numbers.push_back(s.numbers[i]);
+    if (i < s.damping.size()) out.damping.push_back(s.damping[i]);
+    if (i < s.modal_mass.size()) out.modal_mass.push_back(s.modal_mass[i]);
+  }
+  return out;
+}
+
+/// Log-likelihood of a test mode the model does not explain at all.
+double miss_loglik(const MeasuredMode& t, double miss_frequency_pct, bool shapes) {
+  double ll = 0;
+  if (t.use_frequency && t.frequency_std_hz > 0) {
+    const double x = t.frequency_hz * miss_frequency_pct / 100.0 / t.frequency_std_hz;
+    ll += -0.5 * x * x - 0.5 * std::log(2 * M_PI * t.frequency_std_hz * t.frequency_std_hz);
+  }
+  if (shapes && t.use_shape && t.shape.size() && t.shape_std > 0) {
+    const double s2 = t.shape_std * t.shape_std;
+    ll += -0.5 * 2.0 / s2 - 0.5 * static_cast<double>(t.shape.size()) * std::log(2 * M_PI * s2);
+  }
+  return ll;
+}
+
+/// Log-likelihood of paired modes at the model's prediction (no parameters).
+double pair_loglik(const std::vector<MeasuredMode>& test, const ModalSolution& sol, const std::vector<UpdatePair>& pairs,
+                   bool shapes) {
+  double ll = 0;
+  for (const auto& p : pairs) {
+    const auto& t = test[static_cast<std::size_t>(p.test)];
+    if (t.use_frequency && t.frequency_std_hz > 0) {
+      const double x = (t.frequency_hz - hz(sol.eigenvalues(p.fem))) / t.frequency_std_hz;
+      ll += -0.5 * x * x - 0.5 * std::log(2 * M_PI * t.frequency_std_hz * t.frequency_std_hz);
+    }
+    if (shapes && t.use_shape && t.shape.size() && t.shape_std > 0) {
+      Eigen::VectorXd u = sol.sensor_shapes.col(p.fem).normalized();
+      Eigen::VectorXd z = t.shape.normalized();
+      if (z.dot(u) < 0) z = -z;
+      const double s2 = t.shape_std * t.shape_std;
+      ll += -0.5 * (z - u).squaredNorm() / s2 - 0.5 * static_cast<double>(z.size()) * std::log(2 * M_PI * s2);
+    }
+  }
+  return ll;
+}
+
+Fit fit_of(const UpdateCycle& c, int measured) {
+  Fit f;
+  f.freq_rms_pct = c.freq_rms_pct;
+  f.mean_mac = c.mean_mac;
+  f.paired = static_cast<int>(c.pairs.size());
+  f.measured = measured;
+  return f;
+}
+
+struct Setup {
+  std::vector<ConfigurationInput> est;   ///< configurations with the held-back modes removed
+  translators::ModeSet held;             ///< held-back modes of the first configuration
+};
+
+class Engine {
+ public:
+  Engine(const std::vector<ConfigurationInput>& configs, const DiagnosisOptions& options) : m_opt(options) {
+    if (configs.empty()) throw std::invalid_argument("diagnose: no configuration");
+    m_setup.est = configs;
+    if (options.hold_back > 0) {
+      const auto& s = configs.front().measured;
+      const std::size_t n = s.frequency_hz.size();
+      if (static_cast<std::size_t>(options.hold_back) + 2 > n)
+        throw std::invalid_argument("diagnose: cannot hold back " + std::to_string(options.hold_back) + " of " +
+                                    std::to_string(n) + " test modes");
+      std::vector<std::size_t> order(n);
+      for (std::size_t i = 0; i < n; ++i) order[i] = i;
+      std::sort(order.begin(), order.end(), [&](auto a, auto b) { return s.frequency_hz[a] < s.frequency_hz[b]; });
+      std::vector<std::size_t> keep(order.begin(), order.end() - options.hold_back),
+          held(order.end() - options.hold_back, order.end());
+      std::sort(keep.begin(), keep.end());
+      std::sort(held.begin(), held.end());
+      m_setup.est.front().measured = select_modes(s, keep);
+      m_setup.held = select_modes(s, held);
+    }
+  }
+
+  /// Builds, estimates and scores one hypothesis given the deck text of each configuration.
+  Hypothesis evaluate(const std::string& kind, const std::vector<std::string>& texts,
+                      const std::vector<ext::NewParameter>& added, std::vector<DeckProblem>* keep = nullptr) {
+    std::map<std::string, PriorOverride> priors;
+    for (const auto& p : added) priors[p.label] = {p.prior_mean, p.prior_std, p.start};
+    std::vector<DeckProblem> pbs;
+    for (std::size_t k = 0; k < texts.size(); ++k)
+      pbs.push_back(make_deck_problem(texts[k], m_setup.est[k].name, m_setup.est[k].measured, m_opt.problem, priors));
+    std::vector<DeckProblem*> ptrs;
+    for (auto& pb : pbs) ptrs.push_back(&pb);
+    UpdateResult res = estimate(ptrs, m_opt.problem);
+    // Pairs are made in the first cycle; a mode the new parameters moved next
+    // to its test partner only pairs when the estimate is restarted from there.
+    for (int again = 0; again < 2; ++again) {
+      std::size_t more = 0;
+      for (auto& pb : pbs) more += pair_for_update(pb.test, pb.model->solve(res.r), m_opt.problem.update).size();
+      if (more <= res.history.back().pairs.size()) break;
+      for (auto& pb : pbs) pb.start = res.r;
+      UpdateResult next = estimate(ptrs, m_opt.problem);
+      next.history.front() = res.history.front();  // "before" stays the model at its start
+      res = std::move(next);
+    }
+    Hypothesis h;
+    h.kind = kind;
+    h.added = added;
+    h.names = pbs.front().prior.names;
+    h.estimate = res.r;
+    h.posterior_std = res.posterior_std;
+    h.prior_mean = pbs.front().prior.mean;
+    h.log_evidence = res.log_evidence;
+    h.converged = res.converged;
+    h.notes = res.notes;
+    int measured = 0;
+    for (const auto& pb : pbs) measured += static_cast<int>(pb.test.size());
+    h.before = fit_of(res.history.front(), measured);
+    h.after = fit_of(res.history.back(), measured);
+    const bool shapes = m_opt.problem.update.shape_derivatives;
+    for (std::size_t k = 0; k < pbs.size(); ++k) {
+      std::set<int> paired;
+      for (const auto& p : res.history.back().pairs)
+        if (p.config == static_cast<int>(k)) paired.insert(p.test);
+      for (std::size_t i = 0; i < pbs[k].test.size(); ++i)
+        if (!paired.count(static_cast<int>(i)))
+          h.miss_penalty += miss_loglik(pbs[k].test[i], m_opt.miss_frequency_pct, shapes);
+    }
+    h.score = h.log_evidence + h.miss_penalty;
+    h.deck_text = texts.front();
+    // Prediction of the held-back modes.
+    if (!m_setup.held.frequency_hz.empty()) {
+      auto& pb = pbs.front();
+      const ModalSolution sol = pb.model->solve(res.r);
+      const translators::ModeSet held = translators::restrict_to(m_setup.held, pb.dofs);
+      const auto test = measured_modes(held, m_opt.problem);
+      const auto pairs = pair_for_update(test, sol, m_opt.problem.update);
+      double s2 = 0;
+      for (const auto& p : pairs) s2 += p.error_pct * p.error_pct;
+      h.predicted = static_cast<int>(pairs.size());
+      h.prediction_rms_pct = pairs.empty() ? -1 : std::sqrt(s2 / static_cast<double>(pairs.size()));
+    }
+    if (keep) *keep = std::move(pbs);
+    m_last = res;
+    return h;
+  }
+
+  const UpdateResult& last() const { return m_last; }
+  const Setup& setup() const { return m_setup; }
+  const DiagnosisOptions& options() const { return m_opt; }
+
+ private:
+  DiagnosisOptions m_opt;
+  Setup m_setup;
+  UpdateResult m_last;
+};
+
+/// First-order screening data at the updated parameters (first configuration).
+struct Screen {
+  Eigen::VectorXd e;   ///< weighted residual
+  Eigen::MatrixXd W;   ///< weighted, prior-scaled sensitivities of the existing parameters
+  Eigen::MatrixXd Hinv_Wt;  ///< H⁻¹ Wᵀ
+  struct Row { int fem; double f; Eigen::VectorXd u; double norm; double sigma_f, sigma_s; bool use_f, use_s; };
+  std::vector<Row> rows;
+};
+
+Screen prepare_screen(DeckProblem& pb, const Eigen::VectorXd& r, const std::vector<UpdatePair>& all_pairs,
+                      const DeckProblemOptions& opt) {
+  Screen sc;
+  const ModalSolution sol = pb.model->solve(r);
+  const Eigen::VectorXd d = pb.prior.cov.diagonal().array().sqrt();
+  std::vector<double> e;
+  std::vector<Eigen::VectorXd> w;
+  for (const auto& p : all_pairs) {
+    if (p.config != 0) continue;
+    const auto& t = pb.test[static_cast<std::size_t>(p.test)];
+    Screen::Row row;
+    row.fem = p.fem;
+    row.f = hz(sol.eigenvalues(p.fem));
+    const Eigen::VectorXd phi_s = sol.sensor_shapes.col(p.fem);
+    row.norm = phi_s.norm();
+    row.u = phi_s / row.norm;
+    row.use_f = t.use_frequency && t.frequency_std_hz > 0;
+    row.use_s = opt.update.shape_derivatives && t.use_shape && t.shape.size() && t.shape_std > 0;
+    row.sigma_f = t.frequency_std_hz;
+    row.sigma_s = t.shape_std;
+    const ModeSensitivity s = pb.model->sensitivity(p.fem, row.use_s);
+    if (row.use_f) {
+      e.push_back((t.frequency_hz - row.f) / row.sigma_f);
+      w.push_back((s.d_eigenvalue / (8 * M_PI * M_PI * row.f)).cwiseProduct(d) / row.sigma_f);
+    }
+    if (row.use_s) {
+      Eigen::VectorXd z = t.shape.normalized();
+      if (z.dot(row.u) < 0) z = -z;
+      const Eigen::MatrixXd du = (s.d_sensor_shape - row.u * (row.u.transpose() * s.d_sensor_shape)) / row.norm;
+      for (Eigen::Index k = 0; k < z.size(); ++k) {
+        e.push_back((z(k) - row.u(k)) / row.sigma_s);
+        w.push_back(du.row(k).transpose().cwiseProduct(d) / row.sigma_s);
+      }
+    }
+    sc.rows.push_back(row);
+  }
+  const auto m = static_cast<Eigen::Index>(e.size());
+  sc.e = Eigen::Map<Eigen::VectorXd>(e.data(), m);
+  sc.W.resize(m, d.size());
+  for (Eigen::Index k = 0; k < m; ++k) sc.W.row(k) = w[static_cast<std::size_t>(k)].transpose();
+  const Eigen::MatrixXd H = Eigen::MatrixXd::Identity(d.size(), d.size()) + sc.W.transpose() * sc.W;
+  sc.Hinv_Wt = H.ldlt().solve(sc.W.transpose());
+  return sc;
+}
+
+/// ΔlogZ of one new parameter from its ∂K, ∂M (first order).
+double screen_score(const Screen& sc, const OperatorModel& model, const Eigen::VectorXd& lambdas, const SparseMatrix& C,
+                    const SparseMatrix& dK, const SparseMatrix& dM, double prior_std) {
+  const Eigen::MatrixXd& Phi = model.modes();
+  std::vector<double> t;
+  t.reserve(static_cast<std::size_t>(sc.e.size()));
+  for (const auto& row : sc.rows) {
+    const double lam = lambdas(row.fem);
+    const Eigen::VectorXd phi = Phi.col(row.fem);
+    if (row.use_f) t.push_back(eigenvalue_derivative(dK, dM, lam, phi) / (8 * M_PI * M_PI * row.f) / row.sigma_f);
+    if (row.use_s) {
+      const Eigen::VectorXd dphi = modal_sum_derivative(Phi, lambdas, row.fem, dK, dM);
+      const Eigen::VectorXd ds = C * dphi;
+      const Eigen::VectorXd du = (ds - row.u * row.u.dot(ds)) / row.norm;
+      for (Eigen::Index k = 0; k < du.size(); ++k) t.push_back(du(k) / row.sigma_s);
+    }
+  }
+  const Eigen::Map<const Eigen::VectorXd> tv(t.data(), static_cast<Eigen::Index>(t.size()));
+  const Eigen::VectorXd Wt = sc.W.transpose() * tv;
+  const double s = tv.squaredNorm() - Wt.dot(sc.Hinv_Wt * tv);
+  const double g = tv.dot(sc.e);
+  const double v = prior_std * prior_std;
+  return 0.5 * g * g / (std::max(s, 0.0) + 1.0 / v) - 0.5 * std::log1p(v * std::max(s, 0.0));
+}
+
+}  // namespace
+
+std::string deck_at(const std::string& deck_text, const std::string& name, const Eigen::VectorXd& x) {
+  formats::Deck deck = formats::read_deck_text(deck_text, name);
+  translators::FeModel fe(deck, load_bulk(deck));
+  formats::BulkModel values = fe.values_at(x);
+  const auto& params = fe.parameters();
+  for (std::size_t j = 0; j < params.size(); ++j)
+    for (auto& d : values.desvars)
+      if (d.id == params[j].id) d.xinit = x(static_cast<Eigen::Index>(j));
+  for (auto& [card, vals] : formats::write_bulk(values)) deck.set_values(card, std::move(vals));
+  return formats::render_file(deck, 0);
+}
+
+Diagnosis diagnose(const std::vector<ConfigurationInput>& configurations, const DiagnosisOptions& options) {
+  Engine engine(configurations, options);
+  const auto& est = engine.setup().est;
+  Diagnosis dg;
+  auto progress = [&](const std::string& msg, double f) { report(options.progress, msg, f); };
+
+  // 1. The ordinary update and the evidence.
+  progress("ordinary update of the deck's parameters", 0.0);
+  std::vector<std::string> base_texts;
+  for (const auto& c : est) base_texts.push_back(c.deck_text);
+  std::vector<DeckProblem> base;
+  Hypothesis param = engine.evaluate("parameter", base_texts, {}, &base);
+  const UpdateResult base_res = engine.last();
+  param.description = "the deck's own parameters re-estimated";
+  param.location.text = "deck parameters";
+  dg.evidence = gather_evidence(base.front(), base_res.r, [&] {
+    std::vector<UpdatePair> v;
+    for (const auto& p : base_res.history.back().pairs)
+      if (p.config == 0) v.push_back(p);
+    return v;
+  }());
+
+  // The nominal model (no estimate): likelihood at the prior mean, pairs of cycle 0.
+  {
+    Hypothesis& h = dg.nominal;
+    h.kind = "none";
+    h.description = "the deck as given";
+    h.names = param.names;
+    h.estimate = base.front().prior.mean;
+    h.prior_mean = h.estimate;
+    h.before = h.after = param.before;
+    const bool shapes = options.problem.update.shape_derivatives;
+    double ll = 0;
+    for (std::size_t k = 0; k < base.size(); ++k) {
+      const ModalSolution sol = base[k].model->solve(base[k].prior.mean);
+      std::vector<UpdatePair> pairs = pair_for_update(base[k].test, sol, options.problem.update);
+      ll += pair_loglik(base[k].test, sol, pairs, shapes);
+      std::set<int> paired;
+      for (const auto& p : pairs) paired.insert(p.test);
+      for (std::size_t i = 0; i < base[k].test.size(); ++i)
+        if (!paired.count(static_cast<int>(i))) h.miss_penalty += miss_loglik(base[k].test[i], options.miss_frequency_pct, shapes);
+    }
+    h.log_evidence = ll;
+    h.score = ll + h.miss_penalty;
+    h.deck_text = base_texts.front();
+  }
+
+  // 2. Candidates and screening.
+  ext::ExtensionOptions eo = options.extension;
+  eo.unexplained_hz.clear();
+  for (const auto& u : dg.evidence.unpaired_test) eo.unexplained_hz.push_back(u.frequency_hz);
+  eo.lowest_test_hz = *std::min_element(est.front().measured.frequency_hz.begin(), est.front().measured.frequency_hz.end());
+  if (!(eo.total_mass > 0)) eo.total_mass = ext::total_mass(*base.front().fe);
+  const auto kinds = ext::standard_extensions(eo);
+  const translators::FeModel& nominal = *base.front().fe;
+  progress("screening candidates", 0.1);
+  const Screen sc = prepare_screen(base.front(), base_res.r, base_res.history.back().pairs, options.problem);
+  const ModalSolution sol_star = base.front().model->solve(base_res.r);
+  std::map<std::int64_t, double> grid_weight;
+  for (const auto& g : dg.evidence.grid_misfit) grid_weight[g.grid] += g.share;
+  for (const auto& u : dg.evidence.unpaired_test)
+    for (const auto& g : u.moves) grid_weight[g.grid] += g.share;
+  const auto a_size = nominal.reduction().a_to_g.size();
+
+  struct Shortlisted { const ext::ModelExtension* kind; ext::Candidate cand; double screening; double look; };
+  std::vector<Shortlisted> shortlist;
+  for (const auto& kind : kinds) {
+    if (!options.kinds.empty() && std::find(options.kinds.begin(), options.kinds.end(), kind->kind()) == options.kinds.end())
+      continue;
+    std::vector<ext::Candidate> cands;
+    try {
+      cands = kind->candidates(nominal);
+    } catch (const std::exception& ex) {
+      dg.notes.push_back(kind->kind() + ": no candidates (" + ex.what() + ")");
+      continue;
+    }
+    if (cands.empty()) continue;
+    std::set<std::string> places;
+    for (const auto& c : cands) places.insert(c.location.text);
+    dg.searched[kind->kind()] = static_cast<int>(places.size());
+    const double look = std::log(static_cast<double>(places.size()));
+    std::vector<std::pair<double, std::size_t>> scored;
+    bool screened = false;
+    for (std::size_t i = 0; i < cands.size(); ++i) {
+      auto deriv = kind->screening(nominal, cands[i]);
+      if (deriv) {
+        screened = true;
+        const double sd = deriv->prior_std.at(0);
+        scored.push_back({screen_score(sc, *base.front().model, sol_star.eigenvalues, base.front().sensors, deriv->dK[0],
+                                       deriv->dM[0], sd),
+                          i});
+      } else {
+        double w = 0;
+        for (auto g : cands[i].location.grids)
+          if (auto it = grid_weight.find(g); it != grid_weight.end()) w += it->second;
+        scored.push_back({w, i});
+      }
+    }
+    std::stable_sort(scored.begin(), scored.end(), [](const auto& a, const auto& b) { return a.first > b.first; });
+    std::size_t n = static_cast<std::size_t>(options.shortlist);
+    if (!screened && cands.size() <= static_cast<std::size_t>(options.exhaustive_limit) && a_size < 3000) n = cands.size();
+    else if (!screened) n = static_cast<std::size_t>(2 * options.shortlist);
+    // Kinds with several candidates per place (start values): keep all starts of the chosen places.
+    for (std::size_t k = 0; k < std::min(n, scored.size()); ++k)
+      shortlist.push_back({kind.get(), cands[scored[k].second], screened ? scored[k].first : 0.0, look});
+  }
+
+  // 3. Exact re-estimation of the shortlist.
+  dg.ranking.push_back(param);
+  for (std::size_t k = 0; k < shortlist.size(); ++k) {
+    const auto& s = shortlist[k];
+    progress("testing " + s.kind->kind() + " at " + s.cand.location.text,
+             0.15 + 0.8 * static_cast<double>(k) / static_cast<double>(shortlist.size()));
+    try {
+      std::vector<std::string> texts;
+      std::vector<ext::NewParameter> added;
+      std::string description;
+      for (const auto& c : est) {
+        ext::ExtendedDeck xd = s.kind->apply(c.deck_text, c.name, nominal, s.cand);
+        texts.push_back(xd.text);
+        added = xd.parameters;
+        description = xd.description;
+      }
+      Hypothesis h = engine.evaluate(s.kind->kind(), texts, added);
+      h.location = s.cand.location;
+      h.description = description;
+      h.screening = s.screening;
+      h.look_elsewhere = s.look;
+      h.score -= h.look_elsewhere;
+      dg.ranking.push_back(std::move(h));
+    } catch (const std::exception& ex) {
+      dg.notes.push_back(s.kind->kind() + " at " + s.cand.location.text + ": not tested (" + ex.what() + ")");
+    }
+  }
+  // Same place tried from several starts: keep its best.
+  std::stable_sort(dg.ranking.begin(), dg.ranking.end(), [](const Hypothesis& a, const Hypothesis& b) { return a.score > b.score; });
+  {
+    std::set<std::string> seen;
+    std::vector<Hypothesis> unique;
+    for (auto& h : dg.ranking)
+      if (seen.insert(h.kind + "|" + h.location.text).second) unique.push_back(std::move(h));
+    dg.ranking = std::move(unique);
+  }
+
+  // 4. Decision.
+  int ip = -1, ie = -1;
+  for (std::size_t i = 0; i < dg.ranking.size(); ++i) {
+    if (dg.ranking[i].kind == "parameter" && ip < 0) ip = static_cast<int>(i);
+    if (dg.ranking[i].kind != "parameter" && ie < 0) ie = static_cast<int>(i);
+  }
+  const Hypothesis& P = dg.ranking[static_cast<std::size_t>(ip)];
+  if (ie >= 0 && dg.ranking[static_cast<std::size_t>(ie)].score - P.score >= options.decision_margin) {
+    dg.cause = ie;
+    dg.margin = dg.ranking[static_cast<std::size_t>(ie)].score - P.score;
+  } else if (P.score - dg.nominal.score >= options.decision_margin) {
+    dg.cause = ip;
+    dg.margin = P.score - std::max(dg.nominal.score, ie >= 0 ? dg.ranking[static_cast<std::size_t>(ie)].score : -INFINITY);
+  } else {
+    dg.cause = -1;
+    dg.margin = dg.nominal.score - P.score;
+  }
+  const Hypothesis& C = dg.cause >= 0 ? dg.ranking[static_cast<std::size_t>(dg.cause)] : dg.nominal;
+  dg.cause_kind = C.kind;
+  if (C.kind == "none") {
+    dg.summary = "no change explains the test better than the deck as given (the update gains " +
+                 fixed(P.score - dg.nominal.score, 1) + " nats, below the " + fixed(options.decision_margin, 1) +
+                 "-nat margin)";
+  } else if (C.kind == "parameter") {
+    dg.summary = "the deck's parameters were wrong; no model-form extension beats the ordinary update (best: " +
+                 (ie >= 0 ? dg.ranking[static_cast<std::size_t>(ie)].kind + " at " +
+                                dg.ranking[static_cast<std::size_t>(ie)].location.text + ", " +
+                                fixed(dg.ranking[static_cast<std::size_t>(ie)].score - P.score, 1) + " nats"
+                          : std::string("none tested")) +
+                 ")";
+  } else {
+    std::string values;
+    const auto p0 = C.names.size() - C.added.size();
+    for (std::size_t j = 0; j < C.added.size(); ++j) {
+      values += (j ? ", " : "") + C.added[j].meaning + " = " + fixed(C.estimate(static_cast<Eigen::Index>(p0 + j)), 6) +
+                " +- " + fixed(C.posterior_std(static_cast<Eigen::Index>(p0 + j)), 6);
+    }
+    dg.summary = C.kind + " at " + C.location.text + " (" + values + "), " + fixed(dg.margin, 1) +
+                 " nats above the ordinary update";
+  }
+  dg.updated_deck = deck_at(C.deck_text, est.front().name, C.estimate);
+  progress("done", 1.0);
+  return dg;
+}
+
+}  // namespace ssid::estimator::diagnosis

@@ -1,0 +1,104 @@
+#pragma once
+/// \file diagnosis.hpp
+/// Model-form diagnosis (`ssid diagnose`): shows what the updated model gets
+/// wrong, tests a library of model-form extensions as hypotheses, names the
+/// cause and measures the gain. See docs/diagnosis.md for the method.
+///
+/// 1. Ordinary update of the deck's own parameters ("parameter" hypothesis)
+///    and the residual evidence (evidence.hpp).
+/// 2. Candidates of every extension kind (translators/extensions). Kinds that
+///    add no DOF are screened to first order at the updated parameters r*:
+///    with e the weighted residual, t = S_ee^{-1/2} ∂u/∂β the weighted
+///    sensitivity of the new parameter (∂λ exact, ∂φ by modal summation),
+///    W the weighted sensitivity of the existing parameters (prior-scaled) and
+///    H = I + WᵀW,
+///      s = tᵀt − tᵀW H⁻¹ Wᵀt,  g = tᵀe,
+///      ΔlogZ ≈ ½ g² / (s + 1/σ_β²) − ½ log(1 + σ_β² s),
+///    the evidence gain of adding β with prior N(0, σ_β²). Kinds that add DOFs
+///    are ranked by the shape misfit at their grids (or all are tried when few).
+/// 3. The best `shortlist` candidates of each kind are re-estimated exactly
+///    (extended deck, every parameter, the kind's prior) and scored:
+///      score = log Z_Laplace(paired data) + Σ_unpaired log p_miss − log N_kind,
+///    where an unpaired test mode costs the likelihood of a complete miss
+///    (frequency off by `miss_frequency_pct`, shape orthogonal: ‖z − u‖² = 2)
+///    and N_kind is the number of distinct locations searched (look-elsewhere).
+/// 4. The cause is the best extension when it beats the ordinary update by
+///    `decision_margin` nats; otherwise "parameter" when the update beats the
+///    nominal model by the margin, else "none".
+#include <map>
+#include <string>
+#include <vector>
+
+#include "estimator/diagnosis/deck_problem.hpp"
+#include "estimator/diagnosis/evidence.hpp"
+#include "estimator/progress.hpp"
+#include "translators/extensions/model_extension.hpp"
+
+namespace ssid::estimator::diagnosis {
+
+/// One tested configuration: deck text (name for INCLUDEs and messages) and
+/// its measured modes labelled by grid id.
+struct ConfigurationInput {
+  std::string name;
+  std::string deck_text;
+  translators::ModeSet measured;
+};
+
+struct DiagnosisOptions {
+  DeckProblemOptions problem;
+  translators::extensions::ExtensionOptions extension;
+  std::vector<std::string> kinds;  ///< extension kinds to try; empty: all
+  int shortlist = 3;               ///< candidates per kind re-estimated exactly
+  int exhaustive_limit = 100;      ///< kinds without screening: try all when this few (and the model is small)
+  double decision_margin = 3.0;    ///< nats
+  double miss_frequency_pct = 10.0;
+  int hold_back = 0;               ///< highest test modes of the first configuration held back for prediction
+  Progress progress;
+};
+
+struct Fit {
+  double freq_rms_pct = 0, mean_mac = 0;
+  int paired = 0, measured = 0;
+};
+
+struct Hypothesis {
+  std::string kind;  ///< "none", "parameter", or an extension kind
+  translators::extensions::Location location;
+  std::string description;
+  std::vector<std::string> names;  ///< every parameter (deck DESVARs, then the new ones)
+  std::vector<translators::extensions::NewParameter> added;
+  Eigen::VectorXd estimate, posterior_std, prior_mean;
+  double log_evidence = 0;   ///< Laplace, paired data only
+  double miss_penalty = 0;   ///< Σ log p_miss over unpaired test modes (≤ 0)
+  double look_elsewhere = 0; ///< log N_kind
+  double score = 0;          ///< log_evidence + miss_penalty − look_elsewhere
+  double screening = 0;      ///< first-order evidence gain (kinds with screening)
+  Fit before, after;
+  double prediction_rms_pct = -1;  ///< held-back modes (−1: none)
+  int predicted = 0;
+  bool converged = false;
+  std::vector<std::string> notes;
+  std::string deck_text;     ///< the (extended) deck
+};
+
+struct Diagnosis {
+  Evidence evidence;               ///< after the ordinary update
+  Hypothesis nominal;              ///< "none": the deck as given
+  std::vector<Hypothesis> ranking; ///< "parameter" and every re-estimated extension, best score first
+  int cause = -1;                  ///< index into ranking; −1: "none"
+  std::string cause_kind;          ///< "none", "parameter" or the extension kind
+  double margin = 0;               ///< score of the cause − that of the runner-up class
+  std::string summary;
+  std::map<std::string, int> searched;  ///< candidates per kind
+  std::vector<std::string> notes;
+  /// The chosen deck with DESVARs and designed fields at the estimate.
+  std::string updated_deck;
+};
+
+Diagnosis diagnose(const std::vector<ConfigurationInput>& configurations, const DiagnosisOptions& options);
+
+/// The deck text with every DESVAR at `x` and every field a DVPREL1/DVMREL1
+/// designs set from it (so SOL 103 of the text gives the estimated model).
+std::string deck_at(const std::string& deck_text, const std::string& name, const Eigen::VectorXd& x);
+
+}  // namespace ssid::estimator::diagnosis
