@@ -127,13 +127,16 @@ BlockLanczosResult block_lanczos(const std::function<MatrixXd(const MatrixXd&)>&
     // of a Ritz vector V y is ‖R y_j‖ with y_j its rows of block j.
     const long k = m;
     const MatrixXd T = 0.5 * (H.topLeftCorner(k, k) + H.topLeftCorner(k, k).transpose());
-    Eigen::SelfAdjointEigenSolver<MatrixXd> es(T);
-    const VectorXd& theta = es.eigenvalues();  // ascending; the largest are wanted
+    // Only the wanted (largest) Ritz pairs are computed: theta ascending, the
+    // last column of Yw the largest.
     const long want = std::min<long>(o.nev, k);
+    VectorXd theta;
+    MatrixXd Yw;
+    detail::largest_eigenpairs(T, want, theta, Yw);
     long conv = 0;
-    for (long i = k - 1; i >= k - want; --i) {
-      const double r = kept > 0 ? (R * es.eigenvectors().block(j0, i, bj, 1)).norm() : 0.0;
-      if (r <= o.tol * std::max(std::abs(theta(i)), 1e-300)) ++conv;
+    for (long c = want - 1; c >= 0; --c) {
+      const double r = kept > 0 ? (R * Yw.block(j0, c, bj, 1)).norm() : 0.0;
+      if (r <= o.tol * std::max(std::abs(theta(c)), 1e-300)) ++conv;
       else break;
     }
     report(o.progress, "block Lanczos: basis " + std::to_string(k) + ", converged " + std::to_string(conv) + " of " +
@@ -149,9 +152,9 @@ BlockLanczosResult block_lanczos(const std::function<MatrixXd(const MatrixXd&)>&
     }
     const long take = conv;
     res.lambda.resize(take);
-    const MatrixXd Y = es.eigenvectors().rightCols(take).rowwise().reverse();
+    const MatrixXd Y = Yw.rightCols(take).rowwise().reverse();
     res.vectors = detail::a_b(V.leftCols(k), Y);
-    for (long i = 0; i < take; ++i) res.lambda(i) = sigma + 1.0 / theta(k - 1 - i);
+    for (long i = 0; i < take; ++i) res.lambda(i) = sigma + 1.0 / theta(want - 1 - i);
     res.basis = k;
     return res;
   }

@@ -2,6 +2,7 @@
 
 #include <cholmod.h>
 
+#include <cstdio>
 #include <numeric>
 
 #include <algorithm>
@@ -167,16 +168,16 @@ void CholmodFactor::analyze_grouped(long n) {
   if (static_cast<long>(m_groups.size()) != n)
     throw std::invalid_argument("CholmodFactor: " + std::to_string(m_groups.size()) +
                                 " DOF groups given for a matrix of " + std::to_string(n) + " rows");
-  // Compact group ids, numbered by first appearance.
-  const long gmax = n > 0 ? *std::max_element(m_groups.begin(), m_groups.end()) : -1;
-  std::vector<long> compact(static_cast<size_t>(gmax + 1), -1), g(static_cast<size_t>(n));
-  long ng = 0;
-  for (long r = 0; r < n; ++r) {
-    long& c = compact[static_cast<size_t>(m_groups[static_cast<size_t>(r)])];
-    if (c < 0) c = ng++;
-    g[static_cast<size_t>(r)] = c;
-  }
-  std::vector<long>().swap(compact);
+  // Compact group ids 0..ng-1 in increasing order of the given ids (which may
+  // be any non-negative numbers, NASTRAN grid ids up to 10⁸ included: sorted,
+  // not indexed, so memory stays O(n)).
+  std::vector<long> ids(m_groups), g(static_cast<size_t>(n));
+  std::sort(ids.begin(), ids.end());
+  ids.erase(std::unique(ids.begin(), ids.end()), ids.end());
+  const long ng = static_cast<long>(ids.size());
+  for (long r = 0; r < n; ++r)
+    g[static_cast<size_t>(r)] = std::lower_bound(ids.begin(), ids.end(), m_groups[static_cast<size_t>(r)]) - ids.begin();
+  std::vector<long>().swap(ids);
   // Rows of each group (CSR: gp, gr).
   std::vector<long> gp(static_cast<size_t>(ng + 1), 0), gr(static_cast<size_t>(n));
   for (long r = 0; r < n; ++r) ++gp[static_cast<size_t>(g[static_cast<size_t>(r)] + 1)];
@@ -310,6 +311,18 @@ FactorStatus CholmodFactor::factorize(const SparseMatrix& A, double near_singula
   auto& s = *m_state;
   s.A = sparse_header(s.n, s.p, s.i, low.valuePtr());
   FactorStatus st;
+  if (m_memory_limit > 0.0 && factor_bytes() > m_memory_limit) {
+    // Refused before any numeric work: on Linux an oversized factor is not a
+    // failed malloc but the out-of-memory killer, which may take other processes.
+    char buf[320];
+    std::snprintf(buf, sizeof buf,
+                  "the factor needs %.2f GiB (symbolic analysis: nnz(L) = %.4g, %.3g flops, ordering %s), "
+                  "more than the limit of %.2f GiB",
+                  factor_bytes() / 1073741824.0, m_lnz, m_fl, ordering().c_str(), m_memory_limit / 1073741824.0);
+    st.code = FactorStatus::Code::TooLarge;
+    st.message = buf;
+    return st;
+  }
   const auto t0 = std::chrono::steady_clock::now();
   const int ok = cholmod_l_factorize(&s.A, s.L, &s.cm);
   m_factorize_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();

@@ -36,7 +36,9 @@ namespace ssid::estimator {
 /// Outcome of a numeric factorisation: a numerical outcome the caller acts on,
 /// not an exception (bad input, such as a non-square matrix, throws).
 struct FactorStatus {
-  enum class Code { Ok, NotPositiveDefinite, NearSingular, Failed };
+  /// TooLarge: refused before numeric work, the factor would exceed the memory
+  /// limit (set_memory_limit); Failed: CHOLMOD failed (out of memory included).
+  enum class Code { Ok, NotPositiveDefinite, NearSingular, TooLarge, Failed };
   Code code = Code::Ok;
   /// For NotPositiveDefinite: the row/column index of the input matrix (original
   /// ordering) where the factorisation met a non-positive pivot; −1 otherwise.
@@ -86,6 +88,12 @@ class CholmodFactor {
   /// matrix at analysis.
   void set_dof_groups(std::vector<long> groups);
   const std::vector<long>& dof_groups() const { return m_groups; }
+
+  /// Largest factor (factor_bytes(), from the symbolic analysis) that factorize
+  /// will attempt; a larger one is refused with status TooLarge and a message
+  /// giving the size, before any numeric work. 0: no limit.
+  void set_memory_limit(double bytes) { m_memory_limit = bytes; }
+  double memory_limit() const { return m_memory_limit; }
 
   /// Numeric factorisation of A (lower triangle used). Analyses first when no
   /// pattern was analysed or A's pattern differs from it. The input values are
@@ -138,6 +146,7 @@ class CholmodFactor {
   std::vector<long> m_groups;
   std::string m_ordering;  // set by a grouped analysis; empty: L->ordering names it
   double m_lnz = 0.0, m_fl = 0.0;
+  double m_memory_limit = 0.0;
   int m_analyses = 0;
   int m_factorizations = 0;
   double m_analyze_s = 0.0, m_factorize_s = 0.0;

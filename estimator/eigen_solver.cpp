@@ -4,6 +4,7 @@
 
 #include <Eigen/Eigenvalues>
 #include <Spectra/SymGEigsShiftSolver.h>
+#include <unistd.h>
 
 #include <algorithm>
 #include <chrono>
@@ -18,6 +19,12 @@ namespace {
 using Clock = std::chrono::steady_clock;
 using SparseMatrix = Eigen::SparseMatrix<double>;
 constexpr double kTwoPi = 6.283185307179586476925286766559;
+
+/// Physical memory of the machine (0 when unknown: no limit).
+double physical_memory_bytes() {
+  const long pages = sysconf(_SC_PHYS_PAGES), page = sysconf(_SC_PAGE_SIZE);
+  return pages > 0 && page > 0 ? static_cast<double>(pages) * static_cast<double>(page) : 0.0;
+}
 
 double seconds_since(Clock::time_point t0) {
   return std::chrono::duration<double>(Clock::now() - t0).count();
@@ -186,6 +193,7 @@ EigenResult::Status to_status(FactorStatus::Code c) {
     case FactorStatus::Code::Ok: return EigenResult::Status::Ok;
     case FactorStatus::Code::NotPositiveDefinite: return EigenResult::Status::NotPositiveDefinite;
     case FactorStatus::Code::NearSingular: return EigenResult::Status::NearSingular;
+    case FactorStatus::Code::TooLarge:
     case FactorStatus::Code::Failed: break;
   }
   return EigenResult::Status::FactorFailed;
@@ -280,6 +288,9 @@ EigenResult EigenSolver::solve(const SparseMatrix& K, const SparseMatrix& M) {
     throw std::invalid_argument("EigenSolver: dof_groups has " + std::to_string(o.dof_groups.size()) +
                                 " entries for " + std::to_string(K.rows()) + " DOFs");
   if (o.dof_groups != m_factor.dof_groups()) m_factor.set_dof_groups(o.dof_groups);
+  m_factor.set_memory_limit(o.max_factor_bytes > 0.0   ? o.max_factor_bytes
+                            : o.max_factor_bytes < 0.0 ? 0.0
+                                                       : 0.8 * physical_memory_bytes());
 
   EigenResult res;
   const long n = K.rows();
@@ -317,7 +328,8 @@ EigenResult EigenSolver::solve(const SparseMatrix& K, const SparseMatrix& M) {
         res.message = "K - sigma*M (sigma = " + std::to_string(sigma) + ") is nearly singular (" + fs.message +
                       "): a near-mechanism, or a massless DOF with almost no stiffness";
       else
-        res.message = fs.message;
+        res.message = "K - sigma*M cannot be factorised: " + fs.message +
+                      (fs.code == FactorStatus::Code::TooLarge ? " (EigenOptions::max_factor_bytes)" : "");
       res.total_seconds = seconds_since(t0);
       return res;
     }

@@ -155,6 +155,13 @@ TEST_CASE("CholmodFactor with DOF groups: ordering on the group graph, same solu
   CHECK(grouped.analysis_count() == 2);
   CHECK(grouped.ordering().find("on 192 groups") != std::string::npos);
   CHECK((grouped.solve(B) - 0.5 * Xd).norm() <= 1e-10 * Xd.norm());
+  // NASTRAN-sized grid ids (up to 10^8) as group ids: sorted, not indexed.
+  std::vector<long> big_ids(groups);
+  for (long& id : big_ids) id = 99999999 - id;
+  grouped.set_dof_groups(big_ids);
+  REQUIRE(grouped.factorize(K2).ok());
+  CHECK(grouped.ordering().find("on 64 groups") != std::string::npos);
+  CHECK((grouped.solve(B) - 0.5 * Xd).norm() <= 1e-10 * Xd.norm());
 }
 
 TEST_CASE("CholmodFactor rejects bad DOF groups", "[cholmod]") {
@@ -177,4 +184,23 @@ TEST_CASE("CholmodFactor::factor_bytes from the symbolic analysis matches the nu
   REQUIRE(f.factorize(K).ok());
   CHECK(f.analysis_count() == 1);
   CHECK(f.factor_bytes() == before);
+}
+
+TEST_CASE("CholmodFactor refuses a factor above its memory limit before any numeric work", "[cholmod]") {
+  const auto [K0, M] = free_lattice_truss(4);
+  const SpMat K = K0 + SpMat(M);
+  CholmodFactor f;
+  f.set_memory_limit(1000.0);  // bytes: far below this factor's size
+  const FactorStatus st = f.factorize(K);
+  CHECK(st.code == FactorStatus::Code::TooLarge);
+  CHECK(st.message.find("GiB") != std::string::npos);
+  CHECK(st.message.find("limit") != std::string::npos);
+  CHECK(f.factorization_count() == 0);
+  CHECK(f.analysis_count() == 1);
+  CHECK(f.factor_bytes() > 1000.0);
+  f.set_memory_limit(2.0 * f.factor_bytes());
+  REQUIRE(f.factorize(K).ok());
+  CHECK(f.analysis_count() == 1);  // the analysis was kept
+  const Eigen::VectorXd b = Eigen::VectorXd::Ones(K.rows());
+  CHECK((K * f.solve(b) - b).norm() <= 1e-10 * b.norm());
 }

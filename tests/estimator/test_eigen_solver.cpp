@@ -340,3 +340,16 @@ TEST_CASE("DOF groups of the wrong size throw", "[eigen]") {
   o.dof_groups = {0, 0, 1};
   CHECK_THROWS_AS(solve_modes(K, M, o), std::invalid_argument);
 }
+
+TEST_CASE("A factor larger than max_factor_bytes is refused with its size", "[eigen]") {
+  const auto [K, M] = free_lattice_truss(4);
+  EigenOptions o = lowest(8);
+  o.max_factor_bytes = 1000.0;
+  const EigenResult r = solve_modes(K, M, o);
+  CHECK(r.status == EigenResult::Status::FactorFailed);
+  CHECK(r.message.find("GiB") != std::string::npos);
+  CHECK(r.message.find("max_factor_bytes") != std::string::npos);
+  CHECK(r.factor_bytes > 1000.0);
+  o.max_factor_bytes = -1.0;  // no limit
+  check_modes(K, M, solve_modes(K, M, o), 1e-6);
+}
