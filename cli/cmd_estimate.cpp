@@ -61,6 +61,10 @@ int cmd_estimate(const Args& args) {
   if (!parse_options(args, "ssid estimate DECK MEASURED.unv [--study FILE] [--json FILE] | ssid estimate --problem FILE [--json FILE]",
                      desc, pos, vm, rc))
     return rc;
+  if (!vm.count("deck") && !vm.count("problem")) {
+    print_error("estimate: give DECK MEASURED.unv, or --problem FILE (ssid estimate --help)");
+    return 2;
+  }
   estimator::EstimationProblem problem = load_problem(vm, true);
   const bool quiet = vm.count("quiet") != 0;
   estimator::Progress progress;
@@ -130,7 +134,11 @@ int cmd_update_deck(const Args& args) {
   const translators::DeckUpdateReport rep = translators::update_deck(deck, values);
   const auto written = formats::write_deck(deck, vm["output"].as<std::string>());
   for (const auto& p : rep.parameters) std::cout << "DESVAR " << p << "\n";
-  std::cout << rep.fields.size() << " designed field(s) changed on " << rep.cards_changed << " card(s); wrote";
+  std::size_t desvar_fields = 0;
+  for (const auto& f : rep.fields) desvar_fields += f.rfind("DESVAR", 0) == 0;
+  std::cout << rep.fields.size() << " field(s) changed (" << desvar_fields << " DESVAR XINIT, "
+            << rep.fields.size() - desvar_fields << " designed through DVPREL1/DVMREL1) on " << rep.cards_changed
+            << " card(s); wrote";
   for (const auto& w : written) std::cout << " " << w;
   std::cout << "\n";
   return 0;

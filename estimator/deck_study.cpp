@@ -150,8 +150,10 @@ double default_prior_std(double x, double lo, double hi) {
 
 /// The eigen-solve the estimator uses: the CHOLMOD shift-invert Lanczos,
 /// analysis kept between cycles (the sparsity never changes).
-OperatorModel::EigenSolve make_eigen_solve(const std::string& who) {
+OperatorModel::EigenSolve make_eigen_solve(const std::string& who, const std::string& method = "auto") {
   auto solver = std::make_shared<EigenSolver>();
+  if (method == "spectra") solver->options().method = EigenMethod::Spectra;
+  if (method == "block-lanczos") solver->options().method = EigenMethod::BlockLanczos;
   return [solver, who](const SparseMatrix& K, const SparseMatrix& M, int nmodes) {
     solver->options().nd = nmodes;
     EigenResult r = solver->solve(K, M);
@@ -190,7 +192,7 @@ Study parse_study(const json& j, const std::string& source) {
   Study s;
   s.source = source;
   rd.keys(j, "", {"title", "parameters", "priors", "measurement", "pairing", "mapping", "modes", "configurations",
-                  "convergence", "recursive", "sensitivity", "operators", "analysis_modes", "identifiability",
+                  "convergence", "recursive", "sensitivity", "operators", "analysis_modes", "eigen_method", "identifiability",
                   "comment"});
   if (j.contains("title")) s.title = rd.text(j["title"], "title");
   if (j.contains("parameters")) {
@@ -286,6 +288,8 @@ Study parse_study(const json& j, const std::string& source) {
     s.operators = rd.choice(j["operators"], "operators", {"exact", "taylor"}) == "exact" ? OperatorUpdate::Exact
                                                                                       : OperatorUpdate::Taylor;
   if (j.contains("analysis_modes")) s.analysis_modes = rd.integer(j["analysis_modes"], "analysis_modes");
+  if (j.contains("eigen_method"))
+    s.eigen_method = rd.choice(j["eigen_method"], "eigen_method", {"auto", "spectra", "block-lanczos"});
   if (j.contains("identifiability")) {
     const auto& i = j["identifiability"];
     rd.keys(i, "identifiability", {"uninformed_ratio", "strong_correlation"});
@@ -549,7 +553,8 @@ EstimationProblem prepare_problem(const Study& study, const std::string& deck, c
     OperatorModel::Assemble assemble = [exact, deck_keep](const Eigen::VectorXd& r) { return exact(r); };
     if (study.operators == OperatorUpdate::Taylor) assemble = taylor_operators(exact(problem.prior.mean), problem.prior.mean);
     pc.assemble = assemble;
-    pc.model = std::make_shared<OperatorModel>(assemble, make_eigen_solve(who), pc.sensors, nmodes, study.shape_derivative);
+    pc.model = std::make_shared<OperatorModel>(assemble, make_eigen_solve(who, study.eigen_method), pc.sensors, nmodes,
+                                               study.shape_derivative);
     for (const auto& n : fe.notes()) pc.notes.push_back(sc.deck + ": " + n);
     problem.configurations.push_back(std::move(pc));
   }

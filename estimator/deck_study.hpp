@@ -95,6 +95,9 @@ struct Study {
   ShapeDerivative shape_derivative = ShapeDerivative::Nelson;
   OperatorUpdate operators = OperatorUpdate::Exact;
   std::optional<int> analysis_modes;
+  /// Krylov iteration of the eigen-solver ("auto", "spectra", "block-lanczos";
+  /// eigen_solver.hpp): the eigen-solve dominates a cycle on large models.
+  std::string eigen_method = "auto";
   double uninformed_ratio = 0.9;     ///< posterior σ / prior σ above this: not informed by the data
   double strong_correlation = 0.9;   ///< |posterior correlation| above this: reported as a pair
 };

@@ -184,3 +184,29 @@ TEST_CASE("ssid estimate and update-deck: usage and input errors", "[cli][estima
   CHECK(h.code == 1);
   CHECK_THAT(h.err, Catch::Contains("not both"));
 }
+
+TEST_CASE("samples/estimate: the script runs end to end and the truth lies within the posterior +-3 sigma",
+          "[cli][estimate]") {
+  const fs::path dir = scratch() / "sample";
+  fs::remove_all(dir);
+  fs::create_directories(dir);
+  const fs::path src = fs::path(SSID_SOURCE_DIR) / "samples" / "estimate";
+  for (const char* f : {"make_measured.sh", "study.json", "truth.json"}) fs::copy_file(src / f, dir / f);
+  const std::string cmd = "SSID=" + std::string(SSID_EXE) + " sh " + (dir / "make_measured.sh").string() + " >" +
+                          (dir / "log.txt").string() + " 2>&1";
+  const int status = std::system(cmd.c_str());
+  INFO(cli_slurp(dir / "log.txt"));
+  REQUIRE(status == 0);
+  const json r = json::parse(cli_slurp(dir / "result.json"));
+  const json t = json::parse(cli_slurp(dir / "truth.json"));
+  CHECK(r["converged"] == true);
+  REQUIRE(r["parameters"].size() == t["parameters"].size());
+  for (std::size_t k = 0; k < t["parameters"].size(); ++k) {
+    const auto& p = r["parameters"][k];
+    INFO(p["name"]);
+    CHECK(p["name"] == t["parameters"][k]["name"]);
+    CHECK(std::abs(p["estimate"].get<double>() - t["parameters"][k]["estimate"].get<double>()) <=
+          3 * p["posterior_std"].get<double>());
+  }
+  CHECK(fs::exists(dir / "updated.bdf"));
+}

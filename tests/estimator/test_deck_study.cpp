@@ -63,7 +63,7 @@ TEST_CASE("study file: defaults, every section, and errors naming the key", "[es
     "configurations": [{"name": "bare", "deck": "bare.bdf", "measured": "bare.unv"},
                        {"name": "tip", "deck": "/abs/tip.bdf", "measured": "tip.unv", "analysis_modes": 30}],
     "convergence": {"max_iterations": 5, "tolerance": 1e-6},
-    "recursive": true, "sensitivity": "modal-sum", "operators": "taylor", "analysis_modes": 40,
+    "recursive": true, "sensitivity": "modal-sum", "operators": "taylor", "analysis_modes": 40, "eigen_method": "spectra",
     "identifiability": {"uninformed_ratio": 0.8, "strong_correlation": 0.95}})");
   const estimator::Study s = parse_study(j, "dir/s.json");
   CHECK(s.parameters == std::vector<std::string>{"STRUTA", "KSUSP"});
@@ -85,6 +85,7 @@ TEST_CASE("study file: defaults, every section, and errors naming the key", "[es
   CHECK(s.shape_derivative == estimator::ShapeDerivative::ModalSum);
   CHECK(s.operators == estimator::OperatorUpdate::Taylor);
   CHECK(s.uninformed_ratio == 0.8);
+  CHECK(s.eigen_method == "spectra");
 
   auto error_of = [](const std::string& text) {
     try {
@@ -368,11 +369,6 @@ TEST_CASE("modes that cross during the update stay with their test partners", "[
   auto problem = estimator::prepare_problem(study, nominal.string(), uff.string());
   const auto r = estimator::run_problem(problem);
   INFO(notes_of(r));
-  if (std::getenv("SSID_DEBUG"))
-    for (const auto& c : r.update.history)
-      for (const auto& q : c.pairs)
-        std::fprintf(stderr, "cycle %d test %d fem %d mac %.6f err %.4f ftest %.4f ffe %.4f\n", c.cycle, q.test, q.fem,
-                     q.mac, q.error_pct, q.test_hz, q.fem_hz);
   REQUIRE(r.update.converged);
   CHECK(r.update.dropped.empty());
   CHECK(estimate_of(problem, r, "TIPM") == Approx(2.5).epsilon(1e-7));
@@ -573,4 +569,41 @@ TEST_CASE("problem file with operators \"exact\": the named deck is re-assembled
   CHECK_THROWS_WITH(estimator::problem_from_file(file), Catch::Contains("analysis DOFs differ"));
   file.parameters[0].desvar = 77;
   CHECK_THROWS_WITH(estimator::problem_from_file(file), Catch::Contains("no DESVAR 77 (STRUTA)"));
+}
+
+TEST_CASE("mode selection and measurement weights reach the measured modes", "[estimator][deck_study]") {
+  const fs::path dir = scratch("selection");
+  const fs::path nominal = dir / "nominal.bdf", uff = dir / "test.unv";
+  write_rod_deck({"bare"}, nominal);
+  const DeckModel nm = load(nominal);
+  Synthetic syn;
+  syn.sensors = ball_sensors();
+  syn.modes = 12;
+  const auto exact = write_measured(nm, nm.fe->initial_parameters(), syn, uff);
+  // Defaults: every mode, 1 % frequency σ, shape σ 0.05/√n_s, 2 n + 6 analysis modes.
+  auto d = estimator::prepare_problem(estimator::Study{}, nominal.string(), uff.string());
+  const auto& dc = d.configurations[0];
+  REQUIRE(dc.test.size() == 12);
+  CHECK(dc.test[7].frequency_std_hz == Approx(0.01 * exact[7]));
+  CHECK(dc.test[7].shape_std == Approx(0.05 / std::sqrt(120.0)));
+  CHECK(dc.analysis_modes == 30);
+  CHECK(d.prior.names == std::vector<std::string>{"STRUTA", "BNUTA", "ECAPA", "JOINTM", "KSUSP"});
+  // Default prior σ: half the distance to the nearer bound (XINIT/10 .. 10 XINIT: 0.45 XINIT).
+  CHECK(std::sqrt(d.prior.cov(0, 0)) == Approx(0.45 * 2.015e-4));
+  const auto s = parse_study(json::parse(R"({"modes": {"use": [2, 3, 7, 8, 9, 10], "exclude": [3], "max_hz": 30,
+      "frequency_only": [8], "shape_only": [9]}, "measurement": {"frequency_std_pct": 0.2, "shape_std": 0.03},
+      "priors": {"KSUSP": {"mean": 500}}, "analysis_modes": 17})"), "s.json");
+  auto p = estimator::prepare_problem(s, nominal.string(), uff.string());
+  const auto& c = p.configurations[0];
+  REQUIRE(c.test_numbers == std::vector<int>{2, 7, 8, 9, 10});
+  CHECK(c.test[0].frequency_std_hz == Approx(0.002 * exact[1]));
+  CHECK(c.test[0].shape_std == 0.03);
+  CHECK((c.test[2].use_frequency && !c.test[2].use_shape));   // mode 8: frequency only
+  CHECK((!c.test[3].use_frequency && c.test[3].use_shape));   // mode 9: shape only
+  CHECK(c.analysis_modes == 17);
+  CHECK(p.prior.mean(4) == 500);
+  CHECK(std::sqrt(p.prior.cov(4, 4)) == Approx((500 - 60) / 2.0));  // from the new mean to XLB 60
+  bool noted = false;
+  for (const auto& n : c.notes) noted = noted || n.find("left out by the mode selection: 1 3 4 5 6 11 12") != std::string::npos;
+  CHECK(noted);
 }
