@@ -209,4 +209,9 @@ TEST_CASE("samples/estimate: the script runs end to end and the truth lies withi
           3 * p["posterior_std"].get<double>());
   }
   CHECK(fs::exists(dir / "updated.bdf"));
+  // README's first command runs `ssid estimate samples/mpi_rod.bdf
+  // samples/estimate/measured.unv`: the committed files must be what the script
+  // writes today.
+  CHECK(cli_slurp(dir / "nominal.bdf") == cli_slurp(fs::path(SSID_SOURCE_DIR) / "samples" / "mpi_rod.bdf"));
+  CHECK(cli_slurp(dir / "measured.unv") == cli_slurp(src / "measured.unv"));
 }
