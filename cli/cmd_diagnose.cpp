@@ -6,6 +6,7 @@
 #include <fstream>
 #include <iomanip>
 #include <iostream>
+#include <set>
 #include <sstream>
 
 #include "cli/cli_util.hpp"
@@ -196,6 +197,13 @@ int cmd_diagnose(const Args& args) {
                         {"paired", h.after.paired},
                         {"converged", h.converged}};
     if (h.prediction_rms_pct >= 0) r["prediction_rms_pct"] = h.prediction_rms_pct;
+    if (h.screening != 0) r["screening_nats"] = h.screening;
+    const auto p0 = h.names.size() - h.added.size();
+    r["parameters"] = nlohmann::json::array();
+    for (std::size_t k = 0; k < h.added.size(); ++k)
+      r["parameters"].push_back({{"name", h.added[k].label},
+                                 {"estimate", h.estimate(static_cast<Eigen::Index>(p0 + k))},
+                                 {"std", h.posterior_std(static_cast<Eigen::Index>(p0 + k))}});
     j["ranking"].push_back(r);
   }
   j["gain"] = {{"before", fit_json(dg.nominal.before)}, {"after", fit_json(cause.after)}};

@@ -110,21 +110,21 @@ DeckProblem make_deck_problem(const std::string& deck_text, const std::string& n
   double f_max = 0;
   for (const auto& t : pb.test) f_max = std::max(f_max, t.frequency_hz);
   const double f_band = options.band_factor * f_max;
-  const int a_size = a;
-  auto eigensolve = [solver, name, f_band, a_size](const SparseMatrix& K, const SparseMatrix& M, int nmodes) {
-    // The lowest `nmodes`; when they do not reach the band's top, every mode in the band.
+  const int max_modes = std::min(a - 1, std::max(options.max_modes, pb.nmodes));
+  auto eigensolve = [solver, name, f_band, max_modes](const SparseMatrix& K, const SparseMatrix& M, int nmodes) {
+    // The lowest `nmodes`; when they do not reach the band's top, the lowest `max_modes`.
     solver->options().nd = nmodes;
-    solver->options().f_high = std::numeric_limits<double>::quiet_NaN();
     EigenResult r = solver->solve(K, M);
-    if (r.ok() && r.size() > 0 && r.cycles(r.size() - 1) < f_band && nmodes < a_size - 1) {
-      solver->options().nd = 0;
-      solver->options().f_high = f_band;
+    if (r.ok() && r.size() > 0 && r.cycles(r.size() - 1) < f_band && nmodes < max_modes) {
+      solver->options().nd = max_modes;
       r = solver->solve(K, M);
     }
     if (!r.ok()) throw std::runtime_error(name + ": eigen-solve failed: " + r.message);
     return std::make_pair(r.eigenvalues, r.modes);
   };
-  pb.model = std::make_unique<OperatorModel>(assemble, eigensolve, pb.sensors, pb.nmodes);
+  pb.model = std::make_unique<OperatorModel>(
+      assemble, eigensolve, pb.sensors, pb.nmodes,
+      a > options.nelson_max_dofs ? ShapeDerivative::ModalSum : ShapeDerivative::Nelson);
   pb.tracked = std::make_unique<SensorTracked>(*pb.model);
   return pb;
 }

@@ -37,9 +37,16 @@ struct DeckProblemOptions {
   double shape_std_pct = 3.0;
   double prior_rel_std = 0.3;      ///< σ of a DESVAR without override, relative to |XINIT|
   int extra_modes = 12;            ///< analysis modes solved beyond the number of test modes (×2) ...
-  /// ... and at least every mode up to this factor × the highest test frequency
-  /// (models with many local modes below the tested global ones need the band).
+  /// ... and, when those do not reach this factor × the highest test frequency
+  /// (models with many local modes below the tested global ones), the lowest
+  /// `max_modes` instead (a bound on the cost: a beam model of the MPI truss
+  /// has hundreds of strut-local modes within 25 % above its tested band).
   double band_factor = 1.25;
+  int max_modes = 120;
+  /// Shape sensitivities by Nelson's method (exact, one factorisation of
+  /// K − λM per paired mode and cycle) up to this many a-set DOFs, by the seed
+  /// report's modal summation over the solved modes above (beam models: ~10 k).
+  int nelson_max_dofs = 3000;
   UpdateOptions update;
 };
 

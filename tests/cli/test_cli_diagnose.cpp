@@ -73,6 +73,16 @@ TEST_CASE("ssid diagnose: bad input is refused with a clear message", "[cli][dia
   const auto kind = run_ssid("diagnose a.bdf b.unv --kinds gravity");
   CHECK(kind.code == 2);
   CHECK(kind.err.find("unknown extension kind") != std::string::npos);
+  const fs::path study = fs::temp_directory_path() / ("ssid_diag_study_" + std::to_string(::getpid()) + ".json");
+  std::ofstream(study) << R"({"kinds": ["missing_mass"], "shortlist": 2, "frequency_std": 0.3})";
+  const auto bad = run_ssid("diagnose a.bdf b.unv --study " + study.string());
+  CHECK(bad.code == 1);
+  CHECK(bad.err.find("unknown key \"frequency_std\"") != std::string::npos);
+  std::ofstream(study) << "{\"kinds\": [";
+  const auto broken = run_ssid("diagnose a.bdf b.unv --study " + study.string());
+  CHECK(broken.code == 1);
+  CHECK(broken.err.find("not valid JSON") != std::string::npos);
+  fs::remove(study);
   const auto help = run_ssid("diagnose --help");
   CHECK(help.code == 0);
   CHECK(help.out.find("--study") != std::string::npos);
