@@ -8,7 +8,7 @@
 /// as MatrixMarket (lower triangle, "symmetric") and the shift, for
 /// bench/eigs_scipy.py and bench/eigs_slepc.py.
 ///
-/// usage: bench_eigen N [--nd ND] [--block B] [--ncv NCV] [--tol TOL] [--sturm]
+/// usage: bench_eigen N [--nd ND] [--block B] [--ncv NCV] [--tol TOL] [--sturm] [--method auto|spectra|block]
 ///                      [--dof-ordering] [--export DIR] [--export-only]
 ///                      [--factor-only] [--analyze-only]
 ///   N = 12 → 10 368 DOF, 25 → 93 750 DOF, 55 → 998 250 DOF.
@@ -202,6 +202,7 @@ int main(int argc, char** argv) {
   }
   const int n = std::stoi(argv[1]);
   int nd = 41, ncv = 0, block = EigenOptions{}.block;
+  EigenMethod method = EigenMethod::Auto;
   double tol = 1e-10;
   bool sturm = false, dof_ordering = false, export_only = false, factor_only = false, analyze_only = false;
   std::string export_dir;
@@ -212,6 +213,10 @@ int main(int argc, char** argv) {
     else if (!std::strcmp(argv[i], "--tol") && i + 1 < argc) tol = std::stod(argv[++i]);
     else if (!std::strcmp(argv[i], "--export") && i + 1 < argc) export_dir = argv[++i];
     else if (!std::strcmp(argv[i], "--sturm")) sturm = true;
+    else if (!std::strcmp(argv[i], "--method") && i + 1 < argc) {
+      const std::string m = argv[++i];
+      method = m == "spectra" ? EigenMethod::Spectra : m == "block" ? EigenMethod::BlockLanczos : EigenMethod::Auto;
+    }
     else if (!std::strcmp(argv[i], "--dof-ordering")) dof_ordering = true;
     else if (!std::strcmp(argv[i], "--export-only")) export_only = true;
     else if (!std::strcmp(argv[i], "--factor-only")) factor_only = true;
@@ -280,6 +285,7 @@ int main(int argc, char** argv) {
   o.ncv = ncv;
   o.tol = tol;
   o.block = block;
+  o.method = method;
   o.sturm_check = false;
   o.dof_groups = groups;
   EigenSolver solver(o);
