@@ -210,8 +210,20 @@ TEST_CASE("samples/estimate: the script runs end to end and the truth lies withi
   }
   CHECK(fs::exists(dir / "updated.bdf"));
   // README's first command runs `ssid estimate samples/mpi_rod.bdf
-  // samples/estimate/measured.unv`: the committed files must be what the script
-  // writes today.
+  // samples/estimate/measured.unv`: the deck must be the script's nominal deck,
+  // and the committed test must give the same answer as the regenerated one
+  // (not bit for bit: the rigid-body modes near 0.3 Hz differ in the last digits
+  // with the BLAS's threading).
   CHECK(cli_slurp(dir / "nominal.bdf") == cli_slurp(fs::path(SSID_SOURCE_DIR) / "samples" / "mpi_rod.bdf"));
-  CHECK(cli_slurp(dir / "measured.unv") == cli_slurp(src / "measured.unv"));
+  const fs::path readme_json = dir / "readme.json";
+  const auto readme = run_ssid("estimate " + (fs::path(SSID_SOURCE_DIR) / "samples" / "mpi_rod.bdf").string() + " " +
+                               (src / "measured.unv").string() + " --study " + (src / "study.json").string() +
+                               " --json " + readme_json.string());
+  REQUIRE(readme.code == 0);
+  const json c = json::parse(cli_slurp(readme_json));
+  CHECK(c["converged"] == true);
+  for (std::size_t k = 0; k < r["parameters"].size(); ++k) {
+    const double a = r["parameters"][k]["estimate"].get<double>(), b = c["parameters"][k]["estimate"].get<double>();
+    CHECK(std::abs(a - b) <= 1e-3 * r["parameters"][k]["posterior_std"].get<double>());
+  }
 }
