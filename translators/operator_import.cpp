@@ -3,7 +3,11 @@
 #include <filesystem>
 #include <fstream>
 #include <nlohmann/json.hpp>
+#include <optional>
 #include <stdexcept>
+
+#include "formats/dmig.hpp"
+#include "translators/dmig_assembly.hpp"
 
 namespace ssid::translators {
 
@@ -19,14 +23,45 @@ struct Reader {
   [[noreturn]] void fail(const std::string& where, const std::string& what) const {
     throw std::runtime_error(spec + ": " + where + ": " + what);
   }
+  /// The DOF map of DMIG sources: the nominal K's DMIG DOFs, in increasing
+  /// (point, component) order; every later DMIG is assembled on it.
+  mutable std::optional<DofMap> dmig_map;
+
+  /// {"dmig": deck or .pch, "matrix": NAME}: a DMIG matrix (forms 1, 6 or 2 on
+  /// the same DOFs), assembled on dmig_map.
+  SparseMatrix dmig_matrix(const json& ref, const std::string& where) const {
+    if (!ref.contains("matrix") || !ref["matrix"].is_string())
+      fail(where, "{\"dmig\": ...} needs \"matrix\": the DMIG name");
+    const std::string path = (base / ref["dmig"].get<std::string>()).string();
+    const std::string name = ref["matrix"].get<std::string>();
+    std::vector<formats::Dmig> all;
+    try {
+      all = formats::read_dmig_file(path);
+    } catch (const std::exception& e) {
+      fail(where, e.what());
+    }
+    const formats::Dmig* pick = nullptr;
+    for (const auto& m : all)
+      if (m.name == name) pick = &m;
+    if (!pick) fail(where, path + ": no DMIG named " + name);
+    try {
+      if (!dmig_map) dmig_map = dmig_dofs(*pick).rows;
+      return assemble_dmig_real(*pick, *dmig_map, *dmig_map);
+    } catch (const std::exception& e) {
+      fail(where, path + ": DMIG " + name + ": " + e.what() +
+                      (dmig_map ? " (DMIG sources share the DOFs of the nominal K)" : ""));
+    }
+  }
+
   SparseMatrix matrix(const json& ref, const std::string& where) const {
+    if (ref.is_object() && ref.contains("dmig") && ref["dmig"].is_string()) return dmig_matrix(ref, where);
     std::string file, name;
     if (ref.is_string()) file = ref.get<std::string>();
     else if (ref.is_object() && ref.contains("file") && ref["file"].is_string()) {
       file = ref["file"].get<std::string>();
       if (ref.contains("matrix")) name = ref["matrix"].get<std::string>();
     } else {
-      fail(where, "expected an OP4 file name or {\"file\": ..., \"matrix\": ...}");
+      fail(where, "expected an OP4 file name, {\"file\": ..., \"matrix\": ...} or {\"dmig\": ..., \"matrix\": ...}");
     }
     const std::string path = (base / file).string();
     std::vector<formats::Op4Matrix> mats;
@@ -97,6 +132,10 @@ OperatorSet import_operators(const std::string& spec_path) {
     }
     if (static_cast<Eigen::Index>(s.dofs.size()) != n)
       r.fail("dofs", std::to_string(s.dofs.size()) + " DOFs listed, the matrices have " + std::to_string(n));
+    if (r.dmig_map && !(s.dofs == r.dmig_map->dofs()))
+      r.fail("dofs", "differs from the DMIG's own DOFs (in increasing grid, component order); leave \"dofs\" out");
+  } else if (r.dmig_map) {
+    s.dofs = r.dmig_map->dofs();  // the DMIG's own grid/component keys
   } else {
     for (Eigen::Index i = 0; i < n; ++i) s.dofs.push_back({static_cast<std::int64_t>(i + 1), 0});
     s.notes.push_back("no DOF map in the spec: DOF i is listed as point i, component 0");

@@ -21,8 +21,11 @@
 ///         "plus":  {"value": x+, "K": OP4, "M": OP4},            (K or M omitted:
 ///         "minus": {"value": x-, "K": OP4, "M": OP4} },           unchanged by r)
 ///       { "label": "KSUSP", "value": x0, "dK": OP4, "dM": OP4 } ] }   ("given")
-/// where OP4 is a file name (its only, or first, matrix) or
-/// {"file": name, "matrix": "KAA"} to pick a matrix by name.
+/// where OP4 is a file name (its only, or first, matrix),
+/// {"file": name, "matrix": "KAA"} to pick a matrix by name, or
+/// {"dmig": deck-or-punch, "matrix": "KAAX"} for a DMIG matrix. DMIG sources are
+/// assembled on the DOFs of the nominal K's DMIG, in increasing (grid, component)
+/// order, which also become the DOF map when "dofs" is left out.
 #include <string>
 
 #include "translators/operator_set.hpp"

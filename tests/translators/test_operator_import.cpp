@@ -8,6 +8,9 @@
 #include <nlohmann/json.hpp>
 #include <unistd.h>
 
+#include "formats/dmig.hpp"
+#include "formats/op4.hpp"
+#include "translators/dmig_assembly.hpp"
 #include "translators/operator_import.hpp"
 
 using namespace ssid;
@@ -128,4 +131,56 @@ TEST_CASE("import: bad specs are named with the parameter and key", "[import][er
   REQUIRE(s.notes.size() == 1);
   CHECK_THAT(s.notes[0], Catch::Contains("no DOF map"));
   CHECK_THROWS_WITH(translators::read_operator_set((d / "missing.json").string()), Catch::Contains("cannot open"));
+}
+
+TEST_CASE("import: DMIG sources in a punch file, on the DMIG's own grid/component DOFs", "[import][dmig]") {
+  const fs::path d = scratch() / "dmig";
+  fs::create_directories(d);
+  // The quadratic K(r) of the OP4 test, written as symmetric DMIGs (upper
+  // triangle only, as NASTRAN punches IFO 6) on grids 7 (T1, T2) and 8 (T1); M by OP4.
+  translators::DofMap map;
+  for (auto dof : {translators::Dof{7, 1}, translators::Dof{7, 2}, translators::Dof{8, 1}}) map.add(dof);
+  auto K = [](double r) { return Sp(K0 + r * K1 + r * r * K2); };
+  const double r0 = 2.0, h = 0.1;
+  std::ofstream pch(d / "k.pch");
+  for (auto [name, r] : {std::pair<const char*, double>{"KAAX", r0}, {"KAAP", r0 + h}, {"KAAM", r0 - h}}) {
+    translators::DmigFromMatrix o;
+    o.name = name;
+    o.ifo = formats::dmig_form::Symmetric;
+    pch << formats::format_dmig(translators::dmig_from_matrix(K(r), map, map, o));
+  }
+  pch.close();
+  op4(d / "M0.op4", M0);
+  auto dmig = [](const char* name) { return nlohmann::json{{"dmig", "k.pch"}, {"matrix", name}}; };
+  nlohmann::json param;
+  param["label"] = "C";
+  param["value"] = r0;
+  param["plus"] = {{"value", r0 + h}, {"K", dmig("KAAP")}};
+  param["minus"] = {{"value", r0 - h}, {"K", dmig("KAAM")}};
+  nlohmann::json spec;
+  spec["K"] = dmig("KAAX");
+  spec["M"] = "M0.op4";
+  spec["parameters"] = nlohmann::json::array({param});
+  std::ofstream(d / "spec.json") << spec.dump();
+  const auto s = translators::import_operators((d / "spec.json").string());
+  REQUIRE(s.dofs.size() == 3);
+  CHECK(s.dofs[0] == translators::Dof{7, 1});
+  CHECK(s.dofs[1] == translators::Dof{7, 2});
+  CHECK(s.dofs[2] == translators::Dof{8, 1});
+  CHECK((Sp(s.K - K(r0))).norm() <= 1e-14 * K(r0).norm());
+  // Central differences of the exact quadratic: K1 + 2 r0 K2, up to the
+  // 16-digit DMIG fields.
+  const Sp exact = Sp(K1 + 2 * r0 * K2);
+  CHECK((Sp(s.dK[0] - exact)).norm() / exact.norm() < 1e-12);
+
+  // A DMIG name that is not there, and a "dofs" list that contradicts the DMIG's.
+  spec["parameters"][0]["plus"]["K"]["matrix"] = "NOPE";
+  std::ofstream(d / "bad.json") << spec.dump();
+  CHECK_THROWS_WITH(translators::import_operators((d / "bad.json").string()),
+                    Catch::Contains("no DMIG named NOPE") && Catch::Contains("parameter 1 (C)"));
+  spec["parameters"][0]["plus"]["K"]["matrix"] = "KAAP";
+  spec["dofs"] = {{8, 1}, {7, 1}, {7, 2}};
+  std::ofstream(d / "order.json") << spec.dump();
+  CHECK_THROWS_WITH(translators::import_operators((d / "order.json").string()),
+                    Catch::Contains("differs from the DMIG's own DOFs"));
 }
