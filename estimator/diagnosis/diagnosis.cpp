@@ -15,16 +15,6 @@ namespace ext = translators::extensions;
 
 namespace {
 
-double hz(double lambda) { return std::sqrt(std::max(lambda, 0.0)) / (2.0 * M_PI); }
-
-std::string fixed(double x, int digits) {
-  std::ostringstream s;
-  s.setf(std::ios::fixed);
-  s.precision(digits);
-  s << x;
-  return s.str();
-}
-
 /// Columns `keep` of a mode set.
 translators::ModeSet select_modes(const translators::ModeSet& s, const std::vector<std::size_t>& keep) {
   translators::ModeSet out;

@@ -11,8 +11,6 @@ namespace ssid::estimator::diagnosis {
 
 namespace {
 
-double hz(double lambda) { return std::sqrt(std::max(lambda, 0.0)) / (2.0 * M_PI); }
-
 /// Shares of a sensor vector per grid, largest first.
 std::vector<GridShare> shares(const std::vector<translators::MeasuredDof>& dofs, const Eigen::VectorXd& v,
                               std::size_t keep) {
@@ -30,6 +28,10 @@ std::vector<GridShare> shares(const std::vector<translators::MeasuredDof>& dofs,
   return out;
 }
 
+}  // namespace
+
+double hz(double lambda) { return std::sqrt(std::max(lambda, 0.0)) / (2.0 * M_PI); }
+
 std::string fixed(double x, int digits) {
   std::ostringstream s;
   s.setf(std::ios::fixed);
@@ -37,8 +39,6 @@ std::string fixed(double x, int digits) {
   s << x;
   return s.str();
 }
-
-}  // namespace
 
 Evidence gather_evidence(DeckProblem& pb, const Eigen::VectorXd& r, const std::vector<UpdatePair>& pairs) {
   const ModalSolution sol = pb.model->solve(r);

@@ -60,4 +60,10 @@ struct Evidence {
 /// update's final cycle.
 Evidence gather_evidence(DeckProblem& problem, const Eigen::VectorXd& r, const std::vector<UpdatePair>& pairs);
 
+/// Frequency in Hz of an eigenvalue λ = ω² (0 for λ ≤ 0). Shared by the
+/// evidence and the diagnosis report.
+double hz(double lambda);
+/// `x` with `digits` decimals, for the report lines.
+std::string fixed(double x, int digits);
+
 }  // namespace ssid::estimator::diagnosis
