@@ -43,7 +43,7 @@ int cmd_assemble(const Args& args) {
       "no-derivatives", po::bool_switch(), "K and M only")(
       "set", po::value<std::vector<std::string>>(),
       "assemble at a changed DESVAR value, LABEL=VALUE or ID=VALUE (repeatable)")(
-      "import", po::value<std::string>(), "build the operators from another code's OP4 exports (JSON spec)");
+      "import", po::value<std::string>(), "build the operators from another code's OP4 or DMIG exports (JSON spec)");
   po::positional_options_description pos;
   pos.add("deck", 1);
   po::variables_map vm;

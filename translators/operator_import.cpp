@@ -3,6 +3,7 @@
 #include <filesystem>
 #include <fstream>
 #include <nlohmann/json.hpp>
+#include <map>
 #include <optional>
 #include <stdexcept>
 
@@ -26,6 +27,8 @@ struct Reader {
   /// The DOF map of DMIG sources: the nominal K's DMIG DOFs, in increasing
   /// (point, component) order; every later DMIG is assembled on it.
   mutable std::optional<DofMap> dmig_map;
+  /// DMIG files read so far: a punch file usually holds every state's matrices.
+  mutable std::map<std::string, std::vector<formats::Dmig>> dmig_files;
 
   /// {"dmig": deck or .pch, "matrix": NAME}: a DMIG matrix (forms 1, 6 or 2 on
   /// the same DOFs), assembled on dmig_map.
@@ -34,12 +37,15 @@ struct Reader {
       fail(where, "{\"dmig\": ...} needs \"matrix\": the DMIG name");
     const std::string path = (base / ref["dmig"].get<std::string>()).string();
     const std::string name = ref["matrix"].get<std::string>();
-    std::vector<formats::Dmig> all;
-    try {
-      all = formats::read_dmig_file(path);
-    } catch (const std::exception& e) {
-      fail(where, e.what());
+    auto it = dmig_files.find(path);
+    if (it == dmig_files.end()) {
+      try {
+        it = dmig_files.emplace(path, formats::read_dmig_file(path)).first;
+      } catch (const std::exception& e) {
+        fail(where, e.what());
+      }
     }
+    const std::vector<formats::Dmig>& all = it->second;
     const formats::Dmig* pick = nullptr;
     for (const auto& m : all)
       if (m.name == name) pick = &m;
@@ -100,7 +106,9 @@ OperatorSet import_operators(const std::string& spec_path) {
   } catch (const json::exception& e) {
     throw std::runtime_error(spec_path + ": not valid JSON: " + e.what());
   }
-  Reader r{spec_path, fs::path(spec_path).parent_path()};
+  Reader r;
+  r.spec = spec_path;
+  r.base = fs::path(spec_path).parent_path();
   if (!spec.is_object()) r.fail("top level", "expected an object");
   OperatorSet s;
   s.source = spec_path;
