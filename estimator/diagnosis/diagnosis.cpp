@@ -256,6 +256,36 @@ double screen_score(const Screen& sc, const OperatorModel& model, const Eigen::V
   return 0.5 * g * g / (std::max(s, 0.0) + 1.0 / v) - 0.5 * std::log1p(v * std::max(s, 0.0));
 }
 
+/// For each unexplained test mode (the evidence's order), the g-set shape of
+/// the analysis mode of `sol` (the model's last solve) most like it at the
+/// sensors (highest MAC within ±30 % in frequency; any frequency when none).
+std::vector<Eigen::VectorXd> neighbours_of_unexplained(DeckProblem& pb, const ModalSolution& sol, const Evidence& ev) {
+  std::vector<Eigen::VectorXd> out;
+  const Eigen::MatrixXd& phi = pb.model->modes();
+  for (const auto& u : ev.unpaired_test) {
+    const MeasuredMode* t = nullptr;
+    for (const auto& m : pb.test)
+      if (m.id == u.id) t = &m;
+    if (!t || !t->shape.size() || phi.cols() == 0) {
+      out.emplace_back();
+      continue;
+    }
+    int best = -1;
+    double best_mac = -1;
+    for (int pass = 0; pass < 2 && best < 0; ++pass)
+      for (Eigen::Index j = 0; j < sol.sensor_shapes.cols(); ++j) {
+        const double f = hz(sol.eigenvalues(j));
+        if (pass == 0 && std::abs(f - u.frequency_hz) > 0.3 * u.frequency_hz) continue;
+        const Eigen::VectorXd s = sol.sensor_shapes.col(j);
+        const double d = s.squaredNorm() * t->shape.squaredNorm();
+        const double mac = d > 0 ? std::pow(s.dot(t->shape), 2) / d : 0.0;
+        if (mac > best_mac) { best_mac = mac; best = static_cast<int>(j); }
+      }
+    out.push_back(best >= 0 ? Eigen::VectorXd(pb.fe->expand(phi.col(best))) : Eigen::VectorXd());
+  }
+  return out;
+}
+
 }  // namespace
 
 std::string deck_at(const std::string& deck_text, const std::string& name, const Eigen::VectorXd& x) {
@@ -321,13 +351,16 @@ Diagnosis diagnose(const std::vector<ConfigurationInput>& configurations, const 
   ext::ExtensionOptions eo = options.extension;
   eo.unexplained_hz.clear();
   for (const auto& u : dg.evidence.unpaired_test) eo.unexplained_hz.push_back(u.frequency_hz);
-  eo.lowest_test_hz = *std::min_element(est.front().measured.frequency_hz.begin(), est.front().measured.frequency_hz.end());
+  const auto& measured_hz = est.front().measured.frequency_hz;
+  eo.lowest_test_hz = *std::min_element(measured_hz.begin(), measured_hz.end());
+  eo.highest_test_hz = *std::max_element(measured_hz.begin(), measured_hz.end());
   if (!(eo.total_mass > 0)) eo.total_mass = ext::total_mass(*base.front().fe);
-  const auto kinds = ext::standard_extensions(eo);
   const translators::FeModel& nominal = *base.front().fe;
   progress("screening candidates", 0.1);
   const Screen sc = prepare_screen(base.front(), base_res.r, base_res.history.back().pairs, options.problem);
   const ModalSolution sol_star = base.front().model->solve(base_res.r);
+  eo.unexplained_neighbours = neighbours_of_unexplained(base.front(), sol_star, dg.evidence);
+  const auto kinds = ext::standard_extensions(eo);
   std::map<std::int64_t, double> grid_weight;
   for (const auto& g : dg.evidence.grid_misfit) grid_weight[g.grid] += g.share;
   for (const auto& u : dg.evidence.unpaired_test)
@@ -361,6 +394,8 @@ Diagnosis diagnose(const std::vector<ConfigurationInput>& configurations, const 
         scored.push_back({screen_score(sc, *base.front().model, sol_star.eigenvalues, base.front().sensors, deriv->dK[0],
                                        deriv->dM[0], sd),
                           i});
+      } else if (!std::isnan(cands[i].priority)) {
+        scored.push_back({cands[i].priority, i});
       } else {
         double w = 0;
         for (auto g : cands[i].location.grids)

@@ -41,6 +41,9 @@ DeckEditor::DeckEditor(const std::string& text, const std::string& name)
   m_next_property = fresh(p);
   m_next_desvar = fresh(d);
   m_next_relation = fresh(r);
+  std::int64_t c = 0;
+  for (const auto& x : b.cord2s) c = std::max(c, x.cid);
+  m_next_coord = fresh(c);
 }
 
 void DeckEditor::append(const std::vector<formats::FieldValue>& values) {
@@ -117,6 +120,7 @@ std::vector<std::unique_ptr<ModelExtension>> standard_extensions(const Extension
   v.push_back(make_missing_mass(options));
   v.push_back(make_support_dynamics(options));
   v.push_back(make_joint_flexibility(options));
+  v.push_back(make_local_modes(options));
   return v;
 }
 

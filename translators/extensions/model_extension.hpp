@@ -20,6 +20,7 @@
 ///    candidate before re-estimating the best few exactly.
 ///
 /// A new kind is one more class and one line in standard_extensions().
+#include <Eigen/Core>
 #include <Eigen/SparseCore>
 #include <cstdint>
 #include <limits>
@@ -50,6 +51,10 @@ struct Candidate {
   /// offer several candidates that differ only in start (e.g. a surge mode
   /// placed at each unexplained test frequency).
   std::vector<double> start;
+  /// Kinds without screening may rank their candidates (higher first, e.g. by
+  /// how strongly the change would couple to an unexplained test mode); NaN:
+  /// the diagnosis ranks them by the shape misfit at their grids.
+  double priority = std::numeric_limits<double>::quiet_NaN();
 };
 
 /// A new unknown: its DESVAR label and prior (mean, σ), units stated.
@@ -75,6 +80,7 @@ class DeckEditor {
   std::int64_t new_property_id() { return m_next_property++; }
   std::int64_t new_desvar_id() { return m_next_desvar++; }
   std::int64_t new_relation_id() { return m_next_relation++; }
+  std::int64_t new_coord_id() { return m_next_coord++; }
 
   /// Appends a card from values (values[0] is the name).
   void append(const std::vector<formats::FieldValue>& values);
@@ -95,7 +101,8 @@ class DeckEditor {
   std::unique_ptr<formats::Deck> m_deck;
   formats::BulkModel m_bulk;
   std::string m_appended;
-  std::int64_t m_next_grid = 1, m_next_element = 1, m_next_property = 1, m_next_desvar = 1, m_next_relation = 1;
+  std::int64_t m_next_grid = 1, m_next_element = 1, m_next_property = 1, m_next_desvar = 1, m_next_relation = 1,
+               m_next_coord = 1;
 };
 
 /// The result of applying a candidate.
@@ -118,6 +125,11 @@ struct ExtensionOptions {
   int max_surge_starts = 3;            ///< surge candidates start at up to this many unexplained test frequencies
   std::vector<double> unexplained_hz;  ///< test frequencies without an analysis partner (from the evidence)
   double lowest_test_hz = 1.0;         ///< scales the spring-mass prior
+  double highest_test_hz = 0;          ///< centres the strut-inertia prior of local_modes (0: lowest_test_hz)
+  /// Per unexplained test frequency (same order): the g-set shape of the
+  /// analysis mode that resembles that test mode most at the sensors, at the
+  /// updated parameters (kinds that add local DOFs rank places by coupling to it).
+  std::vector<Eigen::VectorXd> unexplained_neighbours;
   double total_mass = 0;               ///< kg; 0: computed from the nominal model when needed
 };
 
@@ -154,6 +166,12 @@ std::unique_ptr<ModelExtension> make_support_dynamics(const ExtensionOptions& op
 /// strut end to the ball centre; β = the rotational rate [N·m/rad], one per
 /// ball, or one for every ball at once.
 std::unique_ptr<ModelExtension> make_joint_flexibility(const ExtensionOptions& options);
+
+/// local_modes: one rod (CROD, CONROD) refined — split at a new middle grid,
+/// with two bending-only CBARs (PBAR A = 0, I1 = I2 = β, J = 2β) alongside —
+/// so the strut's local bending modes exist; β = its bending inertia [m⁴],
+/// started so the local mode sits at an unexplained test frequency.
+std::unique_ptr<ModelExtension> make_local_modes(const ExtensionOptions& options);
 
 /// Every kind above.
 std::vector<std::unique_ptr<ModelExtension>> standard_extensions(const ExtensionOptions& options);

@@ -147,3 +147,80 @@ TEST_CASE("joint_flexibility: a stiff rotational spring gives the rigid joint ba
   CHECK(lower >= 12);
   for (int i = 6; i < 30; ++i) CHECK(f2(i) <= f0(i) * (1 + 1e-9));  // softening never stiffens
 }
+
+TEST_CASE("local_modes: the strut's bending mode at the start frequency; stiff and massless gives the rod back",
+          "[translators][extensions]") {
+  // One rod between two grids held in every DOF, each carrying a 2 kg CONM2
+  // (the strut mass lumped at its ends, as in a rod model): refined, the only
+  // modes are those of the middle grid. With μ moved to the middle, the
+  // bending pair (two bars pinned at the strut's ends) sits at
+  // √(48 E I / L³ / μ)/2π; axially the middle sees two halves of rate 2EA/L.
+  const std::string text =
+      "SOL 103\nCEND\nBEGIN BULK\n"
+      "GRID    1               0.      0.      0.              123456\n"
+      "GRID    2               1.      0.      0.              123456\n"
+      "MAT1    1       7.+10           .3      0.\n"
+      "PROD    7       1       1.-4\n"
+      "CROD    11      7       1       2\n"
+      "CONM2   21      1               2.\n"
+      "CONM2   22      2               2.\n"
+      "ENDDATA\n";
+  const Loaded nominal = load(text);
+  ext::ExtensionOptions o;
+  o.unexplained_hz = {40.0};
+  o.lowest_test_hz = 10.0;
+  o.highest_test_hz = 60.0;
+  const auto kind = ext::make_local_modes(o);
+  const auto cands = kind->candidates(*nominal.fe);
+  REQUIRE(cands.size() == 1);
+  REQUIRE(cands[0].start.size() == 2);  // I and the moved mass μ
+  const double mu = cands[0].start[1];
+  CHECK(mu == Approx(0.25 * 2.0));
+  const ext::ExtendedDeck xd = kind->apply(text, "x.bdf", *nominal.fe, cands[0]);
+  REQUIRE(xd.parameters.size() == 2);
+  const Loaded x = load(xd.text);
+  const Eigen::VectorXd f = frequencies(*x.fe, x.fe->initial_parameters(), 2);
+  CAPTURE(f.transpose(), xd.text);
+  REQUIRE(f.size() == 2);
+  const double E = 7e10, A = 1e-4, L = 1.0, I = cands[0].start[0];
+  CHECK(f(0) == Approx(40.0).epsilon(1e-9));
+  CHECK(f(1) == Approx(40.0).epsilon(1e-9));
+  CHECK(48 * E * I / (L * L * L) / mu == Approx(std::pow(2 * M_PI * 40.0, 2)));
+  // The axial rate at the middle is the two halves' 2·2EA/L: the rod's EA/L in series.
+  const auto ops = x.fe->operators(x.fe->initial_parameters(), false);
+  const auto& gm = x.fe->geometry().grid(1001, "test");
+  const auto ax = static_cast<Eigen::Index>(gm.dofs[0]);
+  CHECK(ops.Kg.coeff(ax, ax) == Approx(4 * E * A / L));
+  CHECK(ops.Mg.coeff(ax, ax) == Approx(mu));
+  // Total mass unchanged: +μ in the middle, −μ/2 at each end.
+  CHECK(ext::total_mass(*x.fe) == Approx(ext::total_mass(*nominal.fe)));
+  // The written deck designs the new PBAR from the DESVAR: I1 = I2 = I.
+  int designed = 0;
+  for (const auto& r : x.fe->bulk().dvprel1s)
+    if (r.type == "PBAR") ++designed;
+  CHECK(designed == 2);
+}
+
+TEST_CASE("local_modes on the rod truss: a stiff, massless refinement leaves the modes unchanged",
+          "[translators][extensions]") {
+  const Case c = rod_case();
+  const std::string text = deck_text(c.t, c.fe);
+  const Loaded nominal = load(text);
+  ext::ExtensionOptions o;
+  o.lowest_test_hz = 2.0;
+  o.highest_test_hz = 66.0;
+  const auto kind = ext::make_local_modes(o);
+  const auto cands = kind->candidates(*nominal.fe);
+  REQUIRE(cands.size() == 252);  // every CROD, one start each (no unexplained mode)
+  const Eigen::VectorXd f0 = frequencies(*nominal.fe, nominal.fe->initial_parameters(), 20);
+  ext::Candidate stiff = cands[100];
+  stiff.start = {1e-4, 0.0};  // bending inertia far above the real tube's, nothing moved
+  const Loaded l = load(kind->apply(text, "x.bdf", *nominal.fe, stiff).text);
+  const Eigen::VectorXd f1 = frequencies(*l.fe, l.fe->initial_parameters(), 20);
+  for (int i = 0; i < 20; ++i) CHECK(f1(i) == Approx(f0(i)).epsilon(1e-6).margin(1e-6));
+  // The lower bound on I is positive (no mechanism), and a soft strut adds modes below the nominal band top.
+  ext::Candidate soft = cands[100];
+  soft.start = {};
+  const ext::ExtendedDeck xd = kind->apply(text, "x.bdf", *nominal.fe, soft);
+  CHECK(xd.parameters[0].lower > 0);
+}

@@ -3,7 +3,9 @@
 // hidden in it (the truth), its modes from the generator's own reference
 // assembler (independent of ssid's deck assembly) sampled at ball grids with
 // noise, and the nominal deck text that ssid is given.
+#include <algorithm>
 #include <map>
+#include <stdexcept>
 #include <random>
 #include <set>
 #include <string>
@@ -128,6 +130,69 @@ inline void perturb(tr::FeModel& fe, const std::string& label, double factor) {
           if (r.pname == "J") p.J = v;
         }
   }
+}
+
+/// Hides local strut modes: rod `rod_id` of the rod form becomes a tube of
+/// `segments` CBARs through new interior grids (kind "strut": not sensors) with
+/// the rod's area (axial rate kept), bending inertia I = `inertia` [m⁴], J = 2I,
+/// and the tube's mass — lumped at the two balls in the rod form — moved onto
+/// the bars as NSM. The ball grids keep their rotations held (GRID PS 456), so
+/// the tube is clamped at both ends. A finer model than the two-bar refinement
+/// the local_modes kind tries.
+inline void refine_rod(Case& c, int rod_id, double inertia, int segments = 4) {
+  tr::FeModel& fe = c.fe;
+  auto it = std::find_if(fe.rods.begin(), fe.rods.end(), [&](const tr::FeRod& r) { return r.id == rod_id; });
+  if (it == fe.rods.end()) throw std::invalid_argument("refine_rod: no rod " + std::to_string(rod_id));
+  const tr::FeRod rod = *it;
+  fe.rods.erase(it);
+  const tr::Member& member = c.t.members.at(static_cast<std::size_t>(rod_id - 1));
+  const double tube_mass = c.t.tube_length(member) * c.t.hw.tube_mass_per_length();
+  for (auto& m : fe.masses)
+    if (m.kind == "strut" && (m.grid == rod.g1 || m.grid == rod.g2)) m.m -= tube_mass / 2;
+  const tr::FeRodProp* rp = nullptr;
+  for (const auto& p : fe.rod_props) if (p.id == rod.pid) rp = &p;
+  const Eigen::Vector3d a = fe.grid(rod.g1).x, b = fe.grid(rod.g2).x;
+  tr::FeBarProp bp;
+  for (const auto& p : fe.bar_props) bp.id = std::max(bp.id, p.id);
+  for (const auto& p : fe.rod_props) bp.id = std::max(bp.id, p.id);
+  bp.id += 1;
+  bp.A = rp->A;
+  bp.nsm = tube_mass / (b - a).norm();
+  bp.I1 = bp.I2 = inertia;
+  bp.J = 2 * inertia;
+  bp.kind = "tube";
+  fe.bar_props.push_back(bp);
+  int next_grid = 0, next_bar = 0;
+  for (const auto& g : fe.grids) next_grid = std::max(next_grid, g.id);
+  for (const auto& x : fe.bars) next_bar = std::max(next_bar, x.id);
+  for (const auto& r : fe.rods) next_bar = std::max(next_bar, r.id);
+  next_bar = std::max(next_bar, rod_id);
+  const Eigen::Vector3d axis = (b - a).normalized();
+  Eigen::Index k = 0;
+  axis.cwiseAbs().minCoeff(&k);
+  const Eigen::Vector3d v = Eigen::Vector3d::Unit(k);
+  int prev = rod.g1;
+  for (int s = 1; s <= segments; ++s) {
+    int g = rod.g2;
+    if (s < segments) {
+      tr::FeGrid ng;
+      ng.id = ++next_grid;
+      ng.x = a + (b - a) * (static_cast<double>(s) / segments);
+      ng.kind = "strut";
+      fe.grids.push_back(ng);
+      g = ng.id;
+    }
+    fe.bars.push_back({++next_bar, bp.id, prev, g, v, rod.member});
+    prev = g;
+  }
+}
+
+/// Bending inertia [m⁴] that puts the first clamped–clamped bending mode of a
+/// uniform tube (length L, mass per length μ, modulus E) at f:
+/// ω = (4.730)² √(EI/(μL⁴)).
+inline double clamped_tube_inertia(double f_hz, double L, double mu, double E) {
+  const double w = 2 * M_PI * f_hz, b = 4.730040745 * 4.730040745;
+  return std::pow(w * L * L / b, 2) * mu / E;
 }
 
 }  // namespace ssid::test_support
