@@ -483,8 +483,8 @@ Diagnosis diagnose(const std::vector<ConfigurationInput>& configurations, const 
     std::string values;
     const auto p0 = C.names.size() - C.added.size();
     for (std::size_t j = 0; j < C.added.size(); ++j) {
-      values += (j ? ", " : "") + C.added[j].meaning + " = " + fixed(C.estimate(static_cast<Eigen::Index>(p0 + j)), 6) +
-                " +- " + fixed(C.posterior_std(static_cast<Eigen::Index>(p0 + j)), 6);
+      values += (j ? ", " : "") + C.added[j].meaning + " = " + significant(C.estimate(static_cast<Eigen::Index>(p0 + j)), 5) +
+                " +- " + significant(C.posterior_std(static_cast<Eigen::Index>(p0 + j)), 2);
     }
     dg.summary = C.kind + " at " + C.location.text + " (" + values + "), " + fixed(dg.margin, 1) +
                  " nats above the ordinary update";

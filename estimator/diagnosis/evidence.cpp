@@ -40,6 +40,13 @@ std::string fixed(double x, int digits) {
   return s.str();
 }
 
+std::string significant(double x, int digits) {
+  std::ostringstream s;
+  s.precision(digits);
+  s << x;
+  return s.str();
+}
+
 Evidence gather_evidence(DeckProblem& pb, const Eigen::VectorXd& r, const std::vector<UpdatePair>& pairs) {
   const ModalSolution sol = pb.model->solve(r);
   Evidence ev;

@@ -65,5 +65,7 @@ Evidence gather_evidence(DeckProblem& problem, const Eigen::VectorXd& r, const s
 double hz(double lambda);
 /// `x` with `digits` decimals, for the report lines.
 std::string fixed(double x, int digits);
+/// `x` with `digits` significant digits (estimates of any scale: kg, m⁴).
+std::string significant(double x, int digits);
 
 }  // namespace ssid::estimator::diagnosis

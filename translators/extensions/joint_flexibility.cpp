@@ -9,7 +9,8 @@
 /// β = k_θ [N·m/rad] of every spring of the RBE2 (one per ball), or one k_θ for
 /// every RBE2 at once (the "all joints" candidate). Prior N(k̄, k̄²) with
 /// k̄ = 10 · max 4EI/L of the bars meeting at the ball (nearly rigid), k_θ ≥
-/// 10⁻⁴ k̄; the iteration starts at k̄/10.
+/// 10⁻⁴ k̄; the iteration starts at k̄/10, k̄/100 and k̄/1000 (three candidates
+/// per place; the diagnosis keeps the best of each place).
 #include <algorithm>
 #include <cmath>
 #include <map>
@@ -35,6 +36,9 @@ double bending_rate(const formats::BulkModel& b, const FeModel& nominal, std::in
   return best;
 }
 
+/// Starts of k_θ as fractions of k̄ = 10 · 4EI/L.
+constexpr double kStarts[] = {0.1, 0.01, 0.001};
+
 class JointFlexibility : public ModelExtension {
  public:
   explicit JointFlexibility(ExtensionOptions o) : m_options(std::move(o)) {}
@@ -58,15 +62,26 @@ class JointFlexibility : public ModelExtension {
       c.location.grids.insert(c.location.grids.end(), r.gm.begin(), r.gm.end());
       c.location.elements = {r.eid};
       c.location.text = "joints at grid " + std::to_string(r.gn) + " (RBE2 " + std::to_string(r.eid) + ")";
-      out.push_back(c);
+      // Several starts a decade apart: between a nearly rigid and a nearly
+      // pinned joint the modes pass through the ball's own rotation modes,
+      // and an estimate started on the wrong side can pair with those.
+      for (double f : kStarts) {
+        c.start = {f * 10.0 * rate(nominal, r)};
+        out.push_back(c);
+      }
       all.ids.push_back(r.eid);
       all.location.grids.push_back(r.gn);
       all.location.elements.push_back(r.eid);
     }
-    if (out.size() > 1) {
+    const std::size_t places = out.size() / std::size(kStarts);
+    if (places > 1) {
       all.ids.insert(all.ids.begin(), 0);  // 0 marks "one parameter for all"
-      all.location.text = "every joint (" + std::to_string(out.size()) + " RBE2)";
-      out.push_back(all);
+      all.location.text = "every joint (" + std::to_string(places) + " RBE2)";
+      std::vector<std::int64_t> eids(all.ids.begin() + 1, all.ids.end());
+      for (double f : kStarts) {
+        all.start = {f * 10.0 * max_rate(nominal, eids)};
+        out.push_back(all);
+      }
     }
     return out;
   }

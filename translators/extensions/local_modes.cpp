@@ -35,7 +35,7 @@
 ///
 /// Candidates are every two-grid rod, once per unexplained test frequency (up to
 /// `max_surge_starts`). Their priority is how strongly the strut would couple to
-/// the analysis mode that resembles the unexplained test mode: the strut mass
+/// the analysis mode that resembles the unexplained test mode: the middle mass
 /// times the squared motion of its middle across the strut axis in that mode.
 #include <algorithm>
 #include <cmath>
@@ -276,7 +276,7 @@ class LocalModes : public ModelExtension {
   }
 
  private:
-  /// m_s ‖w⊥‖², w the mean translation of the strut's ends (basic) in the
+  /// m_mid ‖w⊥‖² (m_mid the mass the middle grid would carry), w the mean translation of the strut's ends (basic) in the
   /// g-set shape `phi`, ⊥ across the strut axis.
   static double coupling(const FeModel& model, const Strut& s, const Eigen::VectorXd& phi) {
     auto translation = [&](std::int64_t id) {
@@ -290,7 +290,7 @@ class LocalModes : public ModelExtension {
     };
     const Eigen::Vector3d w = 0.5 * (translation(s.rod.ga) + translation(s.rod.gb));
     const Eigen::Vector3d e = (s.b - s.a).normalized();
-    return s.mass * (w - e * e.dot(w)).squaredNorm();
+    return s.mid_mass() * (w - e * e.dot(w)).squaredNorm();
   }
 
   ExtensionOptions m_options;

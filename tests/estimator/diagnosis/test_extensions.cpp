@@ -130,7 +130,9 @@ TEST_CASE("joint_flexibility: a stiff rotational spring gives the rigid joint ba
   const Loaded nominal = load(text);
   const auto kind = ext::make_joint_flexibility({});
   const auto cands = kind->candidates(*nominal.fe);
-  REQUIRE(cands.size() == 9);  // 8 balls and "all"
+  REQUIRE(cands.size() == 27);  // 8 balls and "all", three starts each (k̄/10, k̄/100, k̄/1000)
+  CHECK(cands[0].location.text == cands[2].location.text);
+  CHECK(cands[1].start.at(0) == Approx(0.1 * cands[0].start.at(0)));
   const Eigen::VectorXd f0 = frequencies(*nominal.fe, nominal.fe->initial_parameters(), 30);
   ext::Candidate all = cands.back();
   REQUIRE(all.ids.front() == 0);

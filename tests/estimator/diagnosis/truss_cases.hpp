@@ -195,4 +195,106 @@ inline double clamped_tube_inertia(double f_hz, double L, double mu, double E) {
   return std::pow(w * L * L / b, 2) * mu / E;
 }
 
+/// A frame tower in the beam form of the MPI truss: 4 × 0.6 m storeys of a
+/// 0.6 × 0.5 m rectangle, legs and battens of the MPI strut tube, no
+/// diagonals — its lateral stiffness is all frame action, so the joints'
+/// rotational stiffness shows in the global modes. Balls (CONM2 with inertia)
+/// are joined by RBE2 spiders (123456) to grids on their surface where one CBAR
+/// per member starts (no strut-interior grids: no local modes); the base balls
+/// are clamped (GRID PS). Parameters: TUBEI (tube I1 = I2, J = 2·TUBEI) and
+/// BALLM (every ball's CONM2 M).
+inline Case frame_case() {
+  Case c;
+  tr::FeModel& fe = c.fe;
+  fe.form = tr::ModelForm::Beam;
+  fe.title = "frame tower (beam form)";
+  fe.mat = {1, 6.89e10, 0.33, 0.0};
+  const double ax = 0.6, ay = 0.5, h = 0.6, r = 0.03, A = 2.0e-4, I = 2.2e-8, ball = 1.2;
+  const int levels = 5;
+  auto ball_id = [](int level, int corner) { return 1 + 4 * level + corner; };
+  const double cx[4] = {0, ax, ax, 0}, cy[4] = {0, 0, ay, ay};
+  for (int l = 0; l < levels; ++l)
+    for (int k = 0; k < 4; ++k)
+      fe.grids.push_back({ball_id(l, k), Eigen::Vector3d(cx[k], cy[k], l * h), l == 0 ? "123456" : "", "ball"});
+  fe.bar_props.push_back({1, A, I, I, 2 * I, 0.5, "tube"});
+  std::vector<std::pair<int, int>> members;
+  for (int l = 0; l + 1 < levels; ++l)
+    for (int k = 0; k < 4; ++k) members.push_back({ball_id(l, k), ball_id(l + 1, k)});
+  for (int l = 1; l < levels; ++l)
+    for (int k = 0; k < 4; ++k) members.push_back({ball_id(l, k), ball_id(l, (k + 1) % 4)});
+  std::map<int, std::vector<int>> spider;
+  int m = 0;
+  for (const auto& [a, b] : members) {
+    ++m;
+    const Eigen::Vector3d xa = fe.grid(a).x, xb = fe.grid(b).x, e = (xb - xa).normalized();
+    const int sa = 100000 + 100 * m + 1, sb = sa + 1;
+    fe.grids.push_back({sa, xa + r * e, "", "ball_surface"});
+    fe.grids.push_back({sb, xb - r * e, "", "ball_surface"});
+    Eigen::Index k = 0;
+    e.cwiseAbs().minCoeff(&k);
+    fe.bars.push_back({100000 + 100 * m + 1, 1, sa, sb, Eigen::Vector3d::Unit(k), m});
+    spider[a].push_back(sa);
+    spider[b].push_back(sb);
+  }
+  for (const auto& [b, gm] : spider) fe.rigids.push_back({200000 + b, b, gm});
+  for (const auto& g : std::vector<tr::FeGrid>(fe.grids))
+    if (g.kind == "ball") fe.masses.push_back({1000 + g.id, g.id, ball, 0.4 * ball * r * r, "ball"});
+  fe.desvars.push_back({1, "TUBEI", I, 0.1 * I, 10 * I, "tube bending inertia, m^4 (PBAR I1 = I2, J = 2 TUBEI)"});
+  fe.desvars.push_back({2, "BALLM", ball, 0.1 * ball, 10 * ball, "ball mass, kg (CONM2 M)"});
+  fe.dvprels.push_back({1, "PBAR", 1, "I1", 1, 1.0, {}});
+  fe.dvprels.push_back({2, "PBAR", 1, "I2", 1, 1.0, {}});
+  fe.dvprels.push_back({3, "PBAR", 1, "J", 1, 2.0, {}});
+  int id = 4;
+  for (const auto& x : fe.masses) fe.dvprels.push_back({id++, "CONM2", x.id, "M", 2, 1.0, {}});
+  fe.eigrl_nd = 30;
+  fe.eigrl_v2 = 1000.0;
+  return c;
+}
+
+/// The ball grids of a frame_case above its clamped base (the sensors).
+inline std::vector<int> frame_sensors(const Case& c) {
+  std::vector<int> out;
+  for (const auto& g : c.fe.grids)
+    if (g.kind == "ball" && g.ps.empty()) out.push_back(g.id);
+  return out;
+}
+
+/// Hides rotationally flexible joints at one ball of a frame_case: every member
+/// end there starts after a short stub (10 mm CBAR, the tube's area, bending
+/// inertia k_θ·l/E so its rate under a pure moment is k_θ [N·m/rad], J = 2I)
+/// instead of at the ball's surface grid. A different form from the
+/// joint_flexibility kind's CELAS1 springs (the stub also bends in shear and
+/// twists at 2G/E·k_θ).
+inline void flexible_joint(Case& c, int ball, double k_theta) {
+  tr::FeModel& fe = c.fe;
+  const double ls = 0.01, Is = k_theta * ls / fe.mat.E;
+  tr::FeBarProp stub;
+  for (const auto& p : fe.bar_props) stub.id = std::max(stub.id, p.id);
+  stub.id += 1;
+  stub.A = fe.bar_props.front().A;
+  stub.I1 = stub.I2 = Is;
+  stub.J = 2 * Is;
+  stub.kind = "joint_stub";
+  fe.bar_props.push_back(stub);
+  const tr::FeRigid* spider = nullptr;
+  for (const auto& r : fe.rigids) if (r.gn == ball) spider = &r;
+  if (!spider) throw std::invalid_argument("flexible_joint: no spider at ball " + std::to_string(ball));
+  int next_grid = 0, next_bar = 0;
+  for (const auto& g : fe.grids) next_grid = std::max(next_grid, g.id);
+  for (const auto& b : fe.bars) next_bar = std::max(next_bar, b.id);
+  const std::vector<int> ends = spider->gm;
+  for (int s : ends)
+    for (auto& b : fe.bars) {
+      if (b.g1 != s && b.g2 != s) continue;
+      const int other = b.g1 == s ? b.g2 : b.g1;
+      const Eigen::Vector3d xs = fe.grid(s).x, e = (fe.grid(other).x - xs).normalized();
+      tr::FeGrid g{++next_grid, xs + ls * e, "", "strut"};
+      (b.g1 == s ? b.g1 : b.g2) = g.id;
+      const tr::FeBar stub_bar{++next_bar, stub.id, s, g.id, b.v, b.member};
+      fe.grids.push_back(g);
+      fe.bars.push_back(stub_bar);
+      break;
+    }
+}
+
 }  // namespace ssid::test_support
