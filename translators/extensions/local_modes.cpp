@@ -34,7 +34,8 @@
 /// unexplained test frequency.
 ///
 /// Candidates are every two-grid rod, once per unexplained test frequency (up to
-/// `max_surge_starts`). Their priority is how strongly the strut would couple to
+/// `max_surge_starts`); none when every test mode has an analysis partner
+/// (unless `always_offer`). Their priority is how strongly the strut would couple to
 /// the analysis mode that resembles the unexplained test mode: the middle mass
 /// times the squared motion of its middle across the strut axis in that mode.
 #include <algorithm>
@@ -126,9 +127,13 @@ class LocalModes : public ModelExtension {
     std::vector<double> freqs = m_options.unexplained_hz;
     if (static_cast<int>(freqs.size()) > m_options.max_surge_starts)
       freqs.resize(static_cast<std::size_t>(m_options.max_surge_starts));
-    const bool guided = freqs.size() > 0;
-    if (!guided) freqs.push_back(m_options.lowest_test_hz);
     std::vector<Candidate> out;
+    // Local modes are a hypothesis for test modes the model lacks: without
+    // any, a refined strut has nothing to explain (and its modes would have to
+    // hide above the band, where the rod model is already its limit).
+    if (freqs.empty() && !m_options.always_offer) return out;
+    const bool guided = !freqs.empty();
+    if (!guided) freqs.push_back(1.25 * std::max(m_options.highest_test_hz, m_options.lowest_test_hz));
     const auto all = rods(nominal.bulk());
     if (all.empty()) return out;
     const auto masses = grid_masses(nominal);

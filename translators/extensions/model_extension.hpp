@@ -130,6 +130,9 @@ struct ExtensionOptions {
   /// analysis mode that resembles that test mode most at the sensors, at the
   /// updated parameters (kinds that add local DOFs rank places by coupling to it).
   std::vector<Eigen::VectorXd> unexplained_neighbours;
+  /// Kinds meant for unexplained test modes (local_modes) offer candidates even
+  /// when there are none (tests of the kind itself).
+  bool always_offer = false;
   double total_mass = 0;               ///< kg; 0: computed from the nominal model when needed
 };
 
