@@ -2,7 +2,7 @@
 // every kind hidden at several locations and magnitudes, with realistic noise;
 // found/missed per case (the table in docs/diagnosis.md); (2) the time of a
 // whole diagnosis on the beam model (docs/performance.md).
-//   bench_diagnosis sweep         the rod sweep (several minutes)
+//   bench_diagnosis sweep [KIND]  the sweep (about 15 minutes; KIND: only the rows of one hidden kind)
 //   bench_diagnosis beam          one beam-model diagnosis, timed
 //   bench_diagnosis sample F.unv  writes samples/mpi_rod_hidden_mass.unv (docs/diagnosis.md)
 #include <chrono>
@@ -30,14 +30,11 @@ struct Row {
   double margin = 0, rms_before = 0, rms_after = 0, seconds = 0;
 };
 
-Row diagnose_case(const Case& nominal, const tr::FeModel& truth, const std::string& kind, const std::string& where,
-                  const std::string& magnitude, const std::function<bool(const dx::Hypothesis&)>& right_place,
-                  unsigned seed) {
-  TestSpec spec;
-  spec.seed = seed;
-  const auto measured = synthetic_test(truth, spec);
+Row diagnose_case(const std::string& nominal_deck, const translators::ModeSet& measured, const std::string& kind,
+                  const std::string& where, const std::string& magnitude,
+                  const std::function<bool(const dx::Hypothesis&)>& right_place) {
   const auto t0 = std::chrono::steady_clock::now();
-  const dx::Diagnosis d = dx::diagnose({{"mpi_rod.bdf", deck_text(nominal.t, nominal.fe), measured}}, {});
+  const dx::Diagnosis d = dx::diagnose({{"model.bdf", nominal_deck, measured}}, {});
   Row r;
   r.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
   r.kind = kind;
@@ -47,7 +44,7 @@ Row diagnose_case(const Case& nominal, const tr::FeModel& truth, const std::stri
   const dx::Hypothesis& h = d.cause >= 0 ? d.ranking[static_cast<std::size_t>(d.cause)] : d.nominal;
   r.location_ok = d.cause_kind == kind ? (right_place(h) ? "yes" : "no (" + h.location.text + ")") : "-";
   r.margin = d.margin;
-  r.rms_before = h.before.freq_rms_pct;
+  r.rms_before = d.nominal.before.freq_rms_pct;  // the deck as given
   r.rms_after = h.after.freq_rms_pct;
   std::printf("| %s | %s | %s | %s | %s | %.1f | %.2f -> %.2f | %.1f |\n", r.kind.c_str(), r.where.c_str(),
               r.magnitude.c_str(), r.found.c_str(), r.location_ok.c_str(), r.margin, r.rms_before, r.rms_after, r.seconds);
@@ -55,15 +52,26 @@ Row diagnose_case(const Case& nominal, const tr::FeModel& truth, const std::stri
   return r;
 }
 
+/// A rod-model case: the truth's elastic modes 2-66 Hz at every ball.
+Row diagnose_case(const Case& nominal, const tr::FeModel& truth, const std::string& kind, const std::string& where,
+                  const std::string& magnitude, const std::function<bool(const dx::Hypothesis&)>& right_place,
+                  unsigned seed) {
+  TestSpec spec;
+  spec.seed = seed;
+  return diagnose_case(deck_text(nominal.t, nominal.fe), synthetic_test(truth, spec, 80), kind, where, magnitude,
+                       right_place);
+}
+
 bool has(const std::vector<std::int64_t>& v, std::int64_t x) { return std::find(v.begin(), v.end(), x) != v.end(); }
 
-void sweep() {
+void sweep(const std::string& only) {
   const Case nominal = rod_case();
   std::printf("| hidden kind | where | magnitude | diagnosed | right location | margin [nats] | freq RMS %% before -> after | time [s] |\n");
   std::printf("|---|---|---|---|---|---|---|---|\n");
   unsigned seed = 100;
+  auto run = [&](const std::string& kind) { return only.empty() || only == kind; };
   // Parameter errors only.
-  for (int k = 0; k < 3; ++k) {
+  for (int k = 0; k < 3 && run("parameter"); ++k) {
     Case truth = rod_case();
     perturb(truth.fe, "STRUTA", 1.0 + 0.04 * (k + 1));
     perturb(truth.fe, "JOINTM", 1.0 - 0.05 * (k + 1));
@@ -73,6 +81,7 @@ void sweep() {
   // Missing masses.
   for (int grid : {29, 63, 40, 10})
     for (double m : {0.5, 2.0}) {
+      if (!run("missing_mass")) break;
       Case truth = rod_case();
       perturb(truth.fe, "STRUTA", 1.03);
       truth.fe.masses.push_back({9001, grid, m, 0.0, "hidden"});
@@ -87,6 +96,7 @@ void sweep() {
       {"optics_boom", "diagonal"}};
   for (const auto& [group, role] : picks)
     for (double factor : {0.5, 0.8}) {
+      if (!run("local_stiffness")) break;
       Case truth = rod_case();
       perturb(truth.fe, "JOINTM", 0.97);
       int member = 0;
@@ -109,6 +119,7 @@ void sweep() {
     }
   // Suspension springs with mass.
   for (double f : {48.0, 35.0, 60.0}) {
+    if (!run("support_dynamics")) break;
     Case truth;
     truth.t = tr::build_configured({});
     tr::SuspensionDesign sd;
@@ -121,6 +132,41 @@ void sweep() {
     std::snprintf(mag, sizeof mag, "surge %.0f/%.0f/%.0f Hz", f, f, f * 57.0 / 48.0);
     diagnose_case(nominal, truth.fe, "support_dynamics", "3 suspension springs", mag,
                   [](const dx::Hypothesis&) { return true; }, seed++);
+  }
+  // Local strut modes: one strut's tube bends at f (clamped-clamped), near or
+  // between global modes (44.4, 49.9, 14.2, 12.4 Hz).
+  const std::vector<std::pair<int, double>> struts = {{101, 45.5}, {101, 47.5}, {109, 51.0}, {90, 14.6}, {184, 13.0}, {6, 30.0}};
+  for (const auto& [rod, f] : struts) {
+    if (!run("local_modes")) break;
+    Case truth = rod_case();
+    perturb(truth.fe, "STRUTA", 1.03);
+    const auto& m = truth.t.members.at(static_cast<std::size_t>(rod - 1));
+    const double L = (truth.fe.grid(m.b).x - truth.fe.grid(m.a).x).norm();
+    const double tube = truth.t.tube_length(m) * truth.t.hw.tube_mass_per_length();
+    refine_rod(truth, rod, clamped_tube_inertia(f, L, tube / L, truth.fe.mat.E));
+    char mag[48];
+    std::snprintf(mag, sizeof mag, "bending at %.1f Hz", f);
+    diagnose_case(nominal, truth.fe, "local_modes", m.group + " " + m.role + " CROD " + std::to_string(rod), mag,
+                  [rod = rod](const dx::Hypothesis& h) { return has(h.location.elements, rod); }, seed++);
+  }
+  // Joint flexibility on the beam-form frame tower (tests/.../test_diagnosis_frame.cpp).
+  const Case frame = frame_case();
+  for (const auto& [ball, k] : std::vector<std::pair<int, double>>{{10, 2000.0}, {10, 5000.0}, {15, 2000.0}, {19, 2000.0}, {7, 5000.0}, {7, 20000.0}, {7, 50000.0}, {10, 100000.0}}) {
+    if (!run("joint_flexibility")) break;
+    Case truth = frame_case();
+    perturb(truth.fe, "TUBEI", 1.05);
+    flexible_joint(truth, ball, k);
+    TestSpec spec;
+    spec.f_high = 120.0;
+    spec.seed = seed++;
+    spec.sensor_grids = frame_sensors(frame);
+    char mag[48];
+    std::snprintf(mag, sizeof mag, "k %.0f N m/rad", k);
+    diagnose_case(deck_text(frame.t, frame.fe), synthetic_test(truth.fe, spec, 40), "joint_flexibility",
+                  "frame ball " + std::to_string(ball), mag,
+                  [ball = ball](const dx::Hypothesis& h) {
+                    return h.location.text.find("grid " + std::to_string(ball) + " ") != std::string::npos;
+                  });
   }
 }
 
@@ -183,10 +229,10 @@ int main(int argc, char** argv) {
     sample(argv[2]);
     if (argc > 3) nominal_deck(argv[3]);
   }
-  else if (what == "sweep") sweep();
+  else if (what == "sweep") sweep(argc > 2 ? argv[2] : "");
   else if (what == "beam") beam();
   else {
-    std::cerr << "usage: bench_diagnosis sweep|beam|sample OUT.unv\n";
+    std::cerr << "usage: bench_diagnosis sweep [KIND]|beam|sample OUT.unv\n";
     return 2;
   }
   return 0;

@@ -172,7 +172,7 @@ TEST_CASE("the cause predicts held-back modes better than the ordinary update", 
 }
 
 TEST_CASE("diagnosis finds local strut modes the rod model lacks", "[estimator][diagnosis][rod]") {
-  // Strut 101 (optics boom, balls 49-51, 0.96 m) is a tube whose first bending
+  // Strut 101 (a metrology-boom section diagonal, balls 49-51, 0.96 m) is a tube whose first bending
   // mode (clamped-clamped) sits at 45.5 Hz, next to the global mode at 44.4 Hz:
   // the test shows three modes where the rod model has one.
   const Case nominal = rod_case();
