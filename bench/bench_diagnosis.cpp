@@ -194,6 +194,8 @@ void beam() {
                  std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count(),
                  static_cast<double>(std::clock() - c0) / CLOCKS_PER_SEC, s.c_str());
   };
+  if (const char* n = std::getenv("SSID_BENCH_NELSON")) opt.problem.nelson_max_dofs = std::atoi(n);
+  if (std::getenv("SSID_BENCH_CYCLES")) opt.problem.update_progress = opt.progress;  // every solve of every estimate
   const dx::Diagnosis d = dx::diagnose({{"mpi_beam.bdf", deck_text(nominal.t, nominal.fe), measured}}, opt);
   const double s = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
   const double cpu = static_cast<double>(std::clock() - c0) / CLOCKS_PER_SEC;

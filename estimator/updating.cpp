@@ -276,12 +276,27 @@ UpdateResult update(const std::vector<Configuration>& configurations, const Para
       solutions.push_back(fem);
       c.pairs.insert(c.pairs.end(), pairs[k].begin(), pairs[k].end());
     }
-    // Trial point: accept when J did not grow (or the pairs changed, which changes J).
+    // Trial point: accept when J did not grow with the same pairs. A step that
+    // loses pairs overshot too (a test mode whose partner the step moved away
+    // is data the step stopped fitting; J over fewer pairs is not comparable),
+    // so it is halved as well, until max_halvings: then the pairs that remain
+    // are accepted (a partner that is really gone stays gone).
     if (cycle > 0) {
-      bool same = true;
-      for (std::size_t k = 0; k < nc && same; ++k) {
-        same = pairs[k].size() == pairs_accepted[k].size();
+      bool same = true, lost = false;
+      for (std::size_t k = 0; k < nc; ++k) {
+        lost = lost || pairs[k].size() < pairs_accepted[k].size();
+        same = same && pairs[k].size() == pairs_accepted[k].size();
         for (std::size_t q = 0; same && q < pairs[k].size(); ++q) same = pairs[k][q].test == pairs_accepted[k][q].test;
+      }
+      if (lost && halvings < max_halvings) {
+        ++halvings;
+        report(progress, "cycle " + std::to_string(cycle) + ": the full step loses pairs; step halved");
+        theta = theta_accepted + 0.5 * (theta - theta_accepted);
+        pairs = pairs_accepted;
+        tracking = tracking_accepted;
+        result.notes.resize(notes_before);
+        result.dropped.resize(dropped_before);
+        continue;
       }
       double J_trial = 0;
       if (same) {

@@ -140,7 +140,7 @@ UpdateResult estimate(std::vector<DeckProblem*> problems, const DeckProblemOptio
   }
   UpdateOptions uo = options.update;
   uo.start = problems.front()->start;
-  return update(confs, problems.front()->prior, uo);
+  return update(confs, problems.front()->prior, uo, options.update_progress);
 }
 
 }  // namespace ssid::estimator::diagnosis

@@ -17,6 +17,7 @@
 #include <vector>
 
 #include "estimator/modal_model.hpp"
+#include "estimator/progress.hpp"
 #include "estimator/updating.hpp"
 #include "formats/deck.hpp"
 #include "translators/assembly/fe_model.hpp"
@@ -48,6 +49,8 @@ struct DeckProblemOptions {
   /// report's modal summation over the solved modes above (beam models: ~10 k).
   int nelson_max_dofs = 3000;
   UpdateOptions update;
+  /// Reports of the estimation's cycles (each solve, each step halving).
+  Progress update_progress;
 };
 
 /// The model as the update sees it: an OperatorModel whose modes are followed
