@@ -122,10 +122,16 @@ int cmd_diagnose(const Args& args) {
     std::stringstream ss(vm["kinds"].as<std::string>());
     for (std::string k; std::getline(ss, k, ',');) opt.kinds.push_back(k);
   }
-  static const std::set<std::string> kinds = {"local_stiffness", "missing_mass", "support_dynamics", "joint_flexibility"};
+  // The kinds the library has (a new kind needs no change here).
+  std::set<std::string> kinds;
+  std::string kind_list;
+  for (const auto& x : translators::extensions::standard_extensions({})) {
+    kinds.insert(x->kind());
+    kind_list += (kind_list.empty() ? "" : ", ") + x->kind();
+  }
   for (const auto& k : opt.kinds)
     if (!kinds.count(k)) {
-      print_error("unknown extension kind \"" + k + "\" (local_stiffness, missing_mass, support_dynamics, joint_flexibility)");
+      print_error("unknown extension kind \"" + k + "\" (" + kind_list + ")");
       return 2;
     }
   if (vm.count("also"))
