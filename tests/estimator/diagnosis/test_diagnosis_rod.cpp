@@ -104,10 +104,9 @@ TEST_CASE("diagnosis finds suspension springs with mass (surge modes)", "[estima
   CHECK(!d.evidence.unpaired_test.empty());
   REQUIRE(d.cause_kind == "support_dynamics");
   const auto& h = cause(d);
-  // Two of the three surge modes gain a partner (the third, at 57 Hz, stays
-  // unpaired: the two-segment spring model's third surge mode does not reach
-  // the MAC threshold there — see docs/diagnosis.md).
-  CHECK(h.after.paired >= d.nominal.before.paired + 2);
+  // The three surge modes (48, 48, 57 Hz) all gain a partner.
+  CHECK(h.after.paired >= d.nominal.before.paired + 3);
+  CHECK(h.after.paired == h.after.measured);
   CHECK(h.after.freq_rms_pct < 0.5);
 }
 
