@@ -9,7 +9,7 @@ BayesStep bayes_step(const Eigen::Ref<const Eigen::VectorXd>& r_i, const Eigen::
                      const Eigen::Ref<const Eigen::MatrixXd>& prior_cov, const Eigen::Ref<const Eigen::VectorXd>& z,
                      const Eigen::Ref<const Eigen::VectorXd>& u, const Eigen::Ref<const Eigen::MatrixXd>& T,
                      const Eigen::Ref<const Eigen::VectorXd>& sigma_e, const Eigen::Ref<const Eigen::VectorXd>& lower,
-                     const Eigen::Ref<const Eigen::VectorXd>& upper) {
+                     const Eigen::Ref<const Eigen::VectorXd>& upper, double damping) {
   const Eigen::VectorXd w = sigma_e.array().square().inverse().matrix();  // S_ee^-1 diagonal
   Eigen::LLT<Eigen::MatrixXd> prior(prior_cov);
   const Eigen::MatrixXd Srr_inv = prior.solve(Eigen::MatrixXd::Identity(prior_cov.rows(), prior_cov.cols()));
@@ -18,7 +18,13 @@ BayesStep bayes_step(const Eigen::Ref<const Eigen::VectorXd>& r_i, const Eigen::
   const Eigen::VectorXd g = Srr_inv * (r0 - r_i) + T.transpose() * (w.asDiagonal() * e);
   Eigen::LLT<Eigen::MatrixXd> hl(H);
   BayesStep s;
-  s.r_next = r_i + hl.solve(g);
+  if (damping > 0) {
+    Eigen::MatrixXd Hd = H;
+    Hd.diagonal() *= 1.0 + damping;
+    s.r_next = r_i + Eigen::LLT<Eigen::MatrixXd>(Hd).solve(g);
+  } else {
+    s.r_next = r_i + hl.solve(g);
+  }
   s.posterior_cov = hl.solve(Eigen::MatrixXd::Identity(H.rows(), H.cols()));
   s.misfit = e.dot(w.asDiagonal() * e);
   const Eigen::VectorXd dr = r0 - r_i;

@@ -23,12 +23,15 @@ struct BayesStep {
 
 /// One step of Eq. (7). `sigma_e` holds the measurement standard deviations
 /// (diagonal S_ee). `lower`/`upper` bound r (may be ±inf); a step that leaves
-/// the box is clipped to it.
+/// the box is clipped to it. `damping` μ ≥ 0 (Levenberg–Marquardt): the step
+/// solves (H + μ diag H) Δ = g with H = S_rr⁻¹ + Tᵀ S_ee⁻¹ T — shorter and
+/// turned towards the gradient as μ grows; μ = 0 is Eq. (7). The posterior
+/// covariance is H⁻¹ whatever μ.
 BayesStep bayes_step(const Eigen::Ref<const Eigen::VectorXd>& r_i, const Eigen::Ref<const Eigen::VectorXd>& r0,
                      const Eigen::Ref<const Eigen::MatrixXd>& prior_cov, const Eigen::Ref<const Eigen::VectorXd>& z,
                      const Eigen::Ref<const Eigen::VectorXd>& u, const Eigen::Ref<const Eigen::MatrixXd>& T,
                      const Eigen::Ref<const Eigen::VectorXd>& sigma_e, const Eigen::Ref<const Eigen::VectorXd>& lower,
-                     const Eigen::Ref<const Eigen::VectorXd>& upper);
+                     const Eigen::Ref<const Eigen::VectorXd>& upper, double damping = 0.0);
 
 /// Laplace approximation of the log marginal likelihood (evidence) at the
 /// posterior mode r*, for Gaussian prior N(r₀, S_rr) and measurement noise

@@ -241,6 +241,17 @@ UpdateResult update(const std::vector<Configuration>& configurations, const Para
   std::vector<Eigen::MatrixXd> tracking_accepted;
   int halvings = 0;
   constexpr int max_halvings = 12;
+  // Levenberg–Marquardt damping of the step from the last accepted point: raised
+  // ×10 at each rejected trial (from 0.1), lowered ×10 at each accepted one (0 below 0.1).
+  double mu = 0;
+  Eigen::MatrixXd T_accepted;
+  Residuals res_accepted;
+  auto damped_retry = [&]() {
+    mu = mu > 0 ? 10 * mu : 0.1;
+    theta = bayes_step(theta_accepted, zero, cov_theta, res_accepted.z, res_accepted.u, T_accepted, res_accepted.sigma,
+                       lo, hi, mu)
+                .r_next;
+  };
   for (int cycle = 0;;) {
     const Eigen::VectorXd r = prior.mean + d.cwiseProduct(theta);
     const std::size_t notes_before = result.notes.size(), dropped_before = result.dropped.size();
@@ -290,8 +301,8 @@ UpdateResult update(const std::vector<Configuration>& configurations, const Para
       }
       if (lost && halvings < max_halvings) {
         ++halvings;
-        report(progress, "cycle " + std::to_string(cycle) + ": the full step loses pairs; step halved");
-        theta = theta_accepted + 0.5 * (theta - theta_accepted);
+        damped_retry();
+        report(progress, "cycle " + std::to_string(cycle) + ": the step loses pairs; damped (mu = " + std::to_string(mu) + ")");
         pairs = pairs_accepted;
         tracking = tracking_accepted;
         result.notes.resize(notes_before);
@@ -314,11 +325,12 @@ UpdateResult update(const std::vector<Configuration>& configurations, const Para
         trial.sigma = Eigen::Map<Eigen::VectorXd>(sg.data(), len);
         J_trial = objective(theta, trial);
       }
-      if (same && J_trial > J_accepted && halvings < max_halvings) {
+      // J equal within what the eigen-solve resolves (at the minimum) is not growth.
+      if (same && J_trial > J_accepted * (1 + 1e-9) && halvings < max_halvings) {
         ++halvings;
+        damped_retry();
         report(progress, "cycle " + std::to_string(cycle) + ": J = " + std::to_string(J_trial) + " > " +
-                             std::to_string(J_accepted) + " at the full step; step halved");
-        theta = theta_accepted + 0.5 * (theta - theta_accepted);
+                             std::to_string(J_accepted) + "; step damped (mu = " + std::to_string(mu) + ")");
         pairs = pairs_accepted;
         tracking = tracking_accepted;
         result.notes.resize(notes_before);
@@ -327,6 +339,7 @@ UpdateResult update(const std::vector<Configuration>& configurations, const Para
       }
     }
     c.step_halvings = halvings;
+    if (halvings >= max_halvings) mu = 0;  // the damped steps ended at the accepted point: start afresh
     halvings = 0;
     for (std::size_t k = 0; k < nc; ++k)
       parts.push_back(residuals(*configurations[k].model, configurations[k].test, solutions[k], pairs[k], options));
@@ -349,7 +362,12 @@ UpdateResult update(const std::vector<Configuration>& configurations, const Para
     }
     if (m == 0) throw std::runtime_error("update: no measurement with a positive standard deviation");
     const Eigen::MatrixXd T_theta = res.T * d.asDiagonal();
+    // Convergence and the posterior come from the undamped step of Eq. (7); the
+    // next point from the damped one while the damping lasts.
     const BayesStep step = bayes_step(theta, zero, cov_theta, res.z, res.u, T_theta, res.sigma, lo, hi);
+    mu = mu >= 0.1 ? mu / 10 : 0.0;
+    const Eigen::VectorXd theta_next =
+        mu > 0 ? bayes_step(theta, zero, cov_theta, res.z, res.u, T_theta, res.sigma, lo, hi, mu).r_next : step.r_next;
 
     c.objective = step.objective;
     c.misfit = step.misfit;
@@ -383,7 +401,9 @@ UpdateResult update(const std::vector<Configuration>& configurations, const Para
     theta_accepted = theta;
     pairs_accepted = pairs;
     tracking_accepted = tracking;
-    theta = step.r_next;
+    T_accepted = T_theta;
+    res_accepted = res;
+    theta = theta_next;
     ++cycle;
   }
 }

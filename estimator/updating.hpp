@@ -15,10 +15,12 @@
 ///  5. the step of Eq. (7) in parameters scaled by their prior standard
 ///     deviations (so E ≈ 7e10 and an area ≈ 1e-4 are equally well conditioned),
 ///     bounds honoured, posterior covariance of Eq. (8);
-///  6. a line search: when J at the new point exceeds J at the last accepted
-///     one (with the same test modes paired), the step is halved (at most 12
-///     times) — the Gauss–Newton step is a descent direction, so this restores
-///     convergence where the linearisation overshoots.
+///  6. a safeguard where the linearisation overshoots: when J at the new point
+///     exceeds J at the last accepted one (same test modes paired), or the new
+///     point loses pairs, the step from the accepted point is recomputed with
+///     Levenberg–Marquardt damping, (H + μ diag H) Δ = g, μ = 0.1, 1, 10, …
+///     (at most 12 times); each accepted point divides μ by 10 (0 below 0.1),
+///     so near the answer the step is Eq. (7) again.
 /// Stops when no parameter moves by more than `tolerance` prior standard
 /// deviations. The result carries the posterior, the Laplace evidence, the
 /// identifiability analysis and the history of every cycle.
@@ -86,7 +88,7 @@ struct UpdateCycle {
   double freq_rms_pct = 0; ///< RMS frequency error of the pairs
   double mean_mac = 0;
   bool clipped = false;
-  int step_halvings = 0;   ///< times the step to this point was halved (J had grown)
+  int step_halvings = 0;   ///< trials rejected before this point (J had grown or pairs were lost), each retried with more damping
 };
 
 /// A test mode that left the update because its partner was lost.

@@ -109,8 +109,18 @@ class Engine {
     std::map<std::string, PriorOverride> priors;
     for (const auto& p : added) priors[p.label] = {p.prior_mean, p.prior_std, p.start};
     std::vector<DeckProblem> pbs;
-    for (std::size_t k = 0; k < texts.size(); ++k)
+    for (std::size_t k = 0; k < texts.size(); ++k) {
       pbs.push_back(make_deck_problem(texts[k], m_setup.est[k].name, m_setup.est[k].measured, m_opt.problem, priors));
+      // The deck's own parameters start where the ordinary update ended (the
+      // prior is unchanged): each hypothesis then only has to move from the
+      // best fit without it, not repeat the ordinary update's whole path.
+      auto& pb = pbs.back();
+      for (std::size_t j = 0; j < pb.prior.names.size(); ++j)
+        if (auto it = m_warm.find(pb.prior.names[j]); it != m_warm.end()) {
+          const auto i = static_cast<Eigen::Index>(j);
+          pb.start(i) = std::clamp(it->second, pb.prior.lower(i), pb.prior.upper(i));
+        }
+    }
     std::vector<DeckProblem*> ptrs;
     for (auto& pb : pbs) ptrs.push_back(&pb);
     UpdateResult res = estimate(ptrs, m_opt.problem);
@@ -167,6 +177,10 @@ class Engine {
     return h;
   }
 
+  /// Later hypotheses start the deck's parameters at these values (by label).
+  void warm_start(const std::vector<std::string>& names, const Eigen::VectorXd& r) {
+    for (std::size_t j = 0; j < names.size(); ++j) m_warm[names[j]] = r(static_cast<Eigen::Index>(j));
+  }
   const UpdateResult& last() const { return m_last; }
   const Setup& setup() const { return m_setup; }
   const DiagnosisOptions& options() const { return m_opt; }
@@ -175,6 +189,7 @@ class Engine {
   DiagnosisOptions m_opt;
   Setup m_setup;
   UpdateResult m_last;
+  std::map<std::string, double> m_warm;
 };
 
 /// First-order screening data at the updated parameters (first configuration).
@@ -313,6 +328,7 @@ Diagnosis diagnose(const std::vector<ConfigurationInput>& configurations, const 
   std::vector<DeckProblem> base;
   Hypothesis param = engine.evaluate("parameter", base_texts, {}, &base);
   const UpdateResult base_res = engine.last();
+  engine.warm_start(param.names, base_res.r);
   param.description = "the deck's own parameters re-estimated";
   param.location.text = "deck parameters";
   dg.evidence = gather_evidence(base.front(), base_res.r, [&] {
