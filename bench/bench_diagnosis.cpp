@@ -202,6 +202,7 @@ void beam() {
   for (const auto& h : d.ranking)
     std::printf("  %-18s %-40s score %.1f, freq RMS %.3f %%, paired %d\n", h.kind.c_str(), h.location.text.c_str(), h.score,
                 h.after.freq_rms_pct, h.after.paired);
+  for (const auto& n : d.notes) std::printf("  note: %s\n", n.c_str());
   std::printf("beam model: %zu measured modes, %zu hypotheses re-estimated; cause %s (%s); wall %.1f s, CPU %.1f s\n",
               measured.frequency_hz.size(), d.ranking.size(), d.cause_kind.c_str(), d.summary.c_str(), s, cpu);
 }

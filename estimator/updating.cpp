@@ -260,11 +260,25 @@ UpdateResult update(const std::vector<Configuration>& configurations, const Para
     UpdateCycle c;
     c.cycle = cycle;
     c.r = r;
-    for (std::size_t k = 0; k < nc; ++k) {
+    bool unsolvable = false;
+    for (std::size_t k = 0; k < nc && !unsolvable; ++k) {
       const auto& conf = configurations[k];
       report(progress, "cycle " + std::to_string(cycle) + ": solving" + label(k),
              static_cast<double>(cycle) / static_cast<double>(options.max_iterations + 1));
-      const ModalSolution fem = conf.model->solve(r);
+      ModalSolution fem;
+      try {
+        fem = conf.model->solve(r);
+      } catch (const std::exception& ex) {
+        // A trial point where the model cannot be solved (a designed area
+        // driven through zero, …) is a step too far, like one that raises J.
+        if (cycle == 0 || halvings >= max_halvings) throw;
+        ++halvings;
+        damped_retry();
+        report(progress, "cycle " + std::to_string(cycle) + ": no solution at the trial point (" + ex.what() +
+                             "); step damped (mu = " + std::to_string(mu) + ")");
+        unsolvable = true;
+        break;
+      }
       if (cycle == 0) {
         pairs[k] = pair_for_update(conf.test, fem, options);
         if (pairs[k].empty()) throw std::runtime_error("update: no test mode" + label(k) + " pairs with an analysis mode");
@@ -286,6 +300,13 @@ UpdateResult update(const std::vector<Configuration>& configurations, const Para
       tracking[k] = fem.tracking_shapes;
       solutions.push_back(fem);
       c.pairs.insert(c.pairs.end(), pairs[k].begin(), pairs[k].end());
+    }
+    if (unsolvable) {
+      pairs = pairs_accepted;
+      tracking = tracking_accepted;
+      result.notes.resize(notes_before);
+      result.dropped.resize(dropped_before);
+      continue;
     }
     // Trial point: accept when J did not grow with the same pairs. A step that
     // loses pairs overshot too (a test mode whose partner the step moved away
