@@ -111,15 +111,11 @@ DeckProblem make_deck_problem(const std::string& deck_text, const std::string& n
   for (const auto& t : pb.test) f_max = std::max(f_max, t.frequency_hz);
   const double f_band = options.band_factor * f_max;
   const int max_modes = std::min(a - 1, std::max(options.max_modes, pb.nmodes));
-  auto widened = std::make_shared<bool>(false);
-  auto eigensolve = [solver, name, f_band, max_modes, widened](const SparseMatrix& K, const SparseMatrix& M, int nmodes) {
-    // The lowest `nmodes`; when they do not reach the band's top, the lowest
-    // `max_modes` — and from then on `max_modes` at once (a crowded band stays
-    // crowded as the parameters move; one solve per cycle instead of two).
-    solver->options().nd = *widened ? std::max(nmodes, max_modes) : nmodes;
+  auto eigensolve = [solver, name, f_band, max_modes](const SparseMatrix& K, const SparseMatrix& M, int nmodes) {
+    // The lowest `nmodes`; when they do not reach the band's top, the lowest `max_modes`.
+    solver->options().nd = nmodes;
     EigenResult r = solver->solve(K, M);
-    if (!*widened && r.ok() && r.size() > 0 && r.cycles(r.size() - 1) < f_band && nmodes < max_modes) {
-      *widened = true;
+    if (r.ok() && r.size() > 0 && r.cycles(r.size() - 1) < f_band && nmodes < max_modes) {
       solver->options().nd = max_modes;
       r = solver->solve(K, M);
     }
