@@ -25,4 +25,19 @@ std::string label(const std::string& prefix, std::int64_t id) {
   return s.substr(0, 8);
 }
 
+std::vector<double> start_frequencies(const ExtensionOptions& options) {
+  std::vector<double> f = options.unexplained_hz;
+  if (static_cast<int>(f.size()) > options.max_surge_starts) f.resize(static_cast<std::size_t>(options.max_surge_starts));
+  return f;
+}
+
+Location member_location(const std::string& type, std::int64_t eid, std::int64_t pid, std::int64_t ga, std::int64_t gb) {
+  Location l;
+  l.grids = {ga, gb};
+  l.elements = {eid};
+  if (pid) l.properties = {pid};
+  l.text = type + " " + std::to_string(eid) + " (grids " + std::to_string(ga) + "-" + std::to_string(gb) + ")";
+  return l;
+}
+
 }  // namespace ssid::translators::extensions::detail

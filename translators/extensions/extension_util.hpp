@@ -6,6 +6,7 @@
 #include <vector>
 
 #include "translators/assembly/fe_model.hpp"
+#include "translators/extensions/model_extension.hpp"
 
 namespace ssid::translators::extensions::detail {
 
@@ -17,5 +18,13 @@ double young_modulus(const formats::BulkModel& bulk, std::int64_t mid);
 
 /// Short DESVAR label (≤ 8 characters): prefix + id.
 std::string label(const std::string& prefix, std::int64_t id);
+
+/// The unexplained test frequencies a kind starts its new mode at (the first
+/// `max_surge_starts`); empty when every test mode has a partner.
+std::vector<double> start_frequencies(const ExtensionOptions& options);
+
+/// The location of a two-grid member: its grids, element, property (when
+/// `pid` > 0) and "TYPE eid (grids a-b)".
+Location member_location(const std::string& type, std::int64_t eid, std::int64_t pid, std::int64_t ga, std::int64_t gb);
 
 }  // namespace ssid::translators::extensions::detail

@@ -54,7 +54,8 @@ class JointFlexibility : public ModelExtension {
     all.kind = kind();
     for (const auto& r : nominal.bulk().rbe2s) {
       if (r.cm.find_first_of("456") == std::string::npos || r.gm.empty()) continue;
-      if (rate(nominal, r) <= 0) continue;
+      const double k = rate(nominal, r);
+      if (k <= 0) continue;
       Candidate c;
       c.kind = kind();
       c.ids = {r.eid};
@@ -66,7 +67,7 @@ class JointFlexibility : public ModelExtension {
       // pinned joint the modes pass through the ball's own rotation modes,
       // and an estimate started on the wrong side can pair with those.
       for (double f : kStarts) {
-        c.start = {f * 10.0 * rate(nominal, r)};
+        c.start = {f * 10.0 * k};
         out.push_back(c);
       }
       all.ids.push_back(r.eid);

@@ -124,9 +124,7 @@ class LocalModes : public ModelExtension {
   }
 
   std::vector<Candidate> candidates(const FeModel& nominal) const override {
-    std::vector<double> freqs = m_options.unexplained_hz;
-    if (static_cast<int>(freqs.size()) > m_options.max_surge_starts)
-      freqs.resize(static_cast<std::size_t>(m_options.max_surge_starts));
+    std::vector<double> freqs = detail::start_frequencies(m_options);
     std::vector<Candidate> out;
     // Local modes are a hypothesis for test modes the model lacks: without
     // any, a refined strut has nothing to explain (and its modes would have to
@@ -144,11 +142,7 @@ class LocalModes : public ModelExtension {
       for (std::size_t u = 0; u < freqs.size(); ++u) {
         Candidate c;
         c.kind = kind();
-        c.location.grids = {r.ga, r.gb};
-        c.location.elements = {r.eid};
-        if (r.pid) c.location.properties = {r.pid};
-        c.location.text = r.type + " " + std::to_string(r.eid) + " (grids " + std::to_string(r.ga) + "-" +
-                          std::to_string(r.gb) + ")";
+        c.location = detail::member_location(r.type, r.eid, r.pid, r.ga, r.gb);
         c.ids = {r.eid};
         c.start = {inertia_for(s, freqs[u])};
         if (s.moved > 0) c.start.push_back(s.moved);
@@ -204,28 +198,23 @@ class LocalModes : public ModelExtension {
     gm.ps_blank = false;
     ed.append(formats::write_grid(gm));
     const std::int64_t second = ed.new_element_id();
+    // The element becomes its first half (GA–GM) in place; a copy is the second (GM–GB).
+    auto split = [&](const auto& cards, auto write) {
+      for (const auto& e : cards)
+        if (e.eid == r.eid) {
+          auto half = e;
+          half.g2 = gm.id;
+          ed.change(e.card, write(half));
+          half.eid = second;
+          half.g1 = gm.id;
+          half.g2 = e.g2;
+          ed.append(write(half));
+        }
+    };
     if (r.type == "CROD") {
-      for (const auto& e : b.crods)
-        if (e.eid == r.eid) {
-          formats::Crod half = e;
-          half.g2 = gm.id;
-          ed.change(e.card, formats::write_crod(half));
-          half.eid = second;
-          half.g1 = gm.id;
-          half.g2 = e.g2;
-          ed.append(formats::write_crod(half));
-        }
+      split(b.crods, formats::write_crod);
     } else {
-      for (const auto& e : b.conrods)
-        if (e.eid == r.eid) {
-          formats::Conrod half = e;
-          half.g2 = gm.id;
-          ed.change(e.card, formats::write_conrod(half));
-          half.eid = second;
-          half.g1 = gm.id;
-          half.g2 = e.g2;
-          ed.append(formats::write_conrod(half));
-        }
+      split(b.conrods, formats::write_conrod);
       for (const auto& d : b.dvprel1s)  // the CONROD's own design relations follow its second half
         if (d.type == "CONROD" && d.pid == r.eid) {
           formats::Dvprel1 q = d;

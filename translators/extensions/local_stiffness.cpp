@@ -60,11 +60,7 @@ class LocalStiffness : public ModelExtension {
       if (!(m.area > 0) || m.ga == m.gb) continue;
       Candidate c;
       c.kind = kind();
-      c.location.grids = {m.ga, m.gb};
-      c.location.elements = {m.eid};
-      if (m.pid) c.location.properties = {m.pid};
-      c.location.text = m.type + " " + std::to_string(m.eid) + " (grids " + std::to_string(m.ga) + "-" +
-                        std::to_string(m.gb) + ")";
+      c.location = detail::member_location(m.type, m.eid, m.pid, m.ga, m.gb);
       c.ids = {m.eid};
       out.push_back(c);
     }

@@ -68,8 +68,7 @@ class SupportDynamics : public ModelExtension {
     for (const auto& [pid, v] : by_pid)
       if (v.size() > 1) sets.push_back(v);
     // Start values: the surge at each unexplained test frequency, or at the lowest test frequency.
-    std::vector<double> freqs = m_options.unexplained_hz;
-    if (static_cast<int>(freqs.size()) > m_options.max_surge_starts) freqs.resize(static_cast<std::size_t>(m_options.max_surge_starts));
+    std::vector<double> freqs = detail::start_frequencies(m_options);
     if (freqs.empty()) freqs.push_back(m_options.lowest_test_hz);
     std::vector<Candidate> out;
     for (const auto& set : sets) {
