@@ -239,18 +239,26 @@ UpdateResult update(const std::vector<Configuration>& configurations, const Para
   Eigen::VectorXd theta_accepted = theta;
   std::vector<std::vector<UpdatePair>> pairs_accepted;
   std::vector<Eigen::MatrixXd> tracking_accepted;
-  int halvings = 0;
+  int halvings = 0;  // trials rejected since the last accepted point
   constexpr int max_halvings = 12;
   // Levenberg–Marquardt damping of the step from the last accepted point: raised
   // ×10 at each rejected trial (from 0.1), lowered ×10 at each accepted one (0 below 0.1).
   double mu = 0;
   Eigen::MatrixXd T_accepted;
   Residuals res_accepted;
-  auto damped_retry = [&]() {
+  // A rejected trial: the next one is the accepted point's step with more
+  // damping, and the trial's pairs, notes and dropped modes are undone.
+  auto reject = [&](int cycle, const std::string& why, std::size_t notes_before, std::size_t dropped_before) {
+    ++halvings;
     mu = mu > 0 ? 10 * mu : 0.1;
     theta = bayes_step(theta_accepted, zero, cov_theta, res_accepted.z, res_accepted.u, T_accepted, res_accepted.sigma,
                        lo, hi, mu)
                 .r_next;
+    report(progress, "cycle " + std::to_string(cycle) + ": " + why + "; step damped (mu = " + std::to_string(mu) + ")");
+    pairs = pairs_accepted;
+    tracking = tracking_accepted;
+    result.notes.resize(notes_before);
+    result.dropped.resize(dropped_before);
   };
   for (int cycle = 0;;) {
     const Eigen::VectorXd r = prior.mean + d.cwiseProduct(theta);
@@ -261,7 +269,7 @@ UpdateResult update(const std::vector<Configuration>& configurations, const Para
     c.cycle = cycle;
     c.r = r;
     bool unsolvable = false;
-    for (std::size_t k = 0; k < nc && !unsolvable; ++k) {
+    for (std::size_t k = 0; k < nc; ++k) {
       const auto& conf = configurations[k];
       report(progress, "cycle " + std::to_string(cycle) + ": solving" + label(k),
              static_cast<double>(cycle) / static_cast<double>(options.max_iterations + 1));
@@ -272,10 +280,7 @@ UpdateResult update(const std::vector<Configuration>& configurations, const Para
         // A trial point where the model cannot be solved (a designed area
         // driven through zero, …) is a step too far, like one that raises J.
         if (cycle == 0 || halvings >= max_halvings) throw;
-        ++halvings;
-        damped_retry();
-        report(progress, "cycle " + std::to_string(cycle) + ": no solution at the trial point (" + ex.what() +
-                             "); step damped (mu = " + std::to_string(mu) + ")");
+        reject(cycle, std::string("no solution at the trial point (") + ex.what() + ")", notes_before, dropped_before);
         unsolvable = true;
         break;
       }
@@ -301,17 +306,11 @@ UpdateResult update(const std::vector<Configuration>& configurations, const Para
       solutions.push_back(fem);
       c.pairs.insert(c.pairs.end(), pairs[k].begin(), pairs[k].end());
     }
-    if (unsolvable) {
-      pairs = pairs_accepted;
-      tracking = tracking_accepted;
-      result.notes.resize(notes_before);
-      result.dropped.resize(dropped_before);
-      continue;
-    }
+    if (unsolvable) continue;
     // Trial point: accept when J did not grow with the same pairs. A step that
     // loses pairs overshot too (a test mode whose partner the step moved away
     // is data the step stopped fitting; J over fewer pairs is not comparable),
-    // so it is halved as well, until max_halvings: then the pairs that remain
+    // so it is rejected as well, until max_halvings: then the pairs that remain
     // are accepted (a partner that is really gone stays gone).
     if (cycle > 0) {
       bool same = true, lost = false;
@@ -321,13 +320,7 @@ UpdateResult update(const std::vector<Configuration>& configurations, const Para
         for (std::size_t q = 0; same && q < pairs[k].size(); ++q) same = pairs[k][q].test == pairs_accepted[k][q].test;
       }
       if (lost && halvings < max_halvings) {
-        ++halvings;
-        damped_retry();
-        report(progress, "cycle " + std::to_string(cycle) + ": the step loses pairs; damped (mu = " + std::to_string(mu) + ")");
-        pairs = pairs_accepted;
-        tracking = tracking_accepted;
-        result.notes.resize(notes_before);
-        result.dropped.resize(dropped_before);
+        reject(cycle, "the step loses pairs", notes_before, dropped_before);
         continue;
       }
       double J_trial = 0;
@@ -348,14 +341,8 @@ UpdateResult update(const std::vector<Configuration>& configurations, const Para
       }
       // J equal within what the eigen-solve resolves (at the minimum) is not growth.
       if (same && J_trial > J_accepted * (1 + 1e-9) && halvings < max_halvings) {
-        ++halvings;
-        damped_retry();
-        report(progress, "cycle " + std::to_string(cycle) + ": J = " + std::to_string(J_trial) + " > " +
-                             std::to_string(J_accepted) + "; step damped (mu = " + std::to_string(mu) + ")");
-        pairs = pairs_accepted;
-        tracking = tracking_accepted;
-        result.notes.resize(notes_before);
-        result.dropped.resize(dropped_before);
+        reject(cycle, "J = " + std::to_string(J_trial) + " > " + std::to_string(J_accepted), notes_before,
+               dropped_before);
         continue;
       }
     }

@@ -9,6 +9,7 @@
 #include <catch2/catch.hpp>
 
 #include "estimator/diagnosis/diagnosis.hpp"
+#include "tests/estimator/diagnosis/diagnosis_report.hpp"
 #include "tests/estimator/diagnosis/truss_cases.hpp"
 
 using namespace ssid;
@@ -24,16 +25,6 @@ translators::ModeSet measure(const Case& truth, const Case& nominal, unsigned se
   spec.seed = seed;
   spec.sensor_grids = frame_sensors(nominal);
   return synthetic_test(truth.fe, spec, 40);
-}
-
-std::string ranking(const dx::Diagnosis& d) {
-  std::string s = d.summary + "\n";
-  for (const auto& f : d.evidence.findings) s += "  evidence: " + f + "\n";
-  for (const auto& h : d.ranking)
-    s += "  " + h.kind + " @ " + h.location.text + ": score " + std::to_string(h.score) + ", rms " +
-         std::to_string(h.after.freq_rms_pct) + " %, paired " + std::to_string(h.after.paired) + "\n";
-  for (const auto& n : d.notes) s += "  note: " + n + "\n";
-  return s;
 }
 
 }  // namespace

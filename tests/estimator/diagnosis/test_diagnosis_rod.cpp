@@ -7,6 +7,7 @@
 #include <catch2/catch.hpp>
 
 #include "estimator/diagnosis/diagnosis.hpp"
+#include "tests/estimator/diagnosis/diagnosis_report.hpp"
 #include "tests/estimator/diagnosis/truss_cases.hpp"
 #include "translators/truss/configurations.hpp"
 
@@ -18,16 +19,6 @@ namespace {
 
 dx::Diagnosis run(const Case& nominal, const translators::ModeSet& measured, dx::DiagnosisOptions opt = {}) {
   return dx::diagnose({{"mpi_rod.bdf", deck_text(nominal.t, nominal.fe), measured}}, opt);
-}
-
-std::string ranking(const dx::Diagnosis& d) {
-  std::string s = d.summary + "\n";
-  for (const auto& f : d.evidence.findings) s += "  evidence: " + f + "\n";
-  for (const auto& h : d.ranking)
-    s += "  " + h.kind + " @ " + h.location.text + ": score " + std::to_string(h.score) + ", rms " +
-         std::to_string(h.after.freq_rms_pct) + " %, paired " + std::to_string(h.after.paired) + "\n";
-  for (const auto& n : d.notes) s += "  note: " + n + "\n";
-  return s;
 }
 
 const dx::Hypothesis& cause(const dx::Diagnosis& d) { return d.ranking.at(static_cast<std::size_t>(d.cause)); }
