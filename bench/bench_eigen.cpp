@@ -107,10 +107,29 @@ Mat12 frame_stiffness(const Eigen::Vector3d& xa, const Eigen::Vector3d& xb, cons
 struct Model {
   SpMat K, M;
   long nodes = 0, elements = 0;
+  int n = 0;  // nodes per edge
 };
+
+/// The six rigid-body modes of the lattice (translations, then rotations about
+/// the origin: u = e × x, θ = e), its near-null space for the multilevel method.
+Eigen::MatrixXd rigid_body_modes(const Model& m) {
+  Eigen::MatrixXd B = Eigen::MatrixXd::Zero(6 * m.nodes, 6);
+  const int n = m.n;
+  for (long a = 0; a < m.nodes; ++a) {
+    const Eigen::Vector3d x(static_cast<double>(a % n), static_cast<double>((a / n) % n), static_cast<double>(a / n / n));
+    for (int c = 0; c < 3; ++c) {
+      B(6 * a + c, c) = 1.0;
+      const Eigen::Vector3d u = Eigen::Vector3d::Unit(c).cross(x);
+      for (int d = 0; d < 3; ++d) B(6 * a + d, 3 + c) = u(d);
+      B(6 * a + 3 + c, 3 + c) = 1.0;
+    }
+  }
+  return B;
+}
 
 Model lattice(int n, const Section& s) {
   Model m;
+  m.n = n;
   auto id = [n](int i, int j, int k) { return (static_cast<long>(k) * n + j) * n + i; };
   m.nodes = static_cast<long>(n) * n * n;
   const long ndof = 6 * m.nodes;
@@ -204,6 +223,8 @@ int main(int argc, char** argv) {
   int nd = 41, ncv = 0, block = EigenOptions{}.block;
   EigenMethod method = EigenMethod::Auto;
   double tol = 1e-10;
+  ssid::estimator::multilevel::MultilevelOptions ml;
+  bool compare = false;
   bool sturm = false, dof_ordering = false, export_only = false, factor_only = false, analyze_only = false;
   std::string export_dir;
   for (int i = 2; i < argc; ++i) {
@@ -215,8 +236,16 @@ int main(int argc, char** argv) {
     else if (!std::strcmp(argv[i], "--sturm")) sturm = true;
     else if (!std::strcmp(argv[i], "--method") && i + 1 < argc) {
       const std::string m = argv[++i];
-      method = m == "spectra" ? EigenMethod::Spectra : m == "block" ? EigenMethod::BlockLanczos : EigenMethod::Auto;
+      method = m == "spectra"      ? EigenMethod::Spectra
+               : m == "block"      ? EigenMethod::BlockLanczos
+               : m == "multilevel" ? EigenMethod::Multilevel
+                                   : EigenMethod::Auto;
     }
+    else if (!std::strcmp(argv[i], "--radius") && i + 1 < argc) ml.amg.aggregate_radius = std::stoi(argv[++i]);
+    else if (!std::strcmp(argv[i], "--degree") && i + 1 < argc) ml.amg.smoother_degree = std::stoi(argv[++i]);
+    else if (!std::strcmp(argv[i], "--ml-tol") && i + 1 < argc) ml.tol = std::stod(argv[++i]);
+    else if (!std::strcmp(argv[i], "--guard") && i + 1 < argc) ml.guard = std::stoi(argv[++i]);
+    else if (!std::strcmp(argv[i], "--compare")) compare = true;
     else if (!std::strcmp(argv[i], "--dof-ordering")) dof_ordering = true;
     else if (!std::strcmp(argv[i], "--export-only")) export_only = true;
     else if (!std::strcmp(argv[i], "--factor-only")) factor_only = true;
@@ -288,6 +317,46 @@ int main(int argc, char** argv) {
   o.method = method;
   o.sturm_check = false;
   o.dof_groups = groups;
+  o.multilevel = ml;
+  if (method == EigenMethod::Multilevel || method == EigenMethod::Auto) o.near_null_space = rigid_body_modes(m);
+  if (method == EigenMethod::Multilevel) {
+    o.progress = [](const std::string& msg, double) { std::fprintf(stderr, "  %s\n", msg.c_str()); };
+    EigenResult r;
+    const auto tsolve = timed([&] { r = EigenSolver(o).solve(m.K, m.M); });
+    std::printf("method Multilevel: %s; coarse %ld DOF, LOBPCG iterations %ld, preconditioned columns %ld\n",
+                r.ok() ? "converged" : r.message.c_str(), r.coarse_size, r.iterations, r.solves);
+    std::printf("time: total %.3f s wall (%.3f s CPU) = setup %.3f + coarse modes and LOBPCG %.3f + checks %.3f\n",
+                r.total_seconds, tsolve.second, r.factor_seconds, r.lanczos_seconds,
+                r.total_seconds - r.factor_seconds - r.lanczos_seconds);
+    int rigid = 0;
+    for (int j = 0; j < r.size(); ++j)
+      if (std::abs(r.eigenvalues(j)) < 1e-6 * r.eigenvalues(r.size() - 1)) ++rigid;
+    std::printf("modes %d (rigid %d): f1 elastic %.6g Hz, f_last %.6g Hz\n", r.size(), rigid,
+                rigid < r.size() ? r.cycles(rigid) : 0.0, r.cycles(r.size() - 1));
+    std::printf("max residual (elastic) %.2e, max backward error %.2e, M-orthogonality %.2e\n",
+                r.residuals.tail(r.size() - rigid).maxCoeff(), r.backward_errors.maxCoeff(), r.orthogonality);
+    std::printf("peak RSS %ld MiB\n", peak_rss_mib());
+    std::printf("eigenvalues:");
+    for (int j = 0; j < r.size(); ++j) std::printf(" %.10g", r.eigenvalues(j));
+    std::printf("\n");
+    if (compare) {
+      EigenOptions d = o;
+      d.method = EigenMethod::Auto;
+      d.near_null_space.resize(0, 0);
+      d.progress = nullptr;
+      const EigenResult ref = EigenSolver(d).solve(m.K, m.M);
+      double worst = 0.0, worst_rigid = 0.0;
+      const double top = ref.eigenvalues(ref.size() - 1);
+      for (int j = 0; j < std::min(r.size(), ref.size()); ++j) {
+        const double dl = std::abs(r.eigenvalues(j) - ref.eigenvalues(j));
+        if (j < rigid) worst_rigid = std::max(worst_rigid, dl / top);
+        else worst = std::max(worst, dl / std::abs(ref.eigenvalues(j)));
+      }
+      std::printf("against %s (%.3f s): elastic eigenvalues agree to %.2e (relative), rigid-body ones to %.2e of "
+                  "the highest\n", ref.method.c_str(), ref.total_seconds, worst, worst_rigid);
+    }
+    return r.ok() ? 0 : 1;
+  }
   EigenSolver solver(o);
   EigenResult r;
   const auto tsolve = timed([&] { r = solver.solve(m.K, m.M); });

@@ -199,6 +199,31 @@ EigenResult::Status to_status(FactorStatus::Code c) {
   return EigenResult::Status::FactorFailed;
 }
 
+/// EigenMethod::Multilevel: the lowest nd modes by LOBPCG with the aggregation
+/// preconditioner; res already holds the shift and any factor figures.
+void solve_multilevel(const SparseMatrix& K, const SparseMatrix& M, double sigma, const EigenOptions& o,
+                      const MassOp& mass, EigenResult& res) {
+  res.method = "Multilevel";
+  const multilevel::MultilevelRun run = multilevel::multilevel_lowest(
+      K, M, sigma, o.nd, o.dof_groups, o.near_null_space, o.multilevel, o.progress);
+  res.nev = o.nd;
+  res.ncv = 0;
+  res.lanczos_runs = 1;
+  res.iterations = run.iterations;
+  res.solves = run.preconditioned;
+  res.coarse_size = run.coarse_size;
+  res.analyze_seconds = 0.0;
+  res.factor_seconds = run.setup_seconds;
+  res.lanczos_seconds = run.coarse_modes_seconds + run.lobpcg_seconds;
+  if (!run.converged) {
+    res.status = EigenResult::Status::NotConverged;
+    res.message = "multilevel eigen-solver: " + run.message;
+  }
+  res.eigenvalues = run.lambda;
+  res.modes = run.vectors;
+  normalise(res.modes, mass, o.norm);
+}
+
 }  // namespace
 
 double automatic_shift(const SparseMatrix& K, const SparseMatrix& M) {
@@ -302,6 +327,22 @@ EigenResult EigenSolver::solve(const SparseMatrix& K, const SparseMatrix& M) {
   const Eigen::VectorXd mdiag = M.diagonal();
   const long n_massive = (mdiag.array() > 0.0).count();
 
+  const bool multilevel_possible = o.near_null_space.size() > 0 && !o.dof_groups.empty() && !has_high && o.nd > 0;
+  if (o.method == EigenMethod::Multilevel) {
+    if (!multilevel_possible)
+      throw std::invalid_argument(
+          "EigenSolver: the multilevel method needs dof_groups, near_null_space (the rigid-body modes) and ND, "
+          "without a frequency band");
+    if (o.near_null_space.rows() != n)
+      throw std::invalid_argument("EigenSolver: near_null_space has " + std::to_string(o.near_null_space.rows()) +
+                                  " rows for " + std::to_string(n) + " DOFs");
+    solve_multilevel(K, M, sigma, o, mass, res);
+    compute_checks(K, M, res);
+    res.total_seconds = seconds_since(t0);
+    report(o.progress, "modes done", 1.0);
+    return res;
+  }
+
   // Factor K − σM (lower triangles only; the analysis is reused when the pattern is).
   report(o.progress, "factorising K - sigma M", 0.0);
   const int analyses_before = m_factor.analysis_count();
@@ -316,6 +357,16 @@ EigenResult EigenSolver::solve(const SparseMatrix& K, const SparseMatrix& M) {
     res.factor_flops = m_factor.factor_flops();
     res.factor_bytes = m_factor.factor_bytes();
     res.ordering = m_factor.ordering();
+    if (fs.code == FactorStatus::Code::TooLarge && o.method == EigenMethod::Auto && multilevel_possible &&
+        o.near_null_space.rows() == n) {
+      res.warnings.push_back("the factor of K - sigma M would take " + std::to_string(res.factor_bytes / 1073741824.0) +
+                             " GiB (limit " + std::to_string(m_factor.memory_limit() / 1073741824.0) +
+                             " GiB): solved by the multilevel method instead");
+      solve_multilevel(K, M, sigma, o, mass, res);
+      compute_checks(K, M, res);
+      res.total_seconds = seconds_since(t0);
+      return res;
+    }
     if (!fs.ok()) {
       res.status = to_status(fs.code);
       res.failed_dof = fs.column;

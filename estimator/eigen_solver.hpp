@@ -27,6 +27,7 @@
 /// independently by the inertia of K − λ_top M (Sylvester; simplicial LDLᵀ) and
 /// nev grows again if Lanczos missed one. See docs/eigen_solver.md.
 #include "estimator/cholmod_factor.hpp"
+#include "estimator/multilevel/multilevel_eigen.hpp"
 #include "estimator/progress.hpp"
 
 #include <Eigen/Core>
@@ -54,7 +55,11 @@ inline constexpr long kAutoBlockLanczosDof = 50000;
 enum class EigenMethod {
   Auto,          ///< BlockLanczos for n ≥ 50 000, Spectra below (kAutoBlockLanczosDof)
   Spectra,       ///< Spectra's SymGEigsShiftSolver (implicitly restarted Lanczos, one vector)
-  BlockLanczos   ///< block Lanczos (block_lanczos.hpp): b solves per factor pass
+  BlockLanczos,  ///< block Lanczos (block_lanczos.hpp): b solves per factor pass
+  /// LOBPCG with a smoothed-aggregation preconditioner (multilevel/multilevel_eigen.hpp):
+  /// no factor of the full model; needs dof_groups and near_null_space, lowest ND only.
+  /// Auto takes it when the factor would exceed max_factor_bytes and both are given.
+  Multilevel
 };
 
 /// What to extract. Bounds are frequencies in Hz (as EIGRL V1, V2 and EIGR F1, F2
@@ -94,6 +99,10 @@ struct EigenOptions {
   /// size in the message). 0: automatic, 80 % of the machine's physical memory;
   /// negative: no limit.
   double max_factor_bytes = 0.0;
+  /// Rigid-body modes of the model (n x 6, or any near-null space of K), for
+  /// EigenMethod::Multilevel's coarse space; empty: that method is not available.
+  Eigen::MatrixXd near_null_space;
+  multilevel::MultilevelOptions multilevel;  ///< EigenMethod::Multilevel's settings
   /// K − σM with a reciprocal condition estimate below this is reported near-singular.
   double near_singular_rcond = 1e-15;
   unsigned seed = 12345;  ///< start vector seed (results are deterministic)
@@ -132,8 +141,9 @@ struct EigenResult {
   // How the solve went.
   double shift = 0.0;
   int nev = 0, ncv = 0, lanczos_runs = 0;
-  std::string method;    ///< "Spectra" or "BlockLanczos"
-  long iterations = 0;   ///< Spectra restarts or block Lanczos block solves, summed over runs
+  std::string method;    ///< "Spectra", "BlockLanczos" or "Multilevel"
+  long iterations = 0;   ///< Spectra restarts, block Lanczos block solves or LOBPCG iterations, summed over runs
+  long coarse_size = 0;  ///< Multilevel: DOFs of the coarse model
   long solves = 0;       ///< right-hand-side columns solved with the factor
   long sturm_count = -1; ///< eigenvalues below the band top by inertia; −1 when not counted
   int analyses = 0;      ///< symbolic analyses done by this solve (0 when reused)

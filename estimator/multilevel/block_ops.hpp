@@ -1,0 +1,35 @@
+#pragma once
+/// \file block_ops.hpp
+/// Kernels of the multilevel eigen-solver on blocks of vectors stored row by row
+/// (n x b, row-major: the b values of one DOF side by side).
+///
+/// Why row-major: the solver's time goes into sparse-matrix times block products
+/// (A X with b ≈ 50 columns at a million DOF). Row by row, each stored entry a_ij
+/// of A is read once and updates b contiguous values of Y's row i from X's row j,
+/// which vectorises; column by column A would be read b times. The dense products
+/// of the Rayleigh–Ritz steps go to the system BLAS by viewing an n x b row-major
+/// block as the b x n column-major matrix it is in memory.
+#include <Eigen/Core>
+#include <Eigen/SparseCore>
+
+namespace ssid::estimator::multilevel {
+
+using RowBlock = Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, Eigen::RowMajor>;
+using SparseMatrix = Eigen::SparseMatrix<double>;                    // column-major
+using SparseRowMatrix = Eigen::SparseMatrix<double, Eigen::RowMajor>;
+
+/// Y = A X for a symmetric A in full (both triangles) column-major storage:
+/// column i of A is row i. Threaded over rows (OpenMP).
+void sym_times(const SparseMatrix& A, const RowBlock& X, RowBlock& Y);
+/// Y = A X for a row-major sparse A (any shape). Threaded over rows.
+void times(const SparseRowMatrix& A, const RowBlock& X, RowBlock& Y);
+/// Y = Aᵀ X for a row-major sparse A (rows(A) = rows(X)), computed as the
+/// product of the column-major A (the transpose's rows): threaded over columns of A.
+void transpose_times(const SparseMatrix& A, const RowBlock& X, RowBlock& Y);
+
+/// Xᵀ Y (b_x x b_y, column-major), by BLAS.
+Eigen::MatrixXd gram(const RowBlock& X, const RowBlock& Y);
+/// X C (n x c) for X n x k row-major and C k x c, by BLAS.
+RowBlock times_dense(const RowBlock& X, const Eigen::Ref<const Eigen::MatrixXd>& C);
+
+}  // namespace ssid::estimator::multilevel

@@ -1,0 +1,47 @@
+#pragma once
+/// \file lobpcg.hpp
+/// LOBPCG (Knyazev 2001) for the largest eigenvalues μ of the pencil
+///   M x = μ A x,   A = K − σM symmetric positive definite, M positive semi-definite,
+/// i.e. the lowest λ = σ + 1/μ of K φ = λ M φ: the shift-inverted form, chosen
+/// because A (not M, which is singular on massless rotations) defines the inner
+/// product, so every Gram matrix of the iteration is positive definite.
+///
+/// Each iteration: residuals R = M X − A X Θ; preconditioned directions
+/// W = T R (T ≈ A⁻¹, e.g. AggregationAmg) for the columns not yet converged (soft
+/// locking); W made A-orthogonal to X and A-orthonormal (by an eigen-decomposition
+/// of its Gram matrix, which drops dependent directions); Rayleigh–Ritz on
+/// span[X W P]; the new X is the b best Ritz vectors, the new P their part along
+/// [W P] (the "conjugate" direction). Converged when, for each wanted column,
+///   ‖M x − μ A x‖ / (μ ‖A x‖) = ‖(K − λM) x‖ / ‖(K − σM) x‖ ≤ tol,
+/// a residual relative to the shifted operator, defined for rigid-body modes too.
+#include "estimator/multilevel/block_ops.hpp"
+#include "estimator/progress.hpp"
+
+#include <functional>
+
+namespace ssid::estimator::multilevel {
+
+struct LobpcgOptions {
+  int nev = 1;        ///< wanted eigenpairs (the largest μ); the block has X0.cols() ≥ nev columns
+  double tol = 1e-8;  ///< relative residual, see the file comment
+  int maxit = 300;
+  Progress progress;
+};
+
+struct LobpcgResult {
+  Eigen::VectorXd mu;         ///< Ritz values, descending (all block columns)
+  RowBlock X;                 ///< A-orthonormal Ritz vectors (n x b)
+  Eigen::VectorXd residuals;  ///< relative residuals of the columns
+  bool converged = false;     ///< the first nev columns reached tol
+  int iterations = 0;
+  long preconditioned = 0;    ///< columns passed through the preconditioner
+};
+
+using BlockOperator = std::function<void(const RowBlock& in, RowBlock& out)>;
+
+/// X0: start block (n x b, b ≥ nev, linearly independent). `precondition(R, W)`
+/// returns W ≈ A⁻¹ R.
+LobpcgResult lobpcg_largest(const SparseMatrix& A, const SparseMatrix& M, const BlockOperator& precondition,
+                            const RowBlock& X0, const LobpcgOptions& options);
+
+}  // namespace ssid::estimator::multilevel

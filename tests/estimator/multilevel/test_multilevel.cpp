@@ -1,0 +1,264 @@
+// The multilevel eigen-solver: its kernels against Eigen's products, the
+// aggregation preconditioner (symmetric, positive, and a strong one: conjugate
+// gradients converge in a few steps), LOBPCG against a dense solve, and the whole
+// method against the direct (CHOLMOD + Lanczos) solver on an irregular 3D frame
+// assembled from a deck.
+#include <Eigen/Dense>
+#include <catch2/catch.hpp>
+#include <cmath>
+#include <random>
+#include <sstream>
+
+#include "estimator/eigen_solver.hpp"
+#include "estimator/multilevel/aggregation_amg.hpp"
+#include "estimator/multilevel/block_ops.hpp"
+#include "estimator/multilevel/lobpcg.hpp"
+#include "formats/bulk_model.hpp"
+#include "formats/deck.hpp"
+#include "translators/assembly/fe_model.hpp"
+#include "translators/weight.hpp"
+#include "../eigen_test_models.hpp"
+
+using namespace ssid;
+using namespace ssid::estimator;
+using multilevel::RowBlock;
+
+namespace {
+
+/// A free 3D frame of nx x ny x nz grids about 1 m apart, positions jittered by up
+/// to ±0.15 m, every lattice edge a CBAR (two sections alternating), lumped mass
+/// (massless rotations), one CONM2 of 40 kg on a corner: irregular, no symmetry.
+std::string frame_deck(int nx, int ny, int nz) {
+  std::ostringstream s;
+  s << "SOL 103\nCEND\nBEGIN BULK\n";
+  std::mt19937 rng(3);
+  std::uniform_real_distribution<double> j(-0.15, 0.15);
+  auto id = [&](int i, int k, int l) { return 1 + i + nx * (k + ny * l); };
+  for (int l = 0; l < nz; ++l)
+    for (int k = 0; k < ny; ++k)
+      for (int i = 0; i < nx; ++i)
+        s << "GRID," << id(i, k, l) << ",," << i + j(rng) << "," << k + j(rng) << "," << l + j(rng) << "\n";
+  int eid = 1;
+  for (int l = 0; l < nz; ++l)
+    for (int k = 0; k < ny; ++k)
+      for (int i = 0; i < nx; ++i)
+        for (int d = 0; d < 3; ++d) {
+          const int i2 = i + (d == 0), k2 = k + (d == 1), l2 = l + (d == 2);
+          if (i2 >= nx || k2 >= ny || l2 >= nz) continue;
+          s << "CBAR," << eid << "," << 1 + eid % 2 << "," << id(i, k, l) << "," << id(i2, k2, l2)
+            << (d == 0 ? ",0.,1.,0.\n" : ",1.,0.,0.\n");
+          ++eid;
+        }
+  s << "PBAR,1,1,1.e-3,1.e-6,2.e-6,2.e-6\nPBAR,2,1,2.e-3,3.e-6,1.e-6,3.e-6\n";
+  s << "MAT1,1,2.1e11,8.1e10,,7850.\n";
+  s << "CONM2,900001," << id(nx - 1, ny - 1, nz - 1) << ",,40.\n";
+  s << "ENDDATA\n";
+  return s.str();
+}
+
+struct Frame {
+  translators::FeOperators op;
+  std::vector<long> groups;
+  Eigen::MatrixXd rigid;  // a-set rigid-body modes
+};
+
+Frame frame(int nx, int ny, int nz) {
+  const formats::Deck deck = formats::read_deck_text(frame_deck(nx, ny, nz), "frame.bdf");
+  formats::BulkModel bulk = formats::parse_bulk(deck);
+  formats::resolve(deck, bulk);
+  REQUIRE(bulk.problems.empty());
+  const translators::FeModel model(deck, std::move(bulk));
+  Frame f;
+  f.op = model.operators(model.initial_parameters(), false);
+  const auto& a_to_g = model.reduction().a_to_g;
+  REQUIRE(static_cast<long>(a_to_g.size()) == f.op.K.rows());
+  const translators::DofMap& g = model.geometry().gset();
+  std::unordered_map<std::int64_t, Eigen::Vector3d> pos;
+  for (const auto& p : model.geometry().grids()) pos[p.id] = p.x;
+  const Eigen::MatrixXd rigid_g = translators::rigid_body_modes(g, pos, Eigen::Vector3d::Zero());
+  f.rigid.resize(f.op.K.rows(), 6);
+  for (size_t i = 0; i < a_to_g.size(); ++i) {
+    f.groups.push_back(static_cast<long>(g.at(a_to_g[i]).point));
+    f.rigid.row(static_cast<Eigen::Index>(i)) = rigid_g.row(static_cast<Eigen::Index>(a_to_g[i]));
+  }
+  return f;
+}
+
+Eigen::MatrixXd dense(const RowBlock& X) { return Eigen::MatrixXd(X); }
+
+}  // namespace
+
+TEST_CASE("multilevel block kernels agree with Eigen's products", "[multilevel]") {
+  const auto [K, M] = test::random_pencil(60, 11);
+  const Eigen::SparseMatrix<double, Eigen::RowMajor> R = Eigen::MatrixXd::Random(40, 60).sparseView(0.5, 1.0);
+  const Eigen::SparseMatrix<double> Rc = Eigen::MatrixXd::Random(60, 25).sparseView(0.5, 1.0);
+  const RowBlock X = Eigen::MatrixXd::Random(60, 7), Y = Eigen::MatrixXd::Random(60, 5);
+  RowBlock Z;
+  multilevel::sym_times(K, X, Z);
+  CHECK((dense(Z) - K * dense(X)).norm() <= 1e-13 * (K * dense(X)).norm());
+  multilevel::times(R, X, Z);
+  CHECK((dense(Z) - R * dense(X)).norm() <= 1e-13 * (R * dense(X)).norm());
+  multilevel::transpose_times(Rc, X, Z);
+  CHECK((dense(Z) - Rc.transpose() * dense(X)).norm() <= 1e-13 * (Rc.transpose() * dense(X)).norm());
+  const Eigen::MatrixXd G = multilevel::gram(X, Y);
+  CHECK((G - dense(X).transpose() * dense(Y)).norm() <= 1e-13 * G.norm());
+  const Eigen::MatrixXd C = Eigen::MatrixXd::Random(7, 3);
+  CHECK((dense(multilevel::times_dense(X, C)) - dense(X) * C).norm() <= 1e-13 * (dense(X) * C).norm());
+}
+
+TEST_CASE("aggregation preconditioner: symmetric, positive definite, and conjugate gradients converge fast",
+          "[multilevel]") {
+  const Frame f = frame(9, 8, 7);
+  const double sigma = automatic_shift(f.op.K, f.op.M);
+  Eigen::SparseMatrix<double> A = f.op.K - sigma * f.op.M;
+  A.makeCompressed();
+  const multilevel::AggregationAmg amg(A, f.groups, f.rigid);
+  const long n = A.rows();
+  INFO("n " << n << ", aggregates " << amg.aggregates() << ", coarse " << amg.coarse_size());
+  CHECK(amg.coarse_size() < n / 4);
+  CHECK(amg.coarse_size() == 6 * amg.aggregates());  // six rigid-body modes on every aggregate
+
+  RowBlock XY = Eigen::MatrixXd::Random(n, 2), T;
+  amg.apply(XY, T);
+  const double xty = XY.col(0).dot(T.col(1)), ytx = XY.col(1).dot(T.col(0));
+  CHECK(std::abs(xty - ytx) <= 1e-10 * std::sqrt(XY.col(0).dot(T.col(0)) * XY.col(1).dot(T.col(1))));
+  CHECK(XY.col(0).dot(T.col(0)) > 0.0);
+  CHECK(XY.col(1).dot(T.col(1)) > 0.0);
+
+  // Preconditioned conjugate gradients on A x = b, against plain CG.
+  auto cg = [&](bool precondition) {
+    const Eigen::VectorXd b = Eigen::VectorXd::Random(n);
+    Eigen::VectorXd x = Eigen::VectorXd::Zero(n), r = b, z, p, Ap;
+    auto prec = [&](const Eigen::VectorXd& v) {
+      if (!precondition) return v;
+      RowBlock in = v, out;
+      amg.apply(in, out);
+      return Eigen::VectorXd(out.col(0));
+    };
+    z = prec(r);
+    p = z;
+    double rz = r.dot(z);
+    for (int it = 1; it <= 2000; ++it) {
+      Ap = A * p;
+      const double alpha = rz / p.dot(Ap);
+      x += alpha * p;
+      r -= alpha * Ap;
+      if (r.norm() <= 1e-8 * b.norm()) return it;
+      z = prec(r);
+      const double rz2 = r.dot(z);
+      p = z + (rz2 / rz) * p;
+      rz = rz2;
+    }
+    return 2001;
+  };
+  const int with = cg(true), without = cg(false);
+  INFO("CG iterations: " << with << " preconditioned, " << without << " plain");
+  CHECK(with <= 25);
+  CHECK(without > 10 * with);
+}
+
+TEST_CASE("LOBPCG finds the largest eigenvalues of a pencil, against a dense solve", "[multilevel]") {
+  const auto [K, M] = test::random_pencil(120, 5);
+  const Eigen::MatrixXd Kd(K), Md(M);
+  // Largest μ of M x = μ K x: the dense solve of K x = λ M x, μ = 1/λ.
+  Eigen::GeneralizedSelfAdjointEigenSolver<Eigen::MatrixXd> ges(Kd, Md);
+  const Eigen::LLT<Eigen::MatrixXd> inverse(Kd);
+  const multilevel::BlockOperator exact = [&](const RowBlock& R, RowBlock& W) {
+    W = inverse.solve(Eigen::MatrixXd(R));
+  };
+  // An inexact one: the inverse of K with its diagonal raised by half (spectrally
+  // equivalent to K⁻¹, as a multigrid cycle is).
+  const Eigen::MatrixXd Kp = Kd + 0.5 * Eigen::MatrixXd(Kd.diagonal().asDiagonal());
+  const Eigen::LLT<Eigen::MatrixXd> rough(Kp);
+  const multilevel::BlockOperator jacobi = [&](const RowBlock& R, RowBlock& W) { W = rough.solve(Eigen::MatrixXd(R)); };
+  std::mt19937 rng(9);
+  std::uniform_real_distribution<double> u(-1.0, 1.0);
+  RowBlock X0(120, 9);
+  for (Eigen::Index i = 0; i < X0.size(); ++i) X0.data()[i] = u(rng);
+  for (const auto* T : {&exact, &jacobi}) {
+    multilevel::LobpcgOptions o;
+    o.nev = 5;
+    o.tol = 1e-9;
+    o.maxit = 1000;
+    const multilevel::LobpcgResult r = multilevel::lobpcg_largest(K, M, *T, X0, o);
+    INFO((T == &exact ? "exact" : "inexact") << " preconditioner, iterations " << r.iterations);
+    REQUIRE(r.converged);
+    for (int j = 0; j < o.nev; ++j) {
+      INFO("relative difference " << (1.0 / r.mu(j) - ges.eigenvalues()(j)) / ges.eigenvalues()(j) << ", residual " << r.residuals(j));
+      CHECK(1.0 / r.mu(j) == Approx(ges.eigenvalues()(j)).epsilon(1e-10));
+    }
+    // A-orthonormal vectors.
+    const Eigen::MatrixXd X = dense(r.X);
+    CHECK((X.transpose() * Kd * X - Eigen::MatrixXd::Identity(9, 9)).norm() <= 1e-10);
+  }
+}
+
+TEST_CASE("multilevel eigen-solver agrees with the direct solver on an irregular free 3D frame", "[multilevel]") {
+  const Frame f = frame(9, 8, 7);
+  EigenOptions o;
+  o.nd = 24;
+  o.dof_groups = f.groups;
+  const EigenResult direct = solve_modes(f.op.K, f.op.M, o);
+  REQUIRE(direct.ok());
+  o.method = EigenMethod::Multilevel;
+  o.near_null_space = f.rigid;
+  const EigenResult ml = solve_modes(f.op.K, f.op.M, o);
+  INFO(ml.message << "; iterations " << ml.iterations << ", coarse " << ml.coarse_size);
+  REQUIRE(ml.ok());
+  CHECK(ml.method == "Multilevel");
+  REQUIRE(ml.size() == 24);
+  const double top = direct.eigenvalues(23);
+  int rigid = 0;
+  for (int j = 0; j < 24; ++j) {
+    if (std::abs(direct.eigenvalues(j)) < 1e-6 * top) {
+      ++rigid;
+      CHECK(std::abs(ml.eigenvalues(j)) < 1e-8 * top);
+    } else {
+      CHECK(ml.eigenvalues(j) == Approx(direct.eigenvalues(j)).epsilon(1e-10));
+      CHECK(ml.residuals(j) < 1e-5);
+      // Same shape (MAC with the direct mode), the frame has no repeated frequencies.
+      const double mac = std::pow(ml.modes.col(j).dot(f.op.M * direct.modes.col(j)), 2);
+      CHECK(mac > 1.0 - 1e-9);
+    }
+  }
+  CHECK(rigid == 6);
+  CHECK(ml.orthogonality < 1e-10);
+  CHECK(ml.backward_errors.maxCoeff() < 1e-8);
+}
+
+TEST_CASE("Auto falls back to the multilevel method when the factor would not fit", "[multilevel]") {
+  const Frame f = frame(6, 5, 5);
+  EigenOptions o;
+  o.nd = 12;
+  o.dof_groups = f.groups;
+  o.max_factor_bytes = 1000.0;  // any factor is too large
+  const EigenResult refused = solve_modes(f.op.K, f.op.M, o);
+  CHECK(refused.status == EigenResult::Status::FactorFailed);
+  o.near_null_space = f.rigid;
+  const EigenResult r = solve_modes(f.op.K, f.op.M, o);
+  REQUIRE(r.ok());
+  CHECK(r.method == "Multilevel");
+  REQUIRE(r.warnings.size() == 1);
+  CHECK(r.warnings[0].find("multilevel") != std::string::npos);
+  o.max_factor_bytes = 0.0;
+  o.near_null_space.resize(0, 0);
+  const EigenResult direct = solve_modes(f.op.K, f.op.M, o);
+  for (int j = 6; j < 12; ++j) CHECK(r.eigenvalues(j) == Approx(direct.eigenvalues(j)).epsilon(1e-10));
+}
+
+TEST_CASE("multilevel method: clear refusals", "[multilevel]") {
+  const Frame f = frame(4, 4, 3);
+  EigenOptions o;
+  o.nd = 6;
+  o.method = EigenMethod::Multilevel;
+  o.dof_groups = f.groups;
+  CHECK_THROWS_WITH(solve_modes(f.op.K, f.op.M, o), Catch::Contains("near_null_space"));
+  o.near_null_space = f.rigid;
+  o.nd = 0;
+  o.f_high = 100.0;
+  CHECK_THROWS_WITH(solve_modes(f.op.K, f.op.M, o), Catch::Contains("ND"));
+  o.nd = 6;
+  o.f_high = std::numeric_limits<double>::quiet_NaN();
+  o.near_null_space = f.rigid.topRows(10);
+  CHECK_THROWS_WITH(solve_modes(f.op.K, f.op.M, o), Catch::Contains("near_null_space has 10 rows"));
+}
