@@ -320,7 +320,10 @@ int main(int argc, char** argv) {
   o.multilevel = ml;
   if (method == EigenMethod::Multilevel || method == EigenMethod::Auto) o.near_null_space = rigid_body_modes(m);
   if (method == EigenMethod::Multilevel) {
-    o.progress = [](const std::string& msg, double) { std::fprintf(stderr, "  %s\n", msg.c_str()); };
+    const double t_start = now_s();
+    o.progress = [t_start](const std::string& msg, double) {
+      std::fprintf(stderr, "  %7.1f s  %s\n", now_s() - t_start, msg.c_str());
+    };
     EigenResult r;
     const auto tsolve = timed([&] { r = EigenSolver(o).solve(m.K, m.M); });
     std::printf("method Multilevel: %s; coarse %ld DOF, LOBPCG iterations %ld, preconditioned columns %ld\n",

@@ -30,6 +30,10 @@ int cmd_modes(const Args& args) {
       "seed", po::value<std::uint64_t>()->default_value(1), "--uff: noise seed (same seed, same file)")(
       "weight", po::value<std::int64_t>()->implicit_value(0),
       "print the grid point weight generator output about this grid (0: the origin; default: PARAM GRDPNT)")(
+      "method", po::value<std::string>()->default_value("auto"),
+      "eigen-solver: auto (Lanczos over a Cholesky factor; multilevel when the factor would not fit in memory), "
+      "lanczos, block-lanczos, or multilevel (LOBPCG with an aggregation multigrid preconditioner: no factor, "
+      "for the largest models; lowest N modes only)")(
       "uff-precision", po::value<std::string>()->default_value("extended"),
       "--uff: extended (1P E25.16, exact round trip) or standard (E13.5 as test-lab software writes)");
   po::positional_options_description pos;
@@ -37,7 +41,7 @@ int cmd_modes(const Args& args) {
   po::variables_map vm;
   int rc = 0;
   if (!parse_options(args,
-                     "ssid modes DECK [--nmodes N] [--json FILE] [--weight [GRID]] [--uff OUT.unv [--sensors GRIDS|--sensor-file F] "
+                     "ssid modes DECK [--nmodes N] [--method M] [--json FILE] [--weight [GRID]] [--uff OUT.unv [--sensors GRIDS|--sensor-file F] "
                      "[--noise-freq PCT --noise-shape PCT --seed N]]",
                      desc, pos, vm, rc))
     return rc;
@@ -65,7 +69,15 @@ int cmd_modes(const Args& args) {
   std::string source;
   std::optional<int> nmodes;
   if (vm.count("nmodes")) nmodes = vm["nmodes"].as<int>();
-  const estimator::EigenOptions eo = eigen_options(model, nmodes, n, source);
+  estimator::EigenOptions eo = eigen_options(model, nmodes, n, source);
+  const std::string method = vm["method"].as<std::string>();
+  if (method == "lanczos") eo.method = estimator::EigenMethod::Spectra;
+  else if (method == "block-lanczos") eo.method = estimator::EigenMethod::BlockLanczos;
+  else if (method == "multilevel") eo.method = estimator::EigenMethod::Multilevel;
+  else if (method != "auto") {
+    print_error("--method: expected auto, lanczos, block-lanczos or multilevel, got \"" + method + "\"");
+    return 2;
+  }
   const estimator::EigenResult r = solve_model(op, eo, a_set_dofs(model));
   for (const auto& w : r.warnings) std::cerr << "warning: " << w << "\n";
 

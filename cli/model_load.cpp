@@ -1,6 +1,8 @@
 /// \file model_load.cpp
 #include "cli/model_load.hpp"
 
+#include "translators/assembly/rigid_modes.hpp"
+
 #include <algorithm>
 #include <cctype>
 #include <cmath>
@@ -83,8 +85,9 @@ void print_model_notes(const LoadedModel& m) {
               << " DOF(s) without stiffness (ssid assemble lists them in its manifest)\n";
 }
 
-estimator::EigenOptions eigen_options(const translators::FeModel& model, std::optional<int> nmodes, long n,
-                                      std::string& source, int default_nd) {
+namespace {
+estimator::EigenOptions requested_modes(const translators::FeModel& model, std::optional<int> nmodes, long n,
+                                        std::string& source, int default_nd) {
   const double nan = std::numeric_limits<double>::quiet_NaN();
   auto norm_of = [](const std::string& s) {
     return s == "MAX" ? estimator::ModeNormalization::Max : estimator::ModeNormalization::Mass;
@@ -110,6 +113,16 @@ estimator::EigenOptions eigen_options(const translators::FeModel& model, std::op
   }
   source = "no EIGRL/EIGR: lowest " + std::to_string(default_nd);
   return estimator::eigrl_options(nan, nan, default_nd);
+}
+}  // namespace
+
+estimator::EigenOptions eigen_options(const translators::FeModel& model, std::optional<int> nmodes, long n,
+                                      std::string& source, int default_nd) {
+  estimator::EigenOptions o = requested_modes(model, nmodes, n, source, default_nd);
+  // The rigid-body modes let the solver fall back to the multilevel method when the
+  // factor of K − σM would not fit in memory (EigenMethod::Auto), or use it on request.
+  if (n > estimator::kDenseEigenLimit) o.near_null_space = translators::a_set_rigid_body_modes(model);
+  return o;
 }
 
 std::vector<translators::Dof> a_set_dofs(const translators::FeModel& model) {
@@ -166,7 +179,8 @@ estimator::EigenResult solve_model(const translators::FeOperators& op, const est
     for (const auto& d : dofs) grouped.dof_groups.push_back(d.point);
   }
   estimator::EigenResult r = estimator::solve_modes(op.K, op.M, grouped);
-  if (r.ok() && worst(r) > 1e-8 && options.method != estimator::EigenMethod::BlockLanczos) {
+  // (Not after the multilevel method: it runs where a factor would not fit.)
+  if (r.ok() && worst(r) > 1e-8 && options.method != estimator::EigenMethod::BlockLanczos && r.method != "Multilevel") {
     estimator::EigenOptions o = grouped;
     o.method = estimator::EigenMethod::BlockLanczos;
     estimator::EigenResult b = estimator::solve_modes(op.K, op.M, o);

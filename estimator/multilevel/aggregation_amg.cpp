@@ -122,6 +122,9 @@ AggregationAmg::AggregationAmg(const SparseMatrix& A, const std::vector<long>& g
                                 " near-null space for " + std::to_string(n) + " DOFs");
   if (options.aggregate_radius < 1 || options.smoother_degree < 1 || !(options.smoother_ratio > 1.0))
     throw std::invalid_argument("AggregationAmg: radius and degree must be >= 1 and the ratio > 1");
+  using Clock = std::chrono::steady_clock;
+  auto since = [](Clock::time_point t) { return std::chrono::duration<double>(Clock::now() - t).count(); };
+  auto t = Clock::now();
   const GroupIndex g = index_groups(groups);
   const long ng = g.count();
   m_start = g.start;
@@ -207,6 +210,8 @@ AggregationAmg::AggregationAmg(const SparseMatrix& A, const std::vector<long>& g
   SparseMatrix P0(n, nc);
   P0.setFromTriplets(tp.begin(), tp.end());
   std::vector<Eigen::Triplet<double>>().swap(tp);
+  m_times.aggregation = since(t);
+  t = Clock::now();
 
   if (options.smooth_prolongator) {
     // D⁻¹ as a sparse block-diagonal matrix, then P = P0 − ω D⁻¹ (A P0).
@@ -231,13 +236,17 @@ AggregationAmg::AggregationAmg(const SparseMatrix& A, const std::vector<long>& g
   m_Prow = m_P;
   m_Prow.makeCompressed();
 
+  m_times.smoothing = since(t);
+
   // Coarse matrix and its factor.
+  t = Clock::now();
   const SparseMatrix AP = A * m_P;
   const SparseMatrix Ac = SparseMatrix(m_P.transpose()) * AP;
+  m_times.coarse_matrix = since(t);
   m_coarse.set_dof_groups(coarse_group);
-  const auto t0 = std::chrono::steady_clock::now();
+  t = Clock::now();
   const FactorStatus fs = m_coarse.factorize(SparseMatrix(Ac.triangularView<Eigen::Lower>()));
-  m_coarse_factor_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+  m_times.coarse_factor = since(t);
   if (!fs.ok() && fs.code != FactorStatus::Code::NearSingular)
     throw std::runtime_error("AggregationAmg: the coarse matrix (" + std::to_string(nc) +
                              " DOFs) cannot be factorised: " + fs.message);
@@ -248,21 +257,22 @@ void AggregationAmg::block_jacobi(const RowBlock& R, RowBlock& Z) const {
   Z.resize(R.rows(), b);
   const double* r = R.data();
   double* z = Z.data();
-#pragma omp parallel for schedule(static)
-  for (long a = 0; a < ng; ++a) {
-    const long s = m_start[static_cast<size_t>(a)], k = m_start[static_cast<size_t>(a) + 1] - s;
-    const double* d = m_dinv.data() + m_dinv_start[static_cast<size_t>(a)];
-    for (long i = 0; i < k; ++i) {
-      double* zi = z + m_dofs[static_cast<size_t>(s + i)] * b;
-      for (long c = 0; c < b; ++c) zi[c] = 0.0;
-      for (long j = 0; j < k; ++j) {
-        const double dij = d[i * k + j];
-        const double* rj = r + m_dofs[static_cast<size_t>(s + j)] * b;
-#pragma omp simd
-        for (long c = 0; c < b; ++c) zi[c] += dij * rj[c];
+  parallel_for(ng, [&](long begin, long end) {
+    for (long a = begin; a < end; ++a) {
+      const long s = m_start[static_cast<size_t>(a)], k = m_start[static_cast<size_t>(a) + 1] - s;
+      const double* d = m_dinv.data() + m_dinv_start[static_cast<size_t>(a)];
+      for (long i = 0; i < k; ++i) {
+        double* __restrict zi = z + m_dofs[static_cast<size_t>(s + i)] * b;  // Z and R never overlap
+        for (long c = 0; c < b; ++c) zi[c] = 0.0;
+        for (long j = 0; j < k; ++j) {
+          const double dij = d[i * k + j];
+          const double* __restrict rj = r + m_dofs[static_cast<size_t>(s + j)] * b;
+#pragma GCC ivdep
+          for (long c = 0; c < b; ++c) zi[c] += dij * rj[c];
+        }
       }
     }
-  }
+  });
 }
 
 // Chebyshev iteration on A X = R preconditioned by D (Saad, Iterative Methods,
@@ -271,7 +281,7 @@ void AggregationAmg::chebyshev(const RowBlock& R, RowBlock& X, bool zero_start) 
   const double lmax = m_rho, lmin = m_rho / m_options.smoother_ratio;
   const double theta = 0.5 * (lmax + lmin), delta = 0.5 * (lmax - lmin), sigma = theta / delta;
   double rho = 1.0 / sigma;
-  RowBlock res, d, Ad;
+  RowBlock &res = m_ws.res, &d = m_ws.d, &Ad = m_ws.Ad, &z = m_ws.z;
   if (zero_start) {
     res = R;
     X.setZero(R.rows(), R.cols());
@@ -287,7 +297,6 @@ void AggregationAmg::chebyshev(const RowBlock& R, RowBlock& X, bool zero_start) 
     sym_times(m_A, d, Ad);
     res -= Ad;
     const double rho_next = 1.0 / (2.0 * sigma - rho);
-    RowBlock z;
     block_jacobi(res, z);
     d = (rho_next * rho) * d + (2.0 * rho_next / delta) * z;
     rho = rho_next;
@@ -296,16 +305,14 @@ void AggregationAmg::chebyshev(const RowBlock& R, RowBlock& X, bool zero_start) 
 
 void AggregationAmg::apply(const RowBlock& R, RowBlock& X) const {
   chebyshev(R, X, true);
-  RowBlock AX, E, Ec;
-  sym_times(m_A, X, AX);
-  E = R - AX;
+  RowBlock &Ad = m_ws.Ad, &E = m_ws.E, &Ec = m_ws.Ec, &Y = m_ws.Y, &PY = m_ws.PY;
+  sym_times(m_A, X, Ad);
+  E = R - Ad;
   transpose_times(m_P, E, Ec);  // Pᵀ E, coarse x b
-  // CHOLMOD solves column-major blocks: Ecᵀ viewed as such is b x nc, so copy.
-  const Eigen::MatrixXd Bc = Ec;  // column-major nc x b
-  const Eigen::MatrixXd Yc = m_coarse.solve(Bc);
-  const RowBlock Y = Yc;
-  RowBlock PY;
-  times(m_Prow, Y, PY);
+  // CHOLMOD solves column-major blocks: the coarse block (small) is copied.
+  const Eigen::MatrixXd Yc = m_coarse.solve(Eigen::MatrixXd(Ec));
+  Y = Yc;
+  multilevel::times(m_Prow, Y, PY);
   X += PY;
   chebyshev(R, X, false);
 }

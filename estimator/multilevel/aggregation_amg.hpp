@@ -45,14 +45,23 @@ class AggregationAmg {
   AggregationAmg(const SparseMatrix& A, const std::vector<long>& groups, const Eigen::MatrixXd& B,
                  const AmgOptions& options = {});
 
-  /// X ≈ A⁻¹ R, one symmetric two-level cycle.
+  /// X ≈ A⁻¹ R, one symmetric two-level cycle. Not thread-safe: the cycle's
+  /// blocks are kept between calls (a fresh n x b block costs its page faults).
   void apply(const RowBlock& R, RowBlock& X) const;
 
   const SparseMatrix& prolongator() const { return m_P; }  ///< n x coarse, column-major
   long coarse_size() const { return m_P.cols(); }
   long aggregates() const { return m_aggregates; }
   double spectral_radius() const { return m_rho; }  ///< estimate of ρ(D⁻¹A) used by the smoothers
-  double coarse_factor_seconds() const { return m_coarse_factor_s; }
+  /// The factor of Aᶜ = Pᵀ A P (also the shift-invert operator of the coarse model
+  /// when A = K − σM: Pᵀ K P − σ Pᵀ M P).
+  const CholmodFactor& coarse_factor() const { return m_coarse; }
+  /// Wall seconds of the setup's parts: aggregation and the tentative prolongator,
+  /// its smoothing, the coarse matrix product, the coarse factorisation.
+  struct Times {
+    double aggregation = 0, smoothing = 0, coarse_matrix = 0, coarse_factor = 0;
+  };
+  const Times& times() const { return m_times; }
 
  private:
   void block_jacobi(const RowBlock& R, RowBlock& Z) const;
@@ -69,7 +78,11 @@ class AggregationAmg {
   SparseMatrix m_P;
   SparseRowMatrix m_Prow;
   CholmodFactor m_coarse;
-  double m_coarse_factor_s = 0.0;
+  Times m_times;
+  struct Workspace {
+    RowBlock res, d, Ad, z, E, Ec, Y, PY;
+  };
+  mutable Workspace m_ws;
 };
 
 }  // namespace ssid::estimator::multilevel

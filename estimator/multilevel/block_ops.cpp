@@ -2,9 +2,28 @@
 
 #include "estimator/dense_blas.hpp"
 
+#include <algorithm>
 #include <stdexcept>
+#include <thread>
+#include <vector>
 
 namespace ssid::estimator::multilevel {
+
+void parallel_for(long n, const std::function<void(long, long)>& body, long serial_below) {
+  const long threads = std::min<long>(std::max(1u, std::thread::hardware_concurrency()), 64);
+  if (n < serial_below || threads == 1) {
+    body(0, n);
+    return;
+  }
+  std::vector<std::thread> pool;
+  const long chunk = (n + threads - 1) / threads;
+  for (long t = 1; t < threads; ++t) {
+    const long b = t * chunk, e = std::min(n, b + chunk);
+    if (b < e) pool.emplace_back(body, b, e);
+  }
+  body(0, std::min(n, chunk));
+  for (auto& th : pool) th.join();
+}
 
 namespace {
 
@@ -18,17 +37,18 @@ void outer_rows_times(const Sparse& A, const RowBlock& X, RowBlock& Y) {
   const double* val = A.valuePtr();
   const double* x = X.data();
   double* y = Y.data();
-#pragma omp parallel for schedule(static)
-  for (long i = 0; i < rows; ++i) {
-    double* yi = y + i * b;
-    for (long c = 0; c < b; ++c) yi[c] = 0.0;
-    for (auto p = outer[i]; p < outer[i + 1]; ++p) {
-      const double a = val[p];
-      const double* xj = x + static_cast<long>(inner[p]) * b;
-#pragma omp simd
-      for (long c = 0; c < b; ++c) yi[c] += a * xj[c];
+  parallel_for(rows, [=](long begin, long end) {
+    for (long i = begin; i < end; ++i) {
+      double* __restrict yi = y + i * b;  // Y and X never overlap
+      for (long c = 0; c < b; ++c) yi[c] = 0.0;
+      for (auto p = outer[i]; p < outer[i + 1]; ++p) {
+        const double a = val[p];
+        const double* __restrict xj = x + static_cast<long>(inner[p]) * b;
+#pragma GCC ivdep
+        for (long c = 0; c < b; ++c) yi[c] += a * xj[c];
+      }
     }
-  }
+  });
 }
 
 Eigen::Map<const Eigen::MatrixXd> as_columns(const RowBlock& X) {
@@ -54,12 +74,24 @@ void transpose_times(const SparseMatrix& A, const RowBlock& X, RowBlock& Y) {
   outer_rows_times(A, X, Y);  // column j of A is row j of Aᵀ
 }
 
-Eigen::MatrixXd gram(const RowBlock& X, const RowBlock& Y) {
+Eigen::MatrixXd gram(const RowBlock& X, const RowBlock& Y, long rows) {
   if (X.rows() != Y.rows()) throw std::invalid_argument("gram: blocks of different lengths");
+  const long m = rows < 0 ? static_cast<long>(X.rows()) : std::min<long>(rows, X.rows());
   Eigen::MatrixXd G(X.cols(), Y.cols());
-  if (X.rows() == 0) return G.setZero();
-  detail::gemm(false, true, 1.0, as_columns(X), as_columns(Y), 0.0, G);  // Xᵀ Y = (Xc)(Yc)ᵀ
+  if (m == 0 || X.cols() == 0 || Y.cols() == 0) return G.setZero();
+  // Xᵀ Y = (Xc)(Yc)ᵀ; the first m rows of a row-major block are its first m·b values.
+  detail::gemm(false, true, 1.0, Eigen::Map<const Eigen::MatrixXd>(X.data(), X.cols(), m),
+               Eigen::Map<const Eigen::MatrixXd>(Y.data(), Y.cols(), m), 0.0, G);
   return G;
+}
+
+void times_dense_into(const RowBlock& X, const Eigen::Ref<const Eigen::MatrixXd>& C, double beta, RowBlock& Y) {
+  if (X.cols() != C.rows()) throw std::invalid_argument("times_dense_into: shapes do not agree");
+  if (beta == 0.0) Y.resize(X.rows(), C.cols());
+  else if (Y.rows() != X.rows() || Y.cols() != C.cols()) throw std::invalid_argument("times_dense_into: Y's shape");
+  if (Y.size() == 0) return;
+  Eigen::Map<Eigen::MatrixXd> Yc(Y.data(), Y.cols(), Y.rows());
+  detail::gemm(true, false, 1.0, C, as_columns(X), beta, Yc);  // (X C)ᵀ = Cᵀ Xᵀ
 }
 
 RowBlock times_dense(const RowBlock& X, const Eigen::Ref<const Eigen::MatrixXd>& C) {

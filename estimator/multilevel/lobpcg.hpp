@@ -25,6 +25,10 @@ struct LobpcgOptions {
   int nev = 1;        ///< wanted eigenpairs (the largest μ); the block has X0.cols() ≥ nev columns
   double tol = 1e-8;  ///< relative residual, see the file comment
   int maxit = 300;
+  /// M's rows (and so every M X) are zero from this row on: its Gram matrices are
+  /// taken over the rows before (a model ordered with its massless DOFs last, as
+  /// the multilevel solver orders it, halves their cost). Negative: all rows.
+  long mass_rows = -1;
   Progress progress;
 };
 

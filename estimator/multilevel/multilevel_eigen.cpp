@@ -1,5 +1,6 @@
 #include "estimator/multilevel/multilevel_eigen.hpp"
 
+#include "estimator/block_lanczos.hpp"
 #include "estimator/eigen_solver.hpp"
 #include "estimator/multilevel/lobpcg.hpp"
 
@@ -14,11 +15,37 @@ using Clock = std::chrono::steady_clock;
 double seconds_since(Clock::time_point t) { return std::chrono::duration<double>(Clock::now() - t).count(); }
 }  // namespace
 
-MultilevelRun multilevel_lowest(const SparseMatrix& K, const SparseMatrix& M, double sigma, int nev,
-                                const std::vector<long>& groups, const Eigen::MatrixXd& B,
+MultilevelRun multilevel_lowest(const SparseMatrix& K_in, const SparseMatrix& M_in, double sigma, int nev,
+                                const std::vector<long>& groups_in, const Eigen::MatrixXd& B_in,
                                 const MultilevelOptions& o, const Progress& progress) {
   MultilevelRun run;
-  const long n = K.rows();
+  const long n = K_in.rows();
+  if (static_cast<long>(groups_in.size()) != n || B_in.rows() != n)
+    throw std::invalid_argument("multilevel eigen-solver: groups and near-null space must have one row per DOF");
+  // DOFs with mass first: every M X is then zero below row `mass_rows`, and the
+  // Gram matrices with M skip those rows (half the DOFs of a beam model are
+  // massless rotations). The results are permuted back at the end.
+  Eigen::PermutationMatrix<Eigen::Dynamic, Eigen::Dynamic, int> perm(n);
+  long mass_rows = 0;
+  {
+    std::vector<char> massive(static_cast<size_t>(n), 0);
+    for (Eigen::Index c = 0; c < M_in.outerSize(); ++c)
+      for (SparseMatrix::InnerIterator it(M_in, c); it; ++it)
+        if (it.value() != 0.0) massive[static_cast<size_t>(it.row())] = 1;
+    for (long i = 0; i < n; ++i)
+      if (massive[static_cast<size_t>(i)]) perm.indices()(i) = static_cast<int>(mass_rows++);
+    long next = mass_rows;
+    for (long i = 0; i < n; ++i)
+      if (!massive[static_cast<size_t>(i)]) perm.indices()(i) = static_cast<int>(next++);
+  }
+  const SparseMatrix K = perm * K_in * perm.transpose(), M = perm * M_in * perm.transpose();
+  std::vector<long> groups(static_cast<size_t>(n));
+  Eigen::MatrixXd B(n, B_in.cols());
+  for (long i = 0; i < n; ++i) {
+    groups[static_cast<size_t>(perm.indices()(i))] = groups_in[static_cast<size_t>(i)];
+    B.row(perm.indices()(i)) = B_in.row(i);
+  }
+
   if (nev < 1) throw std::invalid_argument("multilevel eigen-solver: ND must be at least 1");
   const int guard = o.guard > 0 ? o.guard : std::max(8, nev / 4);
   const long b = std::min<long>(nev + guard, n);
@@ -31,33 +58,47 @@ MultilevelRun multilevel_lowest(const SparseMatrix& K, const SparseMatrix& M, do
   run.coarse_size = amg.coarse_size();
   run.aggregates = amg.aggregates();
   run.setup_seconds = seconds_since(t);
+  const auto& at = amg.times();
+  report(progress, "multilevel: preconditioner in " + std::to_string(run.setup_seconds) + " s (aggregation " +
+                       std::to_string(at.aggregation) + ", smoothing " + std::to_string(at.smoothing) +
+                       ", coarse matrix " + std::to_string(at.coarse_matrix) + ", coarse factor " +
+                       std::to_string(at.coarse_factor) + ")", 0.1);
 
   // Start block: the coarse model's lowest b modes, interpolated.
   t = Clock::now();
   report(progress, "multilevel: coarse modes (" + std::to_string(run.coarse_size) + " DOFs)", 0.1);
   const SparseMatrix& P = amg.prolongator();
-  const SparseMatrix Pt = P.transpose();
-  const SparseMatrix Kc = Pt * (K * P), Mc = Pt * (M * P);
-  EigenOptions co;
-  co.nd = static_cast<int>(std::min<long>(b, run.coarse_size - 1));
-  co.shift = sigma;
-  co.method = EigenMethod::Spectra;
-  co.sturm_check = false;
-  const EigenResult coarse = solve_modes(Kc, Mc, co);
-  if (!coarse.ok() || coarse.size() < nev) {
-    run.message = "the coarse model's modes could not be computed (" + std::to_string(coarse.size()) + " of " +
-                  std::to_string(nev) + "): " + coarse.message;
+  // The coarse model (Pᵀ K P, Pᵀ M P) shifted by σ is the AMG's coarse matrix,
+  // already factorised: its lowest b modes come from block Lanczos on that factor.
+  const SparseMatrix Mc = SparseMatrix(P.transpose()) * (M * P);
+  const CholmodFactor& Fc = amg.coarse_factor();
+  BlockLanczosOptions bo;
+  bo.nev = static_cast<int>(std::min<long>(b, run.coarse_size - 1));
+  bo.tol = 1e-8;
+  const long nc = run.coarse_size;
+  const BlockLanczosResult coarse = block_lanczos(
+      [&Fc, nc](const Eigen::MatrixXd& X) {
+        Eigen::MatrixXd Y(nc, X.cols());
+        Fc.solve(X.data(), Y.data(), static_cast<long>(X.cols()));
+        return Y;
+      },
+      [&Mc](const Eigen::MatrixXd& X) { return Eigen::MatrixXd(Mc * X); }, nc, sigma, bo);
+  if (!coarse.converged || coarse.lambda.size() < nev) {
+    run.message = "the coarse model's modes could not be computed (" + std::to_string(coarse.lambda.size()) +
+                  " of " + std::to_string(nev) + ")";
     return run;
   }
-  RowBlock Yc = coarse.modes, X0;
+  RowBlock Yc = coarse.vectors, X0;
   times(SparseRowMatrix(P), Yc, X0);
   run.coarse_modes_seconds = seconds_since(t);
 
+  report(progress, "multilevel: coarse modes in " + std::to_string(run.coarse_modes_seconds) + " s", 0.15);
   t = Clock::now();
   LobpcgOptions lo;
   lo.nev = nev;
   lo.tol = o.tol;
   lo.maxit = o.maxit;
+  lo.mass_rows = mass_rows;
   lo.progress = progress;
   const LobpcgResult lr = lobpcg_largest(
       A, M, [&amg](const RowBlock& R, RowBlock& W) { amg.apply(R, W); }, X0, lo);
@@ -73,7 +114,7 @@ MultilevelRun multilevel_lowest(const SparseMatrix& K, const SparseMatrix& M, do
   run.vectors.resize(n, nev);
   for (int j = 0; j < nev; ++j) {
     run.lambda(j) = sigma + 1.0 / lr.mu(j);
-    run.vectors.col(j) = lr.X.col(j);
+    for (long i = 0; i < n; ++i) run.vectors(i, j) = lr.X(perm.indices()(i), j);
   }
   return run;
 }
