@@ -254,3 +254,37 @@ TEST_CASE("ssid modes honours EIGRL V1/V2 bands and EIGR", "[cli][modes]") {
   REQUIRE(e.code == 0);
   CHECK(nlohmann::json::parse(e.out)["modes"].size() == 5);
 }
+
+TEST_CASE("ssid modes --method multilevel: a free 3D frame gives the direct solver's frequencies", "[cli][modes]") {
+  // 6 x 5 x 4 grids 1 m apart, every lattice edge a CBAR: 720 DOFs, free-free.
+  std::ostringstream s;
+  s << "SOL 103\nCEND\nBEGIN BULK\n";
+  auto id = [](int i, int j, int k) { return 1 + i + 6 * (j + 5 * k); };
+  for (int k = 0; k < 4; ++k)
+    for (int j = 0; j < 5; ++j)
+      for (int i = 0; i < 6; ++i) s << "GRID," << id(i, j, k) << ",," << i << "." << "," << j << ".," << k << ".\n";
+  int eid = 1;
+  for (int k = 0; k < 4; ++k)
+    for (int j = 0; j < 5; ++j)
+      for (int i = 0; i < 6; ++i) {
+        if (i + 1 < 6) s << "CBAR," << eid++ << ",1," << id(i, j, k) << "," << id(i + 1, j, k) << ",0.,1.,0.\n";
+        if (j + 1 < 5) s << "CBAR," << eid++ << ",1," << id(i, j, k) << "," << id(i, j + 1, k) << ",1.,0.,0.\n";
+        if (k + 1 < 4) s << "CBAR," << eid++ << ",1," << id(i, j, k) << "," << id(i, j, k + 1) << ",1.,0.,0.\n";
+      }
+  s << "PBAR,1,2,1.0E-3,1.0E-6,2.0E-6,2.0E-6\nMAT1,2,2.1E11,8.1E10,,7850.\nENDDATA\n";
+  const fs::path deck = write(scratch() / "frame_ml.bdf", s.str());
+  const CliResult direct = run_ssid("modes " + deck.string() + " --nmodes 14 --json -");
+  const CliResult ml = run_ssid("modes " + deck.string() + " --nmodes 14 --method multilevel --json -");
+  REQUIRE(direct.code == 0);
+  INFO(ml.err);
+  REQUIRE(ml.code == 0);
+  const auto jd = nlohmann::json::parse(direct.out), jm = nlohmann::json::parse(ml.out);
+  REQUIRE(jm["modes"].size() == 14);
+  for (int i = 6; i < 14; ++i)
+    CHECK(jm["modes"][i]["cycles"].get<double>() == Approx(jd["modes"][i]["cycles"].get<double>()).epsilon(1e-9));
+  const CliResult text = run_ssid("modes " + deck.string() + " --nmodes 14 --method multilevel");
+  CHECK(text.out.find("Multilevel solver") != std::string::npos);
+  const CliResult bad = run_ssid("modes " + deck.string() + " --method cholesky");
+  CHECK(bad.code == 2);
+  CHECK(bad.err.find("--method") != std::string::npos);
+}

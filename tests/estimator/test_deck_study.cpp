@@ -2,6 +2,7 @@
 // perturbed parameters, its modes written as UFF 55 at the balls, the nominal
 // deck updated from them.
 #include <catch2/catch.hpp>
+#include <iomanip>
 #include <cstdio>
 #include <fstream>
 #include <set>
@@ -427,7 +428,10 @@ TEST_CASE("problem file: translate, read back identically, and estimate with the
   REQUIRE(re.update.converged);
   REQUIRE(rt.update.converged);
   for (Eigen::Index k = 0; k < re.update.r.size(); ++k) {
-    CHECK(rt.update.r(k) == Approx(re.update.r(k)).epsilon(1e-9));
+    INFO("k " << k << ": " << std::setprecision(17) << rt.update.r(k) << " vs " << re.update.r(k) << ", prior std " << file.parameters[static_cast<size_t>(k)].prior_std);
+    // Both updates stop at a relative step of 1e-8 (the study's tolerance): they agree
+    // to that, not beyond (1.7e-9 relative was seen with another CPU's BLAS kernels).
+    CHECK(rt.update.r(k) == Approx(re.update.r(k)).epsilon(1e-8));
     CHECK(rt.update.posterior_std(k) == Approx(re.update.posterior_std(k)).epsilon(1e-7));
   }
   // The study's "operators": "taylor" takes the same route from the deck.
