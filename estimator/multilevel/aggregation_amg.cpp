@@ -120,8 +120,9 @@ AggregationAmg::AggregationAmg(const SparseMatrix& A, const std::vector<long>& g
     throw std::invalid_argument("AggregationAmg: " + std::to_string(groups.size()) + " groups and a " +
                                 std::to_string(B.rows()) + " x " + std::to_string(B.cols()) +
                                 " near-null space for " + std::to_string(n) + " DOFs");
-  if (options.aggregate_radius < 1 || options.smoother_degree < 1 || !(options.smoother_ratio > 1.0))
-    throw std::invalid_argument("AggregationAmg: radius and degree must be >= 1 and the ratio > 1");
+  if (options.aggregate_radius < 0 || options.smoother_degree < 1 || !(options.smoother_ratio > 1.0))
+    throw std::invalid_argument("AggregationAmg: radius must be >= 0 (0: automatic), degree >= 1 and the ratio > 1");
+  if (m_options.aggregate_radius == 0) m_options.aggregate_radius = n <= 500000 ? 1 : 2;
   using Clock = std::chrono::steady_clock;
   auto since = [](Clock::time_point t) { return std::chrono::duration<double>(Clock::now() - t).count(); };
   auto t = Clock::now();
@@ -175,7 +176,7 @@ AggregationAmg::AggregationAmg(const SparseMatrix& A, const std::vector<long>& g
   // Aggregates and the tentative prolongator.
   std::vector<long> gstart, gadj;
   group_graph(A, g, gstart, gadj);
-  const std::vector<long> agg = aggregate(gstart, gadj, options.aggregate_radius, m_aggregates);
+  const std::vector<long> agg = aggregate(gstart, gadj, m_options.aggregate_radius, m_aggregates);
   std::vector<long> agg_start(static_cast<size_t>(m_aggregates) + 1, 0), agg_groups(static_cast<size_t>(ng));
   for (long a : agg) ++agg_start[static_cast<size_t>(a) + 1];
   std::partial_sum(agg_start.begin(), agg_start.end(), agg_start.begin());
