@@ -96,8 +96,10 @@ int main(int argc, char** argv) {
         estimator::EigenOptions o = eo;
         o.method = m;
         const auto q = estimator::solve_modes(ops.K, ops.M, o);
-        std::printf("%-12s %.3f s, status %d, max backward error %.2e, f1..f%d:", q.method.c_str(), q.total_seconds,
-                    static_cast<int>(q.status), q.backward_errors.size() ? q.backward_errors.maxCoeff() : -1.0, q.size());
+        std::printf("%-12s %.3f s (factor %.3f s, nnz(L)/n %.1f, flops/n %.3g), status %d, max backward error %.2e, f1..f%d:",
+                    q.method.c_str(), q.total_seconds, q.factor_seconds, q.factor_nnz / static_cast<double>(ops.K.rows()),
+                    q.factor_flops / static_cast<double>(ops.K.rows()), static_cast<int>(q.status),
+                    q.backward_errors.size() ? q.backward_errors.maxCoeff() : -1.0, q.size());
         for (int i = 0; i < q.size(); ++i) std::printf(" %.6g", std::sqrt(std::max(q.eigenvalues(i), 0.0)) / (2 * M_PI));
         std::printf("\n");
       }

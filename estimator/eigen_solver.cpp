@@ -403,7 +403,10 @@ EigenResult EigenSolver::solve(const SparseMatrix& K, const SparseMatrix& M) {
   if (has_high && res.sturm_count >= 0) nev = std::max<long>(nev, res.sturm_count + 1);
   if (has_high && o.nd > 0 && res.sturm_count >= 0) nev = std::max<long>(o.nd, std::min<long>(nev, res.sturm_count + 1));
 
-  const bool use_block = o.method == EigenMethod::BlockLanczos || (o.method == EigenMethod::Auto && n >= kAutoBlockLanczosDof);
+  const bool use_block =
+      o.method == EigenMethod::BlockLanczos ||
+      (o.method == EigenMethod::Auto &&
+       (n >= kAutoBlockLanczosDof || res.factor_nnz >= kAutoBlockLanczosFill * static_cast<double>(n)));
   res.method = use_block ? "BlockLanczos" : "Spectra";
   const auto tl = Clock::now();
   const long solves_before = m_factor.solve_count();

@@ -51,9 +51,15 @@ enum class ModeNormalization {
 /// single-vector iteration needs far fewer solves (8.5k-DOF truss beam model,
 /// 35 modes: 0.19 s against 0.62 s) and the lattices tie at 10k (0.72 s each).
 inline constexpr long kAutoBlockLanczosDof = 50000;
+/// Below that size Auto still takes block Lanczos when the factor is dense for its
+/// size, nnz(L)/n at least this: reading L then dominates each solve and the block
+/// amortises it. The 10k beam-frame lattice (nnz(L)/n 208) solved in 0.50–0.56 s by
+/// block Lanczos against 0.69–0.76 s by Spectra; the 8.5k truss beam model
+/// (nnz(L)/n 8.3) in 0.21 s by Spectra against 0.47 s (docs/performance.md).
+inline constexpr double kAutoBlockLanczosFill = 100.0;
 
 enum class EigenMethod {
-  Auto,          ///< BlockLanczos for n ≥ 50 000, Spectra below (kAutoBlockLanczosDof)
+  Auto,          ///< BlockLanczos for n ≥ 50 000 or nnz(L)/n ≥ 100, Spectra otherwise
   Spectra,       ///< Spectra's SymGEigsShiftSolver (implicitly restarted Lanczos, one vector)
   BlockLanczos,  ///< block Lanczos (block_lanczos.hpp): b solves per factor pass
   /// LOBPCG with a smoothed-aggregation preconditioner (multilevel/multilevel_eigen.hpp):
