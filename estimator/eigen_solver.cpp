@@ -216,11 +216,16 @@ void solve_multilevel(const SparseMatrix& K, const SparseMatrix& M, double sigma
   res.factor_seconds = run.setup_seconds;
   res.lanczos_seconds = run.coarse_modes_seconds + run.lobpcg_seconds;
   if (!run.converged) {
-    res.status = EigenResult::Status::NotConverged;
+    using F = multilevel::MultilevelRun::Failure;
+    res.status = run.failure == F::NotPositiveDefinite ? EigenResult::Status::NotPositiveDefinite
+                 : run.failure == F::CoarseFactor      ? EigenResult::Status::FactorFailed
+                                                       : EigenResult::Status::NotConverged;
+    res.failed_dof = run.failed_dof;
     res.message = "multilevel eigen-solver: " + run.message;
   }
   res.eigenvalues = run.lambda;
   res.modes = run.vectors;
+  if (res.modes.rows() != K.rows()) res.modes.resize(K.rows(), 0);  // stopped before any mode
   normalise(res.modes, mass, o.norm);
 }
 

@@ -147,9 +147,15 @@ AggregationAmg::AggregationAmg(const SparseMatrix& A, const std::vector<long>& g
       for (SparseMatrix::InnerIterator it(A, m_dofs[static_cast<size_t>(s + j)]); it; ++it)
         if (g.of_dof[static_cast<size_t>(it.row())] == a) D(local[static_cast<size_t>(it.row())], j) = it.value();
     Eigen::LLT<Eigen::MatrixXd> llt(D);
-    if (llt.info() != Eigen::Success)
-      throw std::invalid_argument("AggregationAmg: the diagonal block of grid point DOF " +
-                                  std::to_string(m_dofs[static_cast<size_t>(s)]) + " is not positive definite");
+    if (llt.info() != Eigen::Success) {
+      // The first DOF of the block with no positive pivot left: its diagonal.
+      long bad = m_dofs[static_cast<size_t>(s)];
+      for (long q = 0; q < k; ++q)
+        if (!(D(q, q) > 0.0)) { bad = m_dofs[static_cast<size_t>(s + q)]; break; }
+      throw NotPositiveDefiniteBlock("the grid point of DOF index " + std::to_string(bad) +
+                                         " has a singular block of K - sigma*M: a DOF with neither stiffness nor mass",
+                                     bad);
+    }
     const Eigen::MatrixXd Di = llt.solve(Eigen::MatrixXd::Identity(k, k));
     Eigen::Map<Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, Eigen::RowMajor>>(
         m_dinv.data() + m_dinv_start[static_cast<size_t>(a)], k, k) = Di;

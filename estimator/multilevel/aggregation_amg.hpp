@@ -25,9 +25,18 @@
 #include "estimator/multilevel/block_ops.hpp"
 
 #include <Eigen/Core>
+#include <stdexcept>
+#include <string>
 #include <vector>
 
 namespace ssid::estimator::multilevel {
+
+/// A grid point's diagonal block of A is not positive definite: a DOF with
+/// neither stiffness nor mass (a mechanism). `dof` is a row of A in that block.
+struct NotPositiveDefiniteBlock : std::runtime_error {
+  NotPositiveDefiniteBlock(const std::string& what, long dof_) : std::runtime_error(what), dof(dof_) {}
+  long dof;
+};
 
 struct AmgOptions {
   /// Graph distance from an aggregate's root to its members; 0: automatic, 1 up to
@@ -44,8 +53,9 @@ class AggregationAmg {
  public:
   /// A: symmetric positive definite, both triangles stored, compressed. groups:
   /// grid point of each DOF (any ids ≥ 0). B: near-null space, A.rows() x k.
-  /// Throws std::invalid_argument on inconsistent sizes and std::runtime_error
-  /// when the coarse matrix cannot be factorised. A must outlive this object.
+  /// Throws std::invalid_argument on inconsistent sizes, NotPositiveDefiniteBlock
+  /// for a grid point whose block of A is singular, and std::runtime_error when
+  /// the coarse matrix cannot be factorised. A must outlive this object.
   AggregationAmg(const SparseMatrix& A, const std::vector<long>& groups, const Eigen::MatrixXd& B,
                  const AmgOptions& options = {});
 

@@ -6,6 +6,7 @@
 
 #include <algorithm>
 #include <chrono>
+#include <memory>
 #include <stdexcept>
 
 namespace ssid::estimator::multilevel {
@@ -54,7 +55,22 @@ MultilevelRun multilevel_lowest(const SparseMatrix& K_in, const SparseMatrix& M_
   report(progress, "multilevel: building the preconditioner", 0.0);
   SparseMatrix A = K - sigma * M;
   A.makeCompressed();
-  const AggregationAmg amg(A, groups, B, o.amg);
+  std::unique_ptr<AggregationAmg> amg_ptr;
+  try {
+    amg_ptr = std::make_unique<AggregationAmg>(A, groups, B, o.amg);
+  } catch (const NotPositiveDefiniteBlock& e) {
+    run.failure = MultilevelRun::Failure::NotPositiveDefinite;
+    for (long i = 0; i < n; ++i)
+      if (perm.indices()(i) == e.dof) run.failed_dof = i;  // back to the caller's numbering
+    run.message = "K - sigma*M (sigma = " + std::to_string(sigma) + ") is not positive definite at DOF index " +
+                  std::to_string(run.failed_dof) + ": a DOF with neither stiffness nor mass";
+    return run;
+  } catch (const std::runtime_error& e) {
+    run.failure = MultilevelRun::Failure::CoarseFactor;
+    run.message = e.what();
+    return run;
+  }
+  const AggregationAmg& amg = *amg_ptr;
   run.coarse_size = amg.coarse_size();
   run.aggregates = amg.aggregates();
   run.setup_seconds = seconds_since(t);
@@ -100,8 +116,14 @@ MultilevelRun multilevel_lowest(const SparseMatrix& K_in, const SparseMatrix& M_
   lo.maxit = o.maxit;
   lo.mass_rows = mass_rows;
   lo.progress = progress;
-  const LobpcgResult lr = lobpcg_largest(
-      A, M, [&amg](const RowBlock& R, RowBlock& W) { amg.apply(R, W); }, X0, lo);
+  LobpcgResult lr;
+  try {
+    lr = lobpcg_largest(A, M, [&amg](const RowBlock& R, RowBlock& W) { amg.apply(R, W); }, X0, lo);
+  } catch (const std::runtime_error& e) {
+    run.failure = MultilevelRun::Failure::Breakdown;
+    run.message = e.what();
+    return run;
+  }
   run.lobpcg_seconds = seconds_since(t);
   run.iterations = lr.iterations;
   run.preconditioned = lr.preconditioned;

@@ -34,6 +34,12 @@ struct MultilevelRun {
   Eigen::MatrixXd vectors;  ///< n x nev
   bool converged = false;
   std::string message;      ///< why not, when not
+  /// Why it stopped early: a singular grid-point block of K − σM (a mechanism; the
+  /// DOF in failed_dof, an index into K's rows), the coarse factorisation, or a
+  /// Rayleigh–Ritz step that broke down.
+  enum class Failure { None, NotPositiveDefinite, CoarseFactor, Breakdown };
+  Failure failure = Failure::None;
+  long failed_dof = -1;
   int iterations = 0;
   long preconditioned = 0;  ///< residual columns through the preconditioner
   long coarse_size = 0, aggregates = 0;

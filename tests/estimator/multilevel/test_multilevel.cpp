@@ -262,3 +262,21 @@ TEST_CASE("multilevel method: clear refusals", "[multilevel]") {
   o.near_null_space = f.rigid.topRows(10);
   CHECK_THROWS_WITH(solve_modes(f.op.K, f.op.M, o), Catch::Contains("near_null_space has 10 rows"));
 }
+
+TEST_CASE("multilevel method: a DOF with neither stiffness nor mass is reported, not thrown", "[multilevel]") {
+  const Frame f = frame(5, 4, 4);
+  // Remove every stiffness term of one rotational DOF (it has no mass): a mechanism.
+  const long bad = 6 * 17 + 4;
+  Eigen::SparseMatrix<double> K = f.op.K;
+  K.prune([bad](Eigen::Index r, Eigen::Index c, double) { return r != bad && c != bad; });
+  EigenOptions o;
+  o.nd = 8;
+  o.method = EigenMethod::Multilevel;
+  o.dof_groups = f.groups;
+  o.near_null_space = f.rigid;
+  const EigenResult r = solve_modes(K, f.op.M, o);
+  CHECK(r.status == EigenResult::Status::NotPositiveDefinite);
+  CHECK(r.failed_dof == bad);
+  CHECK(r.message.find("neither stiffness nor mass") != std::string::npos);
+  CHECK(r.size() == 0);
+}
