@@ -8,7 +8,10 @@
 /// Method: Lanczos in shift-invert mode on
 ///   (K − σM)⁻¹ M x = ν x,   ν = 1/(λ − σ),
 /// with the M inner product: block Lanczos (block_lanczos.hpp, 16 right-hand
-/// sides per solve) from 50 000 DOF, Spectra's SymGEigsShiftSolver below.
+/// sides per solve) from 50 000 DOF or a dense factor (nnz(L)/n ≥ 100),
+/// Spectra's SymGEigsShiftSolver otherwise. Models whose factor would not fit in
+/// memory go to EigenMethod::Multilevel (multilevel/multilevel_eigen.hpp: LOBPCG
+/// with an aggregation multigrid preconditioner, no factor of the full model).
 /// (K − σM)⁻¹ is a CHOLMOD supernodal Cholesky factor (CholmodFactor), analysed
 /// once per sparsity pattern and refactored when only values change; with
 /// `dof_groups` the fill-reducing ordering is computed on the grid-point graph. σ lies below the lowest eigenvalue (σ < 0 by default), so
