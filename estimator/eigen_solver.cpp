@@ -202,11 +202,16 @@ EigenResult::Status to_status(FactorStatus::Code c) {
 /// EigenMethod::Multilevel: the lowest nd modes by LOBPCG with the aggregation
 /// preconditioner; res already holds the shift and any factor figures.
 void solve_multilevel(const SparseMatrix& K, const SparseMatrix& M, double sigma, const EigenOptions& o,
-                      const MassOp& mass, EigenResult& res) {
+                      const MassOp& mass, long n_massive, EigenResult& res) {
   res.method = "Multilevel";
+  // Only the DOFs with mass carry finite eigenvalues (as in the direct path).
+  const int nd = static_cast<int>(std::min<long>(o.nd, std::max<long>(n_massive - 1, 1)));
+  if (nd < o.nd)
+    res.warnings.push_back("only " + std::to_string(nd) + " of the " + std::to_string(o.nd) +
+                           " requested modes are computed (DOFs with mass: " + std::to_string(n_massive) + ")");
   const multilevel::MultilevelRun run = multilevel::multilevel_lowest(
-      K, M, sigma, o.nd, o.dof_groups, o.near_null_space, o.multilevel, o.progress);
-  res.nev = o.nd;
+      K, M, sigma, nd, o.dof_groups, o.near_null_space, o.multilevel, o.progress);
+  res.nev = nd;
   res.ncv = 0;
   res.lanczos_runs = 1;
   res.iterations = run.iterations;
@@ -332,16 +337,17 @@ EigenResult EigenSolver::solve(const SparseMatrix& K, const SparseMatrix& M) {
   const Eigen::VectorXd mdiag = M.diagonal();
   const long n_massive = (mdiag.array() > 0.0).count();
 
-  const bool multilevel_possible = o.near_null_space.size() > 0 && !o.dof_groups.empty() && !has_high && o.nd > 0;
+  const bool multilevel_possible =
+      o.near_null_space.size() > 0 && !o.dof_groups.empty() && !has_high && !has_low && o.nd > 0;
   if (o.method == EigenMethod::Multilevel) {
     if (!multilevel_possible)
       throw std::invalid_argument(
           "EigenSolver: the multilevel method needs dof_groups, near_null_space (the rigid-body modes) and ND, "
-          "without a frequency band");
+          "without a frequency band (V1/V2, F1/F2)");
     if (o.near_null_space.rows() != n)
       throw std::invalid_argument("EigenSolver: near_null_space has " + std::to_string(o.near_null_space.rows()) +
                                   " rows for " + std::to_string(n) + " DOFs");
-    solve_multilevel(K, M, sigma, o, mass, res);
+    solve_multilevel(K, M, sigma, o, mass, n_massive, res);
     compute_checks(K, M, res);
     res.total_seconds = seconds_since(t0);
     report(o.progress, "modes done", 1.0);
@@ -367,7 +373,7 @@ EigenResult EigenSolver::solve(const SparseMatrix& K, const SparseMatrix& M) {
       res.warnings.push_back("the factor of K - sigma M would take " + std::to_string(res.factor_bytes / 1073741824.0) +
                              " GiB (limit " + std::to_string(m_factor.memory_limit() / 1073741824.0) +
                              " GiB): solved by the multilevel method instead");
-      solve_multilevel(K, M, sigma, o, mass, res);
+      solve_multilevel(K, M, sigma, o, mass, n_massive, res);
       compute_checks(K, M, res);
       res.total_seconds = seconds_since(t0);
       return res;

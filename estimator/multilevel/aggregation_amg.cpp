@@ -206,7 +206,7 @@ AggregationAmg::AggregationAmg(const SparseMatrix& A, const std::vector<long>& g
     Eigen::ColPivHouseholderQR<Eigen::MatrixXd> qr(Bl);
     qr.setThreshold(1e-10);
     const long rank = qr.rank();
-    const Eigen::MatrixXd Q = Eigen::MatrixXd(qr.householderQ()).leftCols(rank);
+    const Eigen::MatrixXd Q = qr.householderQ() * Eigen::MatrixXd::Identity(Bl.rows(), rank);
     for (long j = 0; j < rank; ++j) {
       for (size_t i = 0; i < rows.size(); ++i)
         if (Q(static_cast<Eigen::Index>(i), j) != 0.0) tp.emplace_back(rows[i], nc, Q(static_cast<Eigen::Index>(i), j));

@@ -4,6 +4,7 @@
 #include <Eigen/Eigenvalues>
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <stdexcept>
 #include <string>
 #include <vector>
@@ -144,7 +145,8 @@ LobpcgResult lobpcg_largest(const SparseMatrix& A, const SparseMatrix& M, const 
     for (Eigen::Index j = 0; j < b; ++j) {
       const double ax = AX.col(j).norm();
       rel(j) = ax > 0.0 && res.mu(j) > 0.0 ? R.col(j).norm() / (res.mu(j) * ax) : 0.0;
-      if (rel(j) > o.tol) active.push_back(j);
+      // A NaN residual or a non-positive Ritz value is never "converged".
+      if (!(rel(j) <= o.tol) || !(res.mu(j) > 0.0)) active.push_back(j);
       else if (j < o.nev) ++wanted_done;
     }
     report(o.progress,
@@ -162,7 +164,10 @@ LobpcgResult lobpcg_largest(const SparseMatrix& A, const SparseMatrix& M, const 
     precondition(Ra, W);
     times_dense_into(X, -gram(AX, W), 1.0, W);
     sym_times(A, W, AW);
-    if (a_orthonormalise(W, AW, S1) == 0) break;  // no new direction: stagnation
+    if (a_orthonormalise(W, AW, S1) == 0) {  // no new direction: stagnation
+      res.breakdown = "no new search direction (stagnation)";
+      break;
+    }
     sym_times(M, W, MW);
     if (P.cols() > 0) {
       // P only scaled to unit A-norm columns (a full A-orthonormalisation cost two
@@ -171,9 +176,11 @@ LobpcgResult lobpcg_largest(const SparseMatrix& A, const SparseMatrix& M, const 
       scale_to_unit_energy(P, AP);
       sym_times(M, P, MP);
     }
-    // Rayleigh–Ritz on [X W P]. Known blocks are set, not computed: XᵀAX = I,
-    // XᵀAW = 0, WᵀAW = I, XᵀMX = diag(μ). Without P when the Gram matrix is
-    // not definite (P nearly inside span[X W]).
+    // Rayleigh–Ritz on [X W P]. WᵀAW = I (just made so) and XᵀMX = diag(μ) (the
+    // last Rayleigh–Ritz step) are set; XᵀAX and XᵀAW, which hold only as well as
+    // the last step and one Gram–Schmidt pass, are computed so that their errors
+    // do not accumulate. Without P when the Gram matrix is not definite (P nearly
+    // inside span[X W]).
     const Eigen::Index nw = W.cols(), np = P.cols(), m = b + nw + np;
     MatrixXd GA = MatrixXd::Identity(m, m), GM = MatrixXd::Zero(m, m);
     GM.topLeftCorner(b, b) = res.mu.asDiagonal();
@@ -181,6 +188,8 @@ LobpcgResult lobpcg_largest(const SparseMatrix& A, const SparseMatrix& M, const 
       G.block(r, c, g.rows(), g.cols()) = g;
       G.block(c, r, g.cols(), g.rows()) = g.transpose();
     };
+    put(GA, 0, 0, sym(gram(X, AX)));
+    put(GA, 0, b, MatrixXd(gram(W, AX).transpose()));
     put(GM, 0, b, mgram(X, MW));
     put(GM, b, b, sym(mgram(W, MW)));
     if (np > 0) {
@@ -196,7 +205,10 @@ LobpcgResult lobpcg_largest(const SparseMatrix& A, const SparseMatrix& M, const 
     const bool with_p = np > 0 && rayleigh_ritz(GA, GM, b, mu, C);
     if (!with_p) {
       P.resize(n, 0), AP.resize(n, 0), MP.resize(n, 0);
-      if (!rayleigh_ritz(GA.topLeftCorner(b + nw, b + nw), GM.topLeftCorner(b + nw, b + nw), b, mu, C)) break;
+      if (!rayleigh_ritz(GA.topLeftCorner(b + nw, b + nw), GM.topLeftCorner(b + nw, b + nw), b, mu, C)) {
+        res.breakdown = "the Rayleigh-Ritz Gram matrix is not positive definite";
+        break;
+      }
     }
     // New conjugate directions (the [W P] part of the active columns), then X; their
     // products with A and M are recomputed rather than combined (cheaper than the
@@ -210,6 +222,15 @@ LobpcgResult lobpcg_largest(const SparseMatrix& A, const SparseMatrix& M, const 
     sym_times(M, X, MX);
     sym_times(A, P, AP);
     res.mu = mu;
+  }
+  if (!res.converged && res.breakdown.empty()) {
+    // Out of iterations: the residuals of the X returned, not of the one before.
+    const RowBlock Rf = MX - AX * res.mu.asDiagonal();
+    for (Eigen::Index j = 0; j < b; ++j) {
+      const double ax = AX.col(j).norm();
+      rel(j) = ax > 0.0 && res.mu(j) > 0.0 ? Rf.col(j).norm() / (res.mu(j) * ax)
+                                            : std::numeric_limits<double>::infinity();
+    }
   }
   res.residuals = rel;
   res.X = std::move(X);

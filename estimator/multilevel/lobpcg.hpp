@@ -18,6 +18,7 @@
 #include "estimator/progress.hpp"
 
 #include <functional>
+#include <string>
 
 namespace ssid::estimator::multilevel {
 
@@ -39,6 +40,7 @@ struct LobpcgResult {
   bool converged = false;     ///< the first nev columns reached tol
   int iterations = 0;
   long preconditioned = 0;    ///< columns passed through the preconditioner
+  std::string breakdown;      ///< why the iteration stopped early, when it did
 };
 
 using BlockOperator = std::function<void(const RowBlock& in, RowBlock& out)>;

@@ -88,17 +88,30 @@ MultilevelRun multilevel_lowest(const SparseMatrix& K_in, const SparseMatrix& M_
   // already factorised: its lowest b modes come from block Lanczos on that factor.
   const SparseMatrix Mc = SparseMatrix(P.transpose()) * (M * P);
   const CholmodFactor& Fc = amg.coarse_factor();
+  if (run.coarse_size - 1 < nev) {
+    run.failure = MultilevelRun::Failure::Breakdown;
+    run.message = "the coarse model has " + std::to_string(run.coarse_size) + " DOFs, too few for " +
+                  std::to_string(nev) + " modes (the model is too small for this method)";
+    return run;
+  }
   BlockLanczosOptions bo;
   bo.nev = static_cast<int>(std::min<long>(b, run.coarse_size - 1));
   bo.tol = 1e-5;  // a start for LOBPCG, not an answer
   const long nc = run.coarse_size;
-  const BlockLanczosResult coarse = block_lanczos(
+  BlockLanczosResult coarse;
+  try {
+    coarse = block_lanczos(
       [&Fc, nc](const Eigen::MatrixXd& X) {
         Eigen::MatrixXd Y(nc, X.cols());
         Fc.solve(X.data(), Y.data(), static_cast<long>(X.cols()));
         return Y;
       },
       [&Mc](const Eigen::MatrixXd& X) { return Eigen::MatrixXd(Mc * X); }, nc, sigma, bo);
+  } catch (const std::exception& e) {
+    run.failure = MultilevelRun::Failure::Breakdown;
+    run.message = std::string("the coarse model's modes: ") + e.what();
+    return run;
+  }
   if (!coarse.converged || coarse.lambda.size() < nev) {
     run.message = "the coarse model's modes could not be computed (" + std::to_string(coarse.lambda.size()) +
                   " of " + std::to_string(nev) + ")";
@@ -119,7 +132,7 @@ MultilevelRun multilevel_lowest(const SparseMatrix& K_in, const SparseMatrix& M_
   LobpcgResult lr;
   try {
     lr = lobpcg_largest(A, M, [&amg](const RowBlock& R, RowBlock& W) { amg.apply(R, W); }, X0, lo);
-  } catch (const std::runtime_error& e) {
+  } catch (const std::exception& e) {  // rank-deficient start, failed first Rayleigh–Ritz step
     run.failure = MultilevelRun::Failure::Breakdown;
     run.message = e.what();
     return run;
@@ -128,7 +141,10 @@ MultilevelRun multilevel_lowest(const SparseMatrix& K_in, const SparseMatrix& M_
   run.iterations = lr.iterations;
   run.preconditioned = lr.preconditioned;
   run.converged = lr.converged;
-  if (!lr.converged)
+  if (!lr.converged && !lr.breakdown.empty()) {
+    run.failure = MultilevelRun::Failure::Breakdown;
+    run.message = "LOBPCG stopped after " + std::to_string(lr.iterations) + " iterations: " + lr.breakdown;
+  } else if (!lr.converged)
     run.message = "LOBPCG did not converge in " + std::to_string(lr.iterations) + " iterations (largest residual " +
                   std::to_string(lr.residuals.head(nev).maxCoeff()) + ", tolerance " + std::to_string(o.tol) + ")";
   // λ = σ + 1/μ: μ descending gives λ ascending.

@@ -259,8 +259,19 @@ TEST_CASE("multilevel method: clear refusals", "[multilevel]") {
   CHECK_THROWS_WITH(solve_modes(f.op.K, f.op.M, o), Catch::Contains("ND"));
   o.nd = 6;
   o.f_high = std::numeric_limits<double>::quiet_NaN();
+  o.f_low = 1.0;  // a lower bound too is a band request
+  CHECK_THROWS_WITH(solve_modes(f.op.K, f.op.M, o), Catch::Contains("frequency band"));
+  o.f_low = std::numeric_limits<double>::quiet_NaN();
   o.near_null_space = f.rigid.topRows(10);
   CHECK_THROWS_WITH(solve_modes(f.op.K, f.op.M, o), Catch::Contains("near_null_space has 10 rows"));
+  // A model too small for its coarse space: a status, not an exception.
+  const Frame tiny = frame(2, 2, 2);
+  o.dof_groups = tiny.groups;
+  o.near_null_space = tiny.rigid;
+  o.nd = 20;  // 12 coarse DOFs (two aggregates of four grids)
+  const EigenResult r = solve_modes(tiny.op.K, tiny.op.M, o);
+  CHECK(r.status == EigenResult::Status::NotConverged);
+  CHECK(r.message.find("too small") != std::string::npos);
 }
 
 TEST_CASE("multilevel method: a DOF with neither stiffness nor mass is reported, not thrown", "[multilevel]") {
