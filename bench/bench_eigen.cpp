@@ -209,6 +209,24 @@ std::pair<double, double> timed(F&& f) {
   return {now_s() - w, cpu_s() - c};
 }
 
+/// Rigid-body modes among the results (|λ| below 1e-6 of the highest).
+int count_rigid(const ssid::estimator::EigenResult& r) {
+  int rigid = 0;
+  for (int j = 0; j < r.size(); ++j)
+    if (std::abs(r.eigenvalues(j)) < 1e-6 * r.eigenvalues(r.size() - 1)) ++rigid;
+  return rigid;
+}
+
+/// The checks, peak memory and eigenvalues of a solve, as every method prints them.
+void print_checks(const ssid::estimator::EigenResult& r, int rigid) {
+  std::printf("max residual (elastic) %.2e, max backward error %.2e, M-orthogonality %.2e\n",
+              r.residuals.tail(r.size() - rigid).maxCoeff(), r.backward_errors.maxCoeff(), r.orthogonality);
+  std::printf("peak RSS %ld MiB\n", peak_rss_mib());
+  std::printf("eigenvalues:");
+  for (int j = 0; j < r.size(); ++j) std::printf(" %.10g", r.eigenvalues(j));
+  std::printf("\n");
+}
+
 }  // namespace
 
 int main(int argc, char** argv) {
@@ -331,17 +349,10 @@ int main(int argc, char** argv) {
     std::printf("time: total %.3f s wall (%.3f s CPU) = setup %.3f + coarse modes and LOBPCG %.3f + checks %.3f\n",
                 r.total_seconds, tsolve.second, r.factor_seconds, r.lanczos_seconds,
                 r.total_seconds - r.factor_seconds - r.lanczos_seconds);
-    int rigid = 0;
-    for (int j = 0; j < r.size(); ++j)
-      if (std::abs(r.eigenvalues(j)) < 1e-6 * r.eigenvalues(r.size() - 1)) ++rigid;
+    const int rigid = count_rigid(r);
     std::printf("modes %d (rigid %d): f1 elastic %.6g Hz, f_last %.6g Hz\n", r.size(), rigid,
                 rigid < r.size() ? r.cycles(rigid) : 0.0, r.cycles(r.size() - 1));
-    std::printf("max residual (elastic) %.2e, max backward error %.2e, M-orthogonality %.2e\n",
-                r.residuals.tail(r.size() - rigid).maxCoeff(), r.backward_errors.maxCoeff(), r.orthogonality);
-    std::printf("peak RSS %ld MiB\n", peak_rss_mib());
-    std::printf("eigenvalues:");
-    for (int j = 0; j < r.size(); ++j) std::printf(" %.10g", r.eigenvalues(j));
-    std::printf("\n");
+    print_checks(r, rigid);
     if (compare) {
       EigenOptions d = o;
       d.method = EigenMethod::Auto;
@@ -377,9 +388,7 @@ int main(int argc, char** argv) {
   });
   const double t_block = tb.first / reps;
   const double floor_s = r.factor_seconds + (static_cast<double>(r.solves) / block) * t_block;
-  int rigid = 0;
-  for (int j = 0; j < r.size(); ++j)
-    if (std::abs(r.eigenvalues(j)) < 1e-6 * r.eigenvalues(r.size() - 1)) ++rigid;
+  const int rigid = count_rigid(r);
   std::printf("shift %.6g, ordering %s, nnz(L) %.4g, flops %.4g, factor memory %.2f GiB\n", r.shift,
               r.ordering.c_str(), r.factor_nnz, r.factor_flops, r.factor_bytes / 1073741824.0);
   std::printf("modes %d (rigid %d): f1 elastic %.6g Hz, f_last %.6g Hz\n", r.size(), rigid,
@@ -392,12 +401,7 @@ int main(int argc, char** argv) {
   std::printf("one block solve (%d columns) %.4f s; floor = analyse + factor + %.1f block solves = %.3f s; "
               "total / floor = %.2f\n",
               block, t_block, static_cast<double>(r.solves) / block, floor_s, r.total_seconds / floor_s);
-  std::printf("max residual (elastic) %.2e, max backward error %.2e, M-orthogonality %.2e\n",
-              r.residuals.tail(r.size() - rigid).maxCoeff(), r.backward_errors.maxCoeff(), r.orthogonality);
-  std::printf("peak RSS %ld MiB\n", peak_rss_mib());
-  std::printf("eigenvalues:");
-  for (int j = 0; j < r.size(); ++j) std::printf(" %.10g", r.eigenvalues(j));
-  std::printf("\n");
+  print_checks(r, rigid);
   if (sturm) {
     // Completeness: eigenvalues below the midpoint of the last two found, by inertia.
     const double s = r.size() > 1 ? 0.5 * (r.eigenvalues(r.size() - 1) + r.eigenvalues(r.size() - 2)) : 0.0;
