@@ -3,6 +3,7 @@
 /// the synthetic modal test (`--uff`): modes at sensors with reproducible noise.
 #include <fstream>
 #include <unordered_map>
+#include <chrono>
 #include <iostream>
 #include <sstream>
 
@@ -78,6 +79,16 @@ int cmd_modes(const Args& args) {
     print_error("--method: expected auto, lanczos, block-lanczos or multilevel, got \"" + method + "\"");
     return 2;
   }
+  // Progress on stderr for the multilevel method, whose runs take minutes on
+  // million-DOF models: its phases, and its iterations at most every 5 s.
+  eo.progress = [last = std::chrono::steady_clock::time_point{}](const std::string& message, double) mutable {
+    const bool phase = message.rfind("multilevel", 0) == 0, iteration = message.rfind("LOBPCG", 0) == 0;
+    if (!phase && !iteration) return;
+    const auto now = std::chrono::steady_clock::now();
+    if (iteration && now - last < std::chrono::seconds(5)) return;
+    last = now;
+    std::cerr << "ssid modes: " << message << "\n";
+  };
   const estimator::EigenResult r = solve_model(op, eo, a_set_dofs(model));
   for (const auto& w : r.warnings) std::cerr << "warning: " << w << "\n";
 
