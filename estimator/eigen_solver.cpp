@@ -200,9 +200,10 @@ EigenResult::Status to_status(FactorStatus::Code c) {
 }
 
 /// EigenMethod::Multilevel: the lowest nd modes by LOBPCG with the aggregation
-/// preconditioner; res already holds the shift and any factor figures.
+/// preconditioner, normalised and checked; res already holds the shift and any
+/// factor figures. t0: when the solve began.
 void solve_multilevel(const SparseMatrix& K, const SparseMatrix& M, double sigma, const EigenOptions& o,
-                      const MassOp& mass, long n_massive, EigenResult& res) {
+                      const MassOp& mass, long n_massive, Clock::time_point t0, EigenResult& res) {
   res.method = "Multilevel";
   // Only the DOFs with mass carry finite eigenvalues (as in the direct path).
   const int nd = static_cast<int>(std::min<long>(o.nd, std::max<long>(n_massive - 1, 1)));
@@ -232,6 +233,9 @@ void solve_multilevel(const SparseMatrix& K, const SparseMatrix& M, double sigma
   res.modes = run.vectors;
   if (res.modes.rows() != K.rows()) res.modes.resize(K.rows(), 0);  // stopped before any mode
   normalise(res.modes, mass, o.norm);
+  compute_checks(K, M, res);
+  res.total_seconds = seconds_since(t0);
+  report(o.progress, "modes done", 1.0);
 }
 
 }  // namespace
@@ -347,10 +351,7 @@ EigenResult EigenSolver::solve(const SparseMatrix& K, const SparseMatrix& M) {
     if (o.near_null_space.rows() != n)
       throw std::invalid_argument("EigenSolver: near_null_space has " + std::to_string(o.near_null_space.rows()) +
                                   " rows for " + std::to_string(n) + " DOFs");
-    solve_multilevel(K, M, sigma, o, mass, n_massive, res);
-    compute_checks(K, M, res);
-    res.total_seconds = seconds_since(t0);
-    report(o.progress, "modes done", 1.0);
+    solve_multilevel(K, M, sigma, o, mass, n_massive, t0, res);
     return res;
   }
 
@@ -373,9 +374,7 @@ EigenResult EigenSolver::solve(const SparseMatrix& K, const SparseMatrix& M) {
       res.warnings.push_back("the factor of K - sigma M would take " + std::to_string(res.factor_bytes / 1073741824.0) +
                              " GiB (limit " + std::to_string(m_factor.memory_limit() / 1073741824.0) +
                              " GiB): solved by the multilevel method instead");
-      solve_multilevel(K, M, sigma, o, mass, n_massive, res);
-      compute_checks(K, M, res);
-      res.total_seconds = seconds_since(t0);
+      solve_multilevel(K, M, sigma, o, mass, n_massive, t0, res);
       return res;
     }
     if (!fs.ok()) {

@@ -310,6 +310,8 @@ void AggregationAmg::chebyshev(const RowBlock& R, RowBlock& X, bool zero_start) 
   }
 }
 
+void AggregationAmg::prolong(const RowBlock& Y, RowBlock& X) const { multilevel::times(m_Prow, Y, X); }
+
 void AggregationAmg::apply(const RowBlock& R, RowBlock& X) const {
   chebyshev(R, X, true);
   RowBlock &Ad = m_ws.Ad, &E = m_ws.E, &Ec = m_ws.Ec, &Y = m_ws.Y, &PY = m_ws.PY;
@@ -319,7 +321,7 @@ void AggregationAmg::apply(const RowBlock& R, RowBlock& X) const {
   // CHOLMOD solves column-major blocks: the coarse block (small) is copied.
   const Eigen::MatrixXd Yc = m_coarse.solve(Eigen::MatrixXd(Ec));
   Y = Yc;
-  multilevel::times(m_Prow, Y, PY);
+  prolong(Y, PY);
   X += PY;
   chebyshev(R, X, false);
 }

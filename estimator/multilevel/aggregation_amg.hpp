@@ -64,6 +64,8 @@ class AggregationAmg {
   void apply(const RowBlock& R, RowBlock& X) const;
 
   const SparseMatrix& prolongator() const { return m_P; }  ///< n x coarse, column-major
+  /// X = P Y: coarse blocks interpolated to the model.
+  void prolong(const RowBlock& Y, RowBlock& X) const;
   long coarse_size() const { return m_P.cols(); }
   long aggregates() const { return m_aggregates; }
   double spectral_radius() const { return m_rho; }  ///< estimate of ρ(D⁻¹A) used by the smoothers

@@ -94,14 +94,4 @@ void times_dense_into(const RowBlock& X, const Eigen::Ref<const Eigen::MatrixXd>
   detail::gemm(true, false, 1.0, C, as_columns(X), beta, Yc);  // (X C)ᵀ = Cᵀ Xᵀ
 }
 
-RowBlock times_dense(const RowBlock& X, const Eigen::Ref<const Eigen::MatrixXd>& C) {
-  if (X.cols() != C.rows()) throw std::invalid_argument("times_dense: shapes do not agree");
-  RowBlock Y(X.rows(), C.cols());
-  if (X.rows() == 0 || C.cols() == 0) return Y.setZero();
-  Eigen::Map<Eigen::MatrixXd> Yc(Y.data(), Y.cols(), Y.rows());
-  if (C.rows() == 0) { Yc.setZero(); return Y; }
-  detail::gemm(true, false, 1.0, C, as_columns(X), 0.0, Yc);  // (X C)ᵀ = Cᵀ Xᵀ
-  return Y;
-}
-
 }  // namespace ssid::estimator::multilevel

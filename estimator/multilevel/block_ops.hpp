@@ -36,9 +36,7 @@ void transpose_times(const SparseMatrix& A, const RowBlock& X, RowBlock& Y);
 
 /// Xᵀ Y (b_x x b_y, column-major) over the first `rows` rows (all when negative), by BLAS.
 Eigen::MatrixXd gram(const RowBlock& X, const RowBlock& Y, long rows = -1);
-/// X C (n x c) for X n x k row-major and C k x c, by BLAS.
-RowBlock times_dense(const RowBlock& X, const Eigen::Ref<const Eigen::MatrixXd>& C);
-/// Y = β Y + X C in place (Y is resized, and its values ignored, when β = 0).
+/// Y = β Y + X C in place (X n x k row-major, C k x c), by BLAS (Y is resized, and its values ignored, when β = 0).
 /// Reusing Y's storage matters: a fresh n x b block of a million-DOF model is
 /// hundreds of megabytes of page faults.
 void times_dense_into(const RowBlock& X, const Eigen::Ref<const Eigen::MatrixXd>& C, double beta, RowBlock& Y);

@@ -97,16 +97,11 @@ MultilevelRun multilevel_lowest(const SparseMatrix& K_in, const SparseMatrix& M_
   BlockLanczosOptions bo;
   bo.nev = static_cast<int>(std::min<long>(b, run.coarse_size - 1));
   bo.tol = 1e-5;  // a start for LOBPCG, not an answer
-  const long nc = run.coarse_size;
   BlockLanczosResult coarse;
   try {
-    coarse = block_lanczos(
-      [&Fc, nc](const Eigen::MatrixXd& X) {
-        Eigen::MatrixXd Y(nc, X.cols());
-        Fc.solve(X.data(), Y.data(), static_cast<long>(X.cols()));
-        return Y;
-      },
-      [&Mc](const Eigen::MatrixXd& X) { return Eigen::MatrixXd(Mc * X); }, nc, sigma, bo);
+    coarse = block_lanczos([&Fc](const Eigen::MatrixXd& X) { return Fc.solve(X); },
+                           [&Mc](const Eigen::MatrixXd& X) { return Eigen::MatrixXd(Mc * X); }, run.coarse_size,
+                           sigma, bo);
   } catch (const std::exception& e) {
     run.failure = MultilevelRun::Failure::Breakdown;
     run.message = std::string("the coarse model's modes: ") + e.what();
@@ -117,8 +112,8 @@ MultilevelRun multilevel_lowest(const SparseMatrix& K_in, const SparseMatrix& M_
                   " of " + std::to_string(nev) + ")";
     return run;
   }
-  RowBlock Yc = coarse.vectors, X0;
-  times(SparseRowMatrix(P), Yc, X0);
+  RowBlock X0;
+  amg.prolong(coarse.vectors, X0);
   run.coarse_modes_seconds = seconds_since(t);
 
   report(progress, "multilevel: coarse modes in " + std::to_string(run.coarse_modes_seconds) + " s", 0.15);

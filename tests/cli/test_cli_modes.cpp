@@ -255,6 +255,25 @@ TEST_CASE("ssid modes honours EIGRL V1/V2 bands and EIGR", "[cli][modes]") {
   CHECK(nlohmann::json::parse(e.out)["modes"].size() == 5);
 }
 
+namespace {
+
+/// Runs ssid modes on `deck` with the default solver and with --method multilevel
+/// and checks the frequencies of modes first..nmodes-1 agree to `eps` (relative).
+void check_multilevel_matches_direct(const std::string& deck, int nmodes, int first, double eps) {
+  const std::string args = "modes " + deck + " --nmodes " + std::to_string(nmodes);
+  const CliResult direct = run_ssid(args + " --json -");
+  const CliResult ml = run_ssid(args + " --method multilevel --json -");
+  REQUIRE(direct.code == 0);
+  INFO(ml.err);
+  REQUIRE(ml.code == 0);
+  const auto jd = nlohmann::json::parse(direct.out), jm = nlohmann::json::parse(ml.out);
+  REQUIRE(jm["modes"].size() == static_cast<std::size_t>(nmodes));
+  for (int i = first; i < nmodes; ++i)
+    CHECK(jm["modes"][i]["cycles"].get<double>() == Approx(jd["modes"][i]["cycles"].get<double>()).epsilon(eps));
+}
+
+}  // namespace
+
 TEST_CASE("ssid modes --method multilevel: a free 3D frame gives the direct solver's frequencies", "[cli][modes]") {
   // 6 x 5 x 4 grids 1 m apart, every lattice edge a CBAR: 720 DOFs, free-free.
   std::ostringstream s;
@@ -273,15 +292,7 @@ TEST_CASE("ssid modes --method multilevel: a free 3D frame gives the direct solv
       }
   s << "PBAR,1,2,1.0E-3,1.0E-6,2.0E-6,2.0E-6\nMAT1,2,2.1E11,8.1E10,,7850.\nENDDATA\n";
   const fs::path deck = write(scratch() / "frame_ml.bdf", s.str());
-  const CliResult direct = run_ssid("modes " + deck.string() + " --nmodes 14 --json -");
-  const CliResult ml = run_ssid("modes " + deck.string() + " --nmodes 14 --method multilevel --json -");
-  REQUIRE(direct.code == 0);
-  INFO(ml.err);
-  REQUIRE(ml.code == 0);
-  const auto jd = nlohmann::json::parse(direct.out), jm = nlohmann::json::parse(ml.out);
-  REQUIRE(jm["modes"].size() == 14);
-  for (int i = 6; i < 14; ++i)
-    CHECK(jm["modes"][i]["cycles"].get<double>() == Approx(jd["modes"][i]["cycles"].get<double>()).epsilon(1e-9));
+  check_multilevel_matches_direct(deck.string(), 14, 6, 1e-9);  // elastic modes (the first six are rigid)
   const CliResult text = run_ssid("modes " + deck.string() + " --nmodes 14 --method multilevel");
   CHECK(text.out.find("Multilevel solver") != std::string::npos);
   const CliResult bad = run_ssid("modes " + deck.string() + " --method cholesky");
@@ -293,13 +304,5 @@ TEST_CASE("ssid modes --method multilevel on the MPI truss beam sample agrees wi
   // A real model: RBE2 spiders at the balls, CONM2s, suspension springs (modes at
   // 0.3-0.6 Hz), 8.5k a-set DOFs. Seen: 3.5e-9 relative at most over 35 modes.
   const std::string deck = std::string(SSID_SOURCE_DIR) + "/samples/mpi_beam.bdf";
-  const CliResult direct = run_ssid("modes " + deck + " --nmodes 35 --json -");
-  const CliResult ml = run_ssid("modes " + deck + " --nmodes 35 --method multilevel --json -");
-  REQUIRE(direct.code == 0);
-  INFO(ml.err);
-  REQUIRE(ml.code == 0);
-  const auto jd = nlohmann::json::parse(direct.out), jm = nlohmann::json::parse(ml.out);
-  REQUIRE(jm["modes"].size() == 35);
-  for (int i = 0; i < 35; ++i)
-    CHECK(jm["modes"][i]["cycles"].get<double>() == Approx(jd["modes"][i]["cycles"].get<double>()).epsilon(1e-7));
+  check_multilevel_matches_direct(deck, 35, 0, 1e-7);
 }

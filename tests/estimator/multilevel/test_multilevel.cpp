@@ -16,7 +16,7 @@
 #include "formats/bulk_model.hpp"
 #include "formats/deck.hpp"
 #include "translators/assembly/fe_model.hpp"
-#include "translators/weight.hpp"
+#include "translators/assembly/rigid_modes.hpp"
 #include "../eigen_test_models.hpp"
 
 using namespace ssid;
@@ -72,15 +72,8 @@ Frame frame(int nx, int ny, int nz) {
   f.op = model.operators(model.initial_parameters(), false);
   const auto& a_to_g = model.reduction().a_to_g;
   REQUIRE(static_cast<long>(a_to_g.size()) == f.op.K.rows());
-  const translators::DofMap& g = model.geometry().gset();
-  std::unordered_map<std::int64_t, Eigen::Vector3d> pos;
-  for (const auto& p : model.geometry().grids()) pos[p.id] = p.x;
-  const Eigen::MatrixXd rigid_g = translators::rigid_body_modes(g, pos, Eigen::Vector3d::Zero());
-  f.rigid.resize(f.op.K.rows(), 6);
-  for (size_t i = 0; i < a_to_g.size(); ++i) {
-    f.groups.push_back(static_cast<long>(g.at(a_to_g[i]).point));
-    f.rigid.row(static_cast<Eigen::Index>(i)) = rigid_g.row(static_cast<Eigen::Index>(a_to_g[i]));
-  }
+  for (const std::size_t g : a_to_g) f.groups.push_back(static_cast<long>(model.geometry().gset().at(g).point));
+  f.rigid = translators::a_set_rigid_body_modes(model);
   return f;
 }
 
@@ -103,7 +96,11 @@ TEST_CASE("multilevel block kernels agree with Eigen's products", "[multilevel]"
   const Eigen::MatrixXd G = multilevel::gram(X, Y);
   CHECK((G - dense(X).transpose() * dense(Y)).norm() <= 1e-13 * G.norm());
   const Eigen::MatrixXd C = Eigen::MatrixXd::Random(7, 3);
-  CHECK((dense(multilevel::times_dense(X, C)) - dense(X) * C).norm() <= 1e-13 * (dense(X) * C).norm());
+  RowBlock XC;
+  multilevel::times_dense_into(X, C, 0.0, XC);
+  CHECK((dense(XC) - dense(X) * C).norm() <= 1e-13 * (dense(X) * C).norm());
+  multilevel::times_dense_into(X, C, 1.0, XC);  // accumulates
+  CHECK((dense(XC) - 2.0 * dense(X) * C).norm() <= 1e-13 * (dense(X) * C).norm());
 }
 
 TEST_CASE("aggregation preconditioner: symmetric, positive definite, and conjugate gradients converge fast",
