@@ -1,6 +1,7 @@
 #include "estimator/dense_blas.hpp"
 
 #include <cblas.h>
+#include <dlfcn.h>
 
 #include <Eigen/Eigenvalues>
 #include <algorithm>
@@ -28,7 +29,39 @@ int to_int(Eigen::Index v) {
   return static_cast<int>(v);
 }
 
+using SetThreads = void (*)(int);
+using GetThreads = int (*)();
+
+/// OpenBLAS's thread-count functions, looked up at run time: libblas.so.3 is
+/// whichever BLAS the system's alternatives name, and only OpenBLAS has them.
+struct OpenBlasThreads {
+  SetThreads set = nullptr;
+  GetThreads get = nullptr;
+  OpenBlasThreads() {
+    set = reinterpret_cast<SetThreads>(dlsym(RTLD_DEFAULT, "openblas_set_num_threads"));
+    get = reinterpret_cast<GetThreads>(dlsym(RTLD_DEFAULT, "openblas_get_num_threads"));
+    if (!set || !get) set = nullptr, get = nullptr;
+  }
+};
+
+const OpenBlasThreads& openblas_threads() {
+  static const OpenBlasThreads f;
+  return f;
+}
+
 }  // namespace
+
+SerialBlas::SerialBlas() {
+  const auto& f = openblas_threads();
+  if (!f.set) return;
+  m_previous = f.get();
+  if (m_previous > 1) f.set(1);
+  else m_previous = 0;
+}
+
+SerialBlas::~SerialBlas() {
+  if (m_previous > 0) openblas_threads().set(m_previous);
+}
 
 void gemm(bool trans_a, bool trans_b, double alpha, const Eigen::Ref<const Eigen::MatrixXd>& A,
           const Eigen::Ref<const Eigen::MatrixXd>& B, double beta, Eigen::Ref<Eigen::MatrixXd> C) {

@@ -3,14 +3,19 @@
 #include "estimator/dense_blas.hpp"
 
 #include <algorithm>
+#include <mutex>
 #include <stdexcept>
 #include <thread>
 #include <vector>
 
 namespace ssid::estimator::multilevel {
 
+namespace {
+long hardware_threads() { return std::min<long>(std::max(1u, std::thread::hardware_concurrency()), 64); }
+}  // namespace
+
 void parallel_for(long n, const std::function<void(long, long)>& body, long serial_below) {
-  const long threads = std::min<long>(std::max(1u, std::thread::hardware_concurrency()), 64);
+  const long threads = hardware_threads();
   if (n < serial_below || threads == 1) {
     body(0, n);
     return;
@@ -51,9 +56,6 @@ void outer_rows_times(const Sparse& A, const RowBlock& X, RowBlock& Y) {
   });
 }
 
-Eigen::Map<const Eigen::MatrixXd> as_columns(const RowBlock& X) {
-  return {X.data(), X.cols(), X.rows()};  // the b x n column-major matrix Xᵀ
-}
 
 }  // namespace
 
@@ -74,14 +76,37 @@ void transpose_times(const SparseMatrix& A, const RowBlock& X, RowBlock& Y) {
   outer_rows_times(A, X, Y);  // column j of A is row j of Aᵀ
 }
 
+namespace {
+
+/// Rows per thread below which a dense product is left to one BLAS call.
+constexpr long kSplitRows = 8192;
+
+}  // namespace
+
 Eigen::MatrixXd gram(const RowBlock& X, const RowBlock& Y, long rows) {
   if (X.rows() != Y.rows()) throw std::invalid_argument("gram: blocks of different lengths");
   const long m = rows < 0 ? static_cast<long>(X.rows()) : std::min<long>(rows, X.rows());
-  Eigen::MatrixXd G(X.cols(), Y.cols());
-  if (m == 0 || X.cols() == 0 || Y.cols() == 0) return G.setZero();
-  // Xᵀ Y = (Xc)(Yc)ᵀ; the first m rows of a row-major block are its first m·b values.
-  detail::gemm(false, true, 1.0, Eigen::Map<const Eigen::MatrixXd>(X.data(), X.cols(), m),
-               Eigen::Map<const Eigen::MatrixXd>(Y.data(), Y.cols(), m), 0.0, G);
+  Eigen::MatrixXd G = Eigen::MatrixXd::Zero(X.cols(), Y.cols());
+  if (m == 0 || X.cols() == 0 || Y.cols() == 0) return G;
+  // Xᵀ Y = (Xc)(Yc)ᵀ; rows [b, e) of a row-major block are its values [b·cols, e·cols).
+  // Split by rows, one serial BLAS call per thread, partial sums added.
+  const long bx = X.cols(), by = Y.cols();
+  auto part = [&](long b, long e, Eigen::MatrixXd& out) {
+    detail::gemm(false, true, 1.0, Eigen::Map<const Eigen::MatrixXd>(X.data() + b * bx, bx, e - b),
+                 Eigen::Map<const Eigen::MatrixXd>(Y.data() + b * by, by, e - b), 0.0, out);
+  };
+  if (m < kSplitRows * hardware_threads()) {
+    part(0, m, G);
+    return G;
+  }
+  const detail::SerialBlas serial;
+  std::mutex sum;
+  parallel_for(m, [&](long b, long e) {
+    Eigen::MatrixXd Gt(bx, by);
+    part(b, e, Gt);
+    const std::lock_guard<std::mutex> lock(sum);
+    G += Gt;
+  });
   return G;
 }
 
@@ -90,8 +115,19 @@ void times_dense_into(const RowBlock& X, const Eigen::Ref<const Eigen::MatrixXd>
   if (beta == 0.0) Y.resize(X.rows(), C.cols());
   else if (Y.rows() != X.rows() || Y.cols() != C.cols()) throw std::invalid_argument("times_dense_into: Y's shape");
   if (Y.size() == 0) return;
-  Eigen::Map<Eigen::MatrixXd> Yc(Y.data(), Y.cols(), Y.rows());
-  detail::gemm(true, false, 1.0, C, as_columns(X), beta, Yc);  // (X C)ᵀ = Cᵀ Xᵀ
+  // (X C)ᵀ = Cᵀ Xᵀ, column range [b, e) of Yc = rows [b, e) of Y: one serial BLAS call per thread.
+  const long k = X.cols(), c = Y.cols();
+  auto part = [&](long b, long e) {
+    Eigen::Map<Eigen::MatrixXd> Yc(Y.data() + b * c, c, e - b);
+    detail::gemm(true, false, 1.0, C, Eigen::Map<const Eigen::MatrixXd>(X.data() + b * k, k, e - b), beta, Yc);
+  };
+  const long n = X.rows();
+  if (n < kSplitRows * hardware_threads()) {
+    part(0, n);
+    return;
+  }
+  const detail::SerialBlas serial;
+  parallel_for(n, part);
 }
 
 }  // namespace ssid::estimator::multilevel

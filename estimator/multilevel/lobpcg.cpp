@@ -1,5 +1,7 @@
 #include "estimator/multilevel/lobpcg.hpp"
 
+#include "estimator/dense_blas.hpp"
+
 #include <Eigen/Cholesky>
 #include <Eigen/Eigenvalues>
 #include <algorithm>
@@ -41,6 +43,11 @@ long a_orthonormalise(RowBlock& W, RowBlock& AW, RowBlock& scratch) {
   times_dense_into(AW, T, 0.0, scratch);
   AW.swap(scratch);
   return static_cast<long>(keep.size());
+}
+
+/// V ← V − Z (AZ)ᵀ V: V made A-orthogonal to the deflated vectors.
+void deflate(const Deflation& d, RowBlock& V) {
+  if (d.Z.cols() > 0 && V.cols() > 0) times_dense_into(d.Z, -gram(d.AZ, V), 1.0, V);
 }
 
 /// Scales the columns of P (and AP) to unit A-norm, in place.
@@ -109,17 +116,22 @@ bool rayleigh_ritz(const MatrixXd& GA, const MatrixXd& GM, Eigen::Index b, Vecto
 }  // namespace
 
 LobpcgResult lobpcg_largest(const SparseMatrix& A, const SparseMatrix& M, const BlockOperator& precondition,
-                            const RowBlock& X0, const LobpcgOptions& o) {
+                            const RowBlock& X0, const LobpcgOptions& o, const Deflation& deflation) {
   const long n = A.rows();
   if (X0.rows() != n || X0.cols() < o.nev || o.nev < 1)
     throw std::invalid_argument("lobpcg: the start block must have n rows and at least nev >= 1 columns");
+  if (deflation.Z.cols() != deflation.AZ.cols() ||
+      (deflation.Z.cols() > 0 && (deflation.Z.rows() != n || deflation.AZ.rows() != n)))
+    throw std::invalid_argument("lobpcg: the deflated blocks Z and AZ must be n x r");
   const long mrows = o.mass_rows < 0 ? n : std::min<long>(o.mass_rows, n);
   // Gram matrices with M over the rows that carry mass (MY is zero below them).
   auto mgram = [mrows](const RowBlock& X, const RowBlock& MY) { return gram(X, MY, mrows); };
   LobpcgResult res;
+  const detail::SerialBlas serial_blas;
   // Every n-row block lives for the whole iteration and is written in place; the
   // scratch blocks take the products before a swap.
   RowBlock X = X0, AX, MX, P, AP, MP, W, AW, MW, R, Ra, S1, S2;
+  deflate(deflation, X);
   sym_times(A, X, AX);
   if (a_orthonormalise(X, AX, S1) < o.nev) throw std::invalid_argument("lobpcg: the start block is rank deficient");
   sym_times(M, X, MX);
@@ -162,6 +174,7 @@ LobpcgResult lobpcg_largest(const SparseMatrix& A, const SparseMatrix& M, const 
     select_columns(R, active, Ra);
     res.preconditioned += static_cast<long>(active.size());
     precondition(Ra, W);
+    deflate(deflation, W);
     times_dense_into(X, -gram(AX, W), 1.0, W);
     sym_times(A, W, AW);
     if (a_orthonormalise(W, AW, S1) == 0) {  // no new direction: stagnation

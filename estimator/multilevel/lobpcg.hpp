@@ -43,11 +43,19 @@ struct LobpcgResult {
   std::string breakdown;      ///< why the iteration stopped early, when it did
 };
 
+/// Eigenvectors known in advance (a free structure's rigid-body modes): the
+/// iteration stays A-orthogonal to them. Z: n x r with Zᵀ A Z = I, AZ = A Z.
+struct Deflation {
+  RowBlock Z, AZ;
+};
+
 using BlockOperator = std::function<void(const RowBlock& in, RowBlock& out)>;
 
 /// X0: start block (n x b, b ≥ nev, linearly independent). `precondition(R, W)`
-/// returns W ≈ A⁻¹ R.
+/// returns W ≈ A⁻¹ R. With a deflation the start block and every preconditioned
+/// block are made A-orthogonal to its Z, so the Ritz pairs found are the largest μ
+/// of the pencil restricted to that complement.
 LobpcgResult lobpcg_largest(const SparseMatrix& A, const SparseMatrix& M, const BlockOperator& precondition,
-                            const RowBlock& X0, const LobpcgOptions& options);
+                            const RowBlock& X0, const LobpcgOptions& options, const Deflation& deflation = {});
 
 }  // namespace ssid::estimator::multilevel
