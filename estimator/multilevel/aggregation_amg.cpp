@@ -282,30 +282,73 @@ void AggregationAmg::block_jacobi(const RowBlock& R, RowBlock& Z) const {
   });
 }
 
+void AggregationAmg::jacobi_step(const RowBlock& res, double alpha, double beta, RowBlock& d, RowBlock& X,
+                                 bool set_x) const {
+  const long ng = static_cast<long>(m_start.size()) - 1, b = res.cols();
+  if (alpha == 0.0) d.resize(res.rows(), b);  // d is written before it is read
+  if (set_x) X.resize(res.rows(), b);
+  const double* r = res.data();
+  double* dd = d.data();
+  double* x = X.data();
+  parallel_for(ng, [&, r, dd, x](long begin, long end) {
+    std::vector<double> z;  // D⁻¹ res of one grid point, k x b
+    for (long a = begin; a < end; ++a) {
+      const long s = m_start[static_cast<size_t>(a)], k = m_start[static_cast<size_t>(a) + 1] - s;
+      const double* dinv = m_dinv.data() + m_dinv_start[static_cast<size_t>(a)];
+      z.assign(static_cast<size_t>(k * b), 0.0);
+      for (long i = 0; i < k; ++i) {
+        double* __restrict zi = z.data() + i * b;
+        for (long j = 0; j < k; ++j) {
+          const double dij = beta * dinv[i * k + j];
+          const double* __restrict rj = r + m_dofs[static_cast<size_t>(s + j)] * b;
+#pragma GCC ivdep
+          for (long c = 0; c < b; ++c) zi[c] += dij * rj[c];
+        }
+      }
+      for (long i = 0; i < k; ++i) {
+        const long row = m_dofs[static_cast<size_t>(s + i)] * b;
+        const double* __restrict zi = z.data() + i * b;
+        double* __restrict di = dd + row;
+        double* __restrict xi = x + row;
+        if (alpha == 0.0)
+          for (long c = 0; c < b; ++c) di[c] = zi[c];
+        else
+          for (long c = 0; c < b; ++c) di[c] = alpha * di[c] + zi[c];
+        if (set_x)
+          for (long c = 0; c < b; ++c) xi[c] = di[c];
+        else
+          for (long c = 0; c < b; ++c) xi[c] += di[c];
+      }
+    }
+  });
+}
+
 // Chebyshev iteration on A X = R preconditioned by D (Saad, Iterative Methods,
-// Alg. 12.1), `degree` steps over the interval [ρ/ratio, ρ] of D⁻¹A.
+// Alg. 12.1), `degree` steps over the interval [ρ/ratio, ρ] of D⁻¹A. Each step is
+// two fused passes: res −= A d (sym_subtract), then z = D⁻¹ res, d = α d + β z and
+// X += d grid point by grid point (jacobi_step); the vector updates written as
+// separate block expressions ran on one thread and cost as much as the products.
 void AggregationAmg::chebyshev(const RowBlock& R, RowBlock& X, bool zero_start) const {
+  const int degree = m_options.smoother_degree;
+  if (degree < 1) {
+    if (zero_start) X.setZero(R.rows(), R.cols());
+    return;
+  }
   const double lmax = m_rho, lmin = m_rho / m_options.smoother_ratio;
   const double theta = 0.5 * (lmax + lmin), delta = 0.5 * (lmax - lmin), sigma = theta / delta;
   double rho = 1.0 / sigma;
-  RowBlock &res = m_ws.res, &d = m_ws.d, &Ad = m_ws.Ad, &z = m_ws.z;
+  RowBlock &res = m_ws.res, &d = m_ws.d;
   if (zero_start) {
-    res = R;
-    X.setZero(R.rows(), R.cols());
+    jacobi_step(R, 0.0, 1.0 / theta, d, X, true);  // X = d = D⁻¹ R / θ; the residual R − A X comes below
   } else {
-    sym_times(m_A, X, Ad);
-    res = R - Ad;
+    sym_residual(m_A, X, R, res);
+    jacobi_step(res, 0.0, 1.0 / theta, d, X, false);
   }
-  block_jacobi(res, d);
-  d /= theta;
-  for (int k = 0; k < m_options.smoother_degree; ++k) {
-    X += d;
-    if (k + 1 == m_options.smoother_degree) break;
-    sym_times(m_A, d, Ad);
-    res -= Ad;
+  for (int k = 1; k < degree; ++k) {
+    if (zero_start && k == 1) sym_residual(m_A, d, R, res);  // X = d so far
+    else sym_subtract(m_A, d, res);
     const double rho_next = 1.0 / (2.0 * sigma - rho);
-    block_jacobi(res, z);
-    d = (rho_next * rho) * d + (2.0 * rho_next / delta) * z;
+    jacobi_step(res, rho_next * rho, 2.0 * rho_next / delta, d, X, false);
     rho = rho_next;
   }
 }
@@ -314,15 +357,13 @@ void AggregationAmg::prolong(const RowBlock& Y, RowBlock& X) const { multilevel:
 
 void AggregationAmg::apply(const RowBlock& R, RowBlock& X) const {
   chebyshev(R, X, true);
-  RowBlock &Ad = m_ws.Ad, &E = m_ws.E, &Ec = m_ws.Ec, &Y = m_ws.Y, &PY = m_ws.PY;
-  sym_times(m_A, X, Ad);
-  E = R - Ad;
+  RowBlock &E = m_ws.E, &Ec = m_ws.Ec, &Y = m_ws.Y;
+  sym_residual(m_A, X, R, E);
   transpose_times(m_P, E, Ec);  // Pᵀ E, coarse x b
   // CHOLMOD solves column-major blocks: the coarse block (small) is copied.
   const Eigen::MatrixXd Yc = m_coarse.solve(Eigen::MatrixXd(Ec));
   Y = Yc;
-  prolong(Y, PY);
-  X += PY;
+  times_add(m_Prow, Y, X);  // X += P Y
   chebyshev(R, X, false);
 }
 

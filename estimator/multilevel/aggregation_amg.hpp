@@ -81,6 +81,9 @@ class AggregationAmg {
 
  private:
   void block_jacobi(const RowBlock& R, RowBlock& Z) const;
+  /// One fused smoothing pass: z = β D⁻¹ res, d = α d + z (d = z when α = 0), then
+  /// X += d (X = d when set_x).
+  void jacobi_step(const RowBlock& res, double alpha, double beta, RowBlock& d, RowBlock& X, bool set_x) const;
   void chebyshev(const RowBlock& R, RowBlock& X, bool zero_start) const;
 
   const SparseMatrix& m_A;
@@ -96,7 +99,7 @@ class AggregationAmg {
   CholmodFactor m_coarse;
   Times m_times;
   struct Workspace {
-    RowBlock res, d, Ad, z, E, Ec, Y, PY;
+    RowBlock res, d, E, Ec, Y;
   };
   mutable Workspace m_ws;
 };

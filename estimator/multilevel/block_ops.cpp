@@ -32,22 +32,34 @@ void parallel_for(long n, const std::function<void(long, long)>& body, long seri
 
 namespace {
 
-// Y.row(i) = Σ over the stored entries (j, a) of outer index i of a X.row(j).
+/// How a product is written into Y.
+enum class Into { Overwrite, Residual, Subtract, Add };  // Y = AX, Y = B − AX, Y −= AX, Y += AX
+
+// Y.row(i) (per `into`) Σ over the stored entries (j, a) of outer index i of a X.row(j).
 template <class Sparse>
-void outer_rows_times(const Sparse& A, const RowBlock& X, RowBlock& Y) {
+void outer_rows_times(const Sparse& A, const RowBlock& X, RowBlock& Y, Into into = Into::Overwrite,
+                      const RowBlock* base = nullptr) {
   const long rows = A.outerSize(), b = X.cols();
-  Y.resize(rows, b);
+  if (into == Into::Overwrite || into == Into::Residual) Y.resize(rows, b);
+  else if (Y.rows() != rows || Y.cols() != b) throw std::invalid_argument("sparse block product: Y's shape");
+  if (into == Into::Residual && (base->rows() != rows || base->cols() != b))
+    throw std::invalid_argument("sparse block product: the base block's shape");
   const auto* outer = A.outerIndexPtr();
   const auto* inner = A.innerIndexPtr();
   const double* val = A.valuePtr();
   const double* x = X.data();
+  const double* bs = base ? base->data() : nullptr;
   double* y = Y.data();
+  const double sign = (into == Into::Residual || into == Into::Subtract) ? -1.0 : 1.0;
   parallel_for(rows, [=](long begin, long end) {
     for (long i = begin; i < end; ++i) {
-      double* __restrict yi = y + i * b;  // Y and X never overlap
-      for (long c = 0; c < b; ++c) yi[c] = 0.0;
+      double* __restrict yi = y + i * b;  // Y never overlaps X or the base
+      if (into == Into::Overwrite)
+        for (long c = 0; c < b; ++c) yi[c] = 0.0;
+      else if (into == Into::Residual)
+        for (long c = 0; c < b; ++c) yi[c] = bs[i * b + c];
       for (auto p = outer[i]; p < outer[i + 1]; ++p) {
-        const double a = val[p];
+        const double a = sign * val[p];
         const double* __restrict xj = x + static_cast<long>(inner[p]) * b;
 #pragma GCC ivdep
         for (long c = 0; c < b; ++c) yi[c] += a * xj[c];
@@ -56,13 +68,31 @@ void outer_rows_times(const Sparse& A, const RowBlock& X, RowBlock& Y) {
   });
 }
 
+void check_symmetric(const SparseMatrix& A, const RowBlock& X) {
+  if (!A.isCompressed() || A.rows() != A.cols() || A.cols() != X.rows())
+    throw std::invalid_argument("sym_times: A must be square, compressed and match X");
+}
 
 }  // namespace
 
 void sym_times(const SparseMatrix& A, const RowBlock& X, RowBlock& Y) {
-  if (!A.isCompressed() || A.rows() != A.cols() || A.cols() != X.rows())
-    throw std::invalid_argument("sym_times: A must be square, compressed and match X");
+  check_symmetric(A, X);
   outer_rows_times(A, X, Y);
+}
+
+void sym_residual(const SparseMatrix& A, const RowBlock& X, const RowBlock& B, RowBlock& Y) {
+  check_symmetric(A, X);
+  outer_rows_times(A, X, Y, Into::Residual, &B);
+}
+
+void sym_subtract(const SparseMatrix& A, const RowBlock& X, RowBlock& Y) {
+  check_symmetric(A, X);
+  outer_rows_times(A, X, Y, Into::Subtract);
+}
+
+void times_add(const SparseRowMatrix& A, const RowBlock& X, RowBlock& Y) {
+  if (!A.isCompressed() || A.cols() != X.rows()) throw std::invalid_argument("times_add: A must be compressed and match X");
+  outer_rows_times(A, X, Y, Into::Add);
 }
 
 void times(const SparseRowMatrix& A, const RowBlock& X, RowBlock& Y) {

@@ -28,8 +28,14 @@ void parallel_for(long n, const std::function<void(long begin, long end)>& body,
 /// Y = A X for a symmetric A in full (both triangles) column-major storage:
 /// column i of A is row i. Threaded over rows.
 void sym_times(const SparseMatrix& A, const RowBlock& X, RowBlock& Y);
+/// Y = B − A X (a residual; Y resized, must not be B or X) and Y −= A X: the same
+/// product fused with the update, one pass over the blocks instead of two or three.
+void sym_residual(const SparseMatrix& A, const RowBlock& X, const RowBlock& B, RowBlock& Y);
+void sym_subtract(const SparseMatrix& A, const RowBlock& X, RowBlock& Y);
 /// Y = A X for a row-major sparse A (any shape). Threaded over rows.
 void times(const SparseRowMatrix& A, const RowBlock& X, RowBlock& Y);
+/// Y += A X (Y of A X's shape, not X).
+void times_add(const SparseRowMatrix& A, const RowBlock& X, RowBlock& Y);
 /// Y = Aᵀ X for a row-major sparse A (rows(A) = rows(X)), computed as the
 /// product of the column-major A (the transpose's rows): threaded over columns of A.
 void transpose_times(const SparseMatrix& A, const RowBlock& X, RowBlock& Y);

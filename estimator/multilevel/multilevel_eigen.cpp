@@ -174,7 +174,12 @@ MultilevelRun multilevel_lowest(const SparseMatrix& K_in, const SparseMatrix& M_
   BlockLanczosResult coarse;
   try {
     coarse = block_lanczos([&Fc](const Eigen::MatrixXd& X) { return Fc.solve(X); },
-                           [&Mc](const Eigen::MatrixXd& X) { return Eigen::MatrixXd(Mc * X); }, run.coarse_size,
+                           [&Mc](const Eigen::MatrixXd& X) {  // threaded (Eigen's product runs on one)
+                             RowBlock Y;
+                             sym_times(Mc, RowBlock(X), Y);
+                             return Eigen::MatrixXd(Y);
+                           },
+                           run.coarse_size,
                            sigma, bo);
   } catch (const std::exception& e) {
     run.failure = MultilevelRun::Failure::Breakdown;
