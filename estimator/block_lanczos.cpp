@@ -74,21 +74,26 @@ BlockLanczosResult block_lanczos(const std::function<MatrixXd(const MatrixXd&)>&
       project(lo, act);
       if (project(0, act)) project(0, act);
     }
+    // M w is carried along (M w − M W_kept r) rather than recomputed: one product
+    // with M per block, not three per column (a consistent coarse mass matrix, as
+    // the multilevel solver's, made those single-column products 80 % of its start).
     MatrixXd R = MatrixXd::Zero(W.cols(), W.cols());
-    const MatrixXd MW0 = mass(W);
+    MatrixXd MW = mass(W);
     long kept = 0;
     for (long c = 0; c < W.cols(); ++c) {
-      MatrixXd w = W.col(c);
-      const double before = std::sqrt(std::max(0.0, w.col(0).dot(MW0.col(c))));
+      VectorXd w = W.col(c), mw = MW.col(c);
+      const double before = std::sqrt(std::max(0.0, w.dot(mw)));
       for (int pass = 0; pass < 2 && kept > 0; ++pass) {  // classical Gram–Schmidt twice, BLAS-2
-        const VectorXd r = W.leftCols(kept).transpose() * mass(w).col(0);
-        w.col(0).noalias() -= W.leftCols(kept) * r;
+        const VectorXd r = W.leftCols(kept).transpose() * mw;
+        w.noalias() -= W.leftCols(kept) * r;
+        mw.noalias() -= MW.leftCols(kept) * r;
         R.col(c).head(kept) += r;
       }
-      const double nrm = std::sqrt(std::max(0.0, w.col(0).dot(mass(w).col(0))));
+      const double nrm = std::sqrt(std::max(0.0, w.dot(mw)));
       if (nrm > 1e-8 * before && nrm > 0.0) {
         R(kept, c) = nrm;
         W.col(kept) = w / nrm;
+        MW.col(kept) = mw / nrm;
         ++kept;
       }
     }

@@ -120,9 +120,11 @@ AggregationAmg::AggregationAmg(const SparseMatrix& A, const std::vector<long>& g
     throw std::invalid_argument("AggregationAmg: " + std::to_string(groups.size()) + " groups and a " +
                                 std::to_string(B.rows()) + " x " + std::to_string(B.cols()) +
                                 " near-null space for " + std::to_string(n) + " DOFs");
-  if (options.aggregate_radius < 0 || options.smoother_degree < 1 || !(options.smoother_ratio > 1.0))
-    throw std::invalid_argument("AggregationAmg: radius must be >= 0 (0: automatic), degree >= 1 and the ratio > 1");
-  if (m_options.aggregate_radius == 0) m_options.aggregate_radius = n <= 500000 ? 1 : 2;
+  if (options.aggregate_radius < 1 || options.prolongator_steps < 0 || options.smoother_degree < 1 ||
+      !(options.smoother_ratio > 1.0))
+    throw std::invalid_argument(
+        "AggregationAmg: the radius and the smoother degree must be >= 1, the prolongator steps >= 0 and the "
+        "ratio > 1");
   using Clock = std::chrono::steady_clock;
   auto since = [](Clock::time_point t) { return std::chrono::duration<double>(Clock::now() - t).count(); };
   auto t = Clock::now();
@@ -220,8 +222,8 @@ AggregationAmg::AggregationAmg(const SparseMatrix& A, const std::vector<long>& g
   m_times.aggregation = since(t);
   t = Clock::now();
 
-  if (options.smooth_prolongator) {
-    // D⁻¹ as a sparse block-diagonal matrix, then P = P0 − ω D⁻¹ (A P0).
+  if (options.prolongator_steps > 0) {
+    // D⁻¹ as a sparse block-diagonal matrix, then P ← P − ω D⁻¹ (A P), s times.
     std::vector<Eigen::Triplet<double>> td;
     td.reserve(m_dinv.size());
     for (long a = 0; a < ng; ++a) {
@@ -233,8 +235,10 @@ AggregationAmg::AggregationAmg(const SparseMatrix& A, const std::vector<long>& g
     SparseMatrix Dinv(n, n);
     Dinv.setFromTriplets(td.begin(), td.end());
     const double omega = 4.0 / (3.0 * m_rho);
-    const SparseMatrix AP0 = A * P0;
-    m_P = P0 - omega * SparseMatrix(Dinv * AP0);
+    m_P = P0;
+    for (int step = 0; step < options.prolongator_steps; ++step) {
+      m_P = m_P - omega * parallel_product(Dinv, parallel_product(A, m_P));
+    }
   } else {
     m_P = P0;
   }
@@ -247,8 +251,7 @@ AggregationAmg::AggregationAmg(const SparseMatrix& A, const std::vector<long>& g
 
   // Coarse matrix and its factor.
   t = Clock::now();
-  const SparseMatrix AP = A * m_P;
-  const SparseMatrix Ac = SparseMatrix(m_P.transpose()) * AP;
+  const SparseMatrix Ac = parallel_product(SparseMatrix(m_P.transpose()), parallel_product(A, m_P));
   m_times.coarse_matrix = since(t);
   m_coarse.set_dof_groups(coarse_group);
   t = Clock::now();

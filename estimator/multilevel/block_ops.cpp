@@ -113,6 +113,37 @@ constexpr long kSplitRows = 8192;
 
 }  // namespace
 
+SparseMatrix parallel_product(const SparseMatrix& A, const SparseMatrix& B) {
+  if (A.cols() != B.rows()) throw std::invalid_argument("parallel_product: shapes do not agree");
+  const long threads = hardware_threads(), nc = B.cols();
+  if (threads == 1 || nc < 64) return SparseMatrix(A * B);
+  // One part per thread, by columns; parallel_for's ranges are [t·chunk, ...).
+  const long chunk = (nc + threads - 1) / threads;
+  std::vector<SparseMatrix> parts(static_cast<size_t>(threads));
+  parallel_for(
+      nc,
+      [&](long begin, long end) {
+        SparseMatrix& part = parts[static_cast<size_t>(begin / chunk)];
+        part = A * B.middleCols(begin, end - begin);
+        part.makeCompressed();
+      },
+      0);
+  long nnz = 0;
+  for (const auto& part : parts) nnz += part.nonZeros();
+  SparseMatrix C(A.rows(), nc);
+  C.resizeNonZeros(nnz);
+  long col = 0, at = 0;
+  for (const auto& part : parts) {
+    for (long j = 0; j < part.cols(); ++j) C.outerIndexPtr()[col + j] = static_cast<int>(at + part.outerIndexPtr()[j]);
+    std::copy(part.innerIndexPtr(), part.innerIndexPtr() + part.nonZeros(), C.innerIndexPtr() + at);
+    std::copy(part.valuePtr(), part.valuePtr() + part.nonZeros(), C.valuePtr() + at);
+    col += part.cols();
+    at += part.nonZeros();
+  }
+  C.outerIndexPtr()[nc] = static_cast<int>(at);
+  return C;
+}
+
 Eigen::MatrixXd gram(const RowBlock& X, const RowBlock& Y, long rows) {
   if (X.rows() != Y.rows()) throw std::invalid_argument("gram: blocks of different lengths");
   const long m = rows < 0 ? static_cast<long>(X.rows()) : std::min<long>(rows, X.rows());

@@ -103,6 +103,55 @@ TEST_CASE("multilevel block kernels agree with Eigen's products", "[multilevel]"
   CHECK((dense(XC) - 2.0 * dense(X) * C).norm() <= 1e-13 * (dense(X) * C).norm());
 }
 
+TEST_CASE("multilevel kernels split over the cores agree with Eigen's products", "[multilevel]") {
+  // Large enough that the dense products are split by rows (one serial BLAS call
+  // per thread, partial Gram matrices summed) and the sparse product by columns.
+  const long n = 40000;
+  std::mt19937 rng(21);
+  std::uniform_real_distribution<double> u(-1.0, 1.0);
+  RowBlock X(n, 6), Y(n, 4);
+  for (Eigen::Index i = 0; i < X.size(); ++i) X.data()[i] = u(rng);
+  for (Eigen::Index i = 0; i < Y.size(); ++i) Y.data()[i] = u(rng);
+  const Eigen::MatrixXd G = multilevel::gram(X, Y), Gd = dense(X).transpose() * dense(Y);
+  CHECK((G - Gd).norm() <= 1e-12 * Gd.norm());
+  const Eigen::MatrixXd Gh = multilevel::gram(X, Y, n / 2 + 7), Ghd = dense(X).topRows(n / 2 + 7).transpose() * dense(Y).topRows(n / 2 + 7);
+  CHECK((Gh - Ghd).norm() <= 1e-12 * Ghd.norm());
+  const Eigen::MatrixXd C = Eigen::MatrixXd::Random(6, 3);
+  RowBlock XC;
+  multilevel::times_dense_into(X, C, 0.0, XC);
+  CHECK((dense(XC) - dense(X) * C).norm() <= 1e-13 * (dense(X) * C).norm());
+  multilevel::times_dense_into(X, C, 2.0, XC);  // Y = 2 Y + X C
+  CHECK((dense(XC) - 3.0 * dense(X) * C).norm() <= 1e-13 * (dense(X) * C).norm());
+
+  // A banded symmetric matrix: the fused residual forms of the product.
+  std::vector<Eigen::Triplet<double>> t;
+  for (long i = 0; i < n; ++i)
+    for (long j = std::max(0L, i - 3); j <= std::min(n - 1, i + 3); ++j)
+      if (j <= i) {
+        const double v = i == j ? 10.0 : u(rng);
+        t.emplace_back(i, j, v);
+        if (j != i) t.emplace_back(j, i, v);
+      }
+  Eigen::SparseMatrix<double> A(n, n);
+  A.setFromTriplets(t.begin(), t.end());
+  A.makeCompressed();
+  const Eigen::MatrixXd AX = A * dense(X);
+  RowBlock Z;
+  multilevel::sym_residual(A, X, X, Z);  // X − A X
+  CHECK((dense(Z) - (dense(X) - AX)).norm() <= 1e-13 * AX.norm());
+  multilevel::sym_subtract(A, X, Z);  // X − 2 A X
+  CHECK((dense(Z) - (dense(X) - 2.0 * AX)).norm() <= 1e-13 * AX.norm());
+  const Eigen::SparseMatrix<double, Eigen::RowMajor> Ar = A;
+  multilevel::times_add(Ar, X, Z);  // X − A X
+  CHECK((dense(Z) - (dense(X) - AX)).norm() <= 1e-13 * AX.norm());
+
+  // Sparse times sparse, split by columns, against Eigen's.
+  const Eigen::SparseMatrix<double> B = Eigen::MatrixXd::Random(n, 300).sparseView(0.9, 1.0);
+  const Eigen::SparseMatrix<double> AB = multilevel::parallel_product(A, B), ABe = A * B;
+  CHECK(AB.nonZeros() == ABe.nonZeros());
+  CHECK((Eigen::MatrixXd(AB) - Eigen::MatrixXd(ABe)).norm() <= 1e-14 * Eigen::MatrixXd(ABe).norm());
+}
+
 TEST_CASE("aggregation preconditioner: symmetric, positive definite, and conjugate gradients converge fast",
           "[multilevel]") {
   const Frame f = frame(9, 8, 7);
@@ -188,6 +237,20 @@ TEST_CASE("LOBPCG finds the largest eigenvalues of a pencil, against a dense sol
     const Eigen::MatrixXd X = dense(r.X);
     CHECK((X.transpose() * Kd * X - Eigen::MatrixXd::Identity(9, 9)).norm() <= 1e-10);
   }
+  // With the two lowest modes deflated (given, K-normalised), the next five are found
+  // and the vectors stay K-orthogonal to the deflated ones.
+  multilevel::Deflation d;
+  const Eigen::MatrixXd V = ges.eigenvectors().leftCols(2);  // M-normalised
+  d.Z = V * ges.eigenvalues().head(2).cwiseSqrt().cwiseInverse().asDiagonal();  // Zᵀ K Z = I
+  d.AZ = Kd * Eigen::MatrixXd(d.Z);
+  multilevel::LobpcgOptions o;
+  o.nev = 5;
+  o.tol = 1e-9;
+  o.maxit = 1000;
+  const multilevel::LobpcgResult r = multilevel::lobpcg_largest(K, M, exact, X0, o, d);
+  REQUIRE(r.converged);
+  for (int j = 0; j < o.nev; ++j) CHECK(1.0 / r.mu(j) == Approx(ges.eigenvalues()(j + 2)).epsilon(1e-10));
+  CHECK((dense(d.Z).transpose() * Kd * dense(r.X)).norm() <= 1e-10);
 }
 
 TEST_CASE("multilevel eigen-solver agrees with the direct solver on an irregular free 3D frame", "[multilevel]") {
