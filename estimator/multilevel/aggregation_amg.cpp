@@ -260,6 +260,15 @@ AggregationAmg::AggregationAmg(const SparseMatrix& A, const std::vector<long>& g
   if (!fs.ok() && fs.code != FactorStatus::Code::NearSingular)
     throw std::runtime_error("AggregationAmg: the coarse matrix (" + std::to_string(nc) +
                              " DOFs) cannot be factorised: " + fs.message);
+  m_double.A = &m_A, m_double.P = &m_P, m_double.Prow = &m_Prow, m_double.dinv = m_dinv.data();
+  if (m_options.single_precision) {
+    m_Af = A.cast<float>();
+    m_Pf = m_P.cast<float>();
+    m_Prowf = m_Prow.cast<float>();
+    m_Af.makeCompressed(), m_Pf.makeCompressed(), m_Prowf.makeCompressed();
+    m_dinvf.assign(m_dinv.begin(), m_dinv.end());
+    m_single.A = &m_Af, m_single.P = &m_Pf, m_single.Prow = &m_Prowf, m_single.dinv = m_dinvf.data();
+  }
 }
 
 void AggregationAmg::block_jacobi(const RowBlock& R, RowBlock& Z) const {
@@ -285,35 +294,37 @@ void AggregationAmg::block_jacobi(const RowBlock& R, RowBlock& Z) const {
   });
 }
 
-void AggregationAmg::jacobi_step(const RowBlock& res, double alpha, double beta, RowBlock& d, RowBlock& X,
-                                 bool set_x) const {
+template <class T>
+void AggregationAmg::jacobi_step(const Level<T>& L, const RowBlockOf<T>& res, double alpha_in, double beta_in,
+                                 RowBlockOf<T>& d, RowBlockOf<T>& X, bool set_x) const {
   const long ng = static_cast<long>(m_start.size()) - 1, b = res.cols();
-  if (alpha == 0.0) d.resize(res.rows(), b);  // d is written before it is read
+  const T alpha = static_cast<T>(alpha_in), beta = static_cast<T>(beta_in);
+  if (alpha_in == 0.0) d.resize(res.rows(), b);  // d is written before it is read
   if (set_x) X.resize(res.rows(), b);
-  const double* r = res.data();
-  double* dd = d.data();
-  double* x = X.data();
+  const T* r = res.data();
+  T* dd = d.data();
+  T* x = X.data();
   parallel_for(ng, [&, r, dd, x](long begin, long end) {
-    std::vector<double> z;  // D⁻¹ res of one grid point, k x b
+    std::vector<T> z;  // D⁻¹ res of one grid point, k x b
     for (long a = begin; a < end; ++a) {
       const long s = m_start[static_cast<size_t>(a)], k = m_start[static_cast<size_t>(a) + 1] - s;
-      const double* dinv = m_dinv.data() + m_dinv_start[static_cast<size_t>(a)];
-      z.assign(static_cast<size_t>(k * b), 0.0);
+      const T* dinv = L.dinv + m_dinv_start[static_cast<size_t>(a)];
+      z.assign(static_cast<size_t>(k * b), T(0));
       for (long i = 0; i < k; ++i) {
-        double* __restrict zi = z.data() + i * b;
+        T* __restrict zi = z.data() + i * b;
         for (long j = 0; j < k; ++j) {
-          const double dij = beta * dinv[i * k + j];
-          const double* __restrict rj = r + m_dofs[static_cast<size_t>(s + j)] * b;
+          const T dij = beta * dinv[i * k + j];
+          const T* __restrict rj = r + m_dofs[static_cast<size_t>(s + j)] * b;
 #pragma GCC ivdep
           for (long c = 0; c < b; ++c) zi[c] += dij * rj[c];
         }
       }
       for (long i = 0; i < k; ++i) {
         const long row = m_dofs[static_cast<size_t>(s + i)] * b;
-        const double* __restrict zi = z.data() + i * b;
-        double* __restrict di = dd + row;
-        double* __restrict xi = x + row;
-        if (alpha == 0.0)
+        const T* __restrict zi = z.data() + i * b;
+        T* __restrict di = dd + row;
+        T* __restrict xi = x + row;
+        if (alpha_in == 0.0)
           for (long c = 0; c < b; ++c) di[c] = zi[c];
         else
           for (long c = 0; c < b; ++c) di[c] = alpha * di[c] + zi[c];
@@ -331,7 +342,8 @@ void AggregationAmg::jacobi_step(const RowBlock& res, double alpha, double beta,
 // two fused passes: res −= A d (sym_subtract), then z = D⁻¹ res, d = α d + β z and
 // X += d grid point by grid point (jacobi_step); the vector updates written as
 // separate block expressions ran on one thread and cost as much as the products.
-void AggregationAmg::chebyshev(const RowBlock& R, RowBlock& X, bool zero_start) const {
+template <class T>
+void AggregationAmg::chebyshev(const Level<T>& L, const RowBlockOf<T>& R, RowBlockOf<T>& X, bool zero_start) const {
   const int degree = m_options.smoother_degree;
   if (degree < 1) {
     if (zero_start) X.setZero(R.rows(), R.cols());
@@ -340,34 +352,45 @@ void AggregationAmg::chebyshev(const RowBlock& R, RowBlock& X, bool zero_start) 
   const double lmax = m_rho, lmin = m_rho / m_options.smoother_ratio;
   const double theta = 0.5 * (lmax + lmin), delta = 0.5 * (lmax - lmin), sigma = theta / delta;
   double rho = 1.0 / sigma;
-  RowBlock &res = m_ws.res, &d = m_ws.d;
+  RowBlockOf<T> &res = L.res, &d = L.d;
   if (zero_start) {
-    jacobi_step(R, 0.0, 1.0 / theta, d, X, true);  // X = d = D⁻¹ R / θ; the residual R − A X comes below
+    jacobi_step(L, R, 0.0, 1.0 / theta, d, X, true);  // X = d = D⁻¹ R / θ; the residual R − A X comes below
   } else {
-    sym_residual(m_A, X, R, res);
-    jacobi_step(res, 0.0, 1.0 / theta, d, X, false);
+    sym_residual(*L.A, X, R, res);
+    jacobi_step(L, res, 0.0, 1.0 / theta, d, X, false);
   }
   for (int k = 1; k < degree; ++k) {
-    if (zero_start && k == 1) sym_residual(m_A, d, R, res);  // X = d so far
-    else sym_subtract(m_A, d, res);
+    if (zero_start && k == 1) sym_residual(*L.A, d, R, res);  // X = d so far
+    else sym_subtract(*L.A, d, res);
     const double rho_next = 1.0 / (2.0 * sigma - rho);
-    jacobi_step(res, rho_next * rho, 2.0 * rho_next / delta, d, X, false);
+    jacobi_step(L, res, rho_next * rho, 2.0 * rho_next / delta, d, X, false);
     rho = rho_next;
   }
+}
+
+template <class T>
+void AggregationAmg::cycle(const Level<T>& L, const RowBlockOf<T>& R, RowBlockOf<T>& X) const {
+  chebyshev(L, R, X, true);
+  RowBlockOf<T> &E = L.E, &Ec = L.Ec, &Y = L.Y;
+  sym_residual(*L.A, X, R, E);
+  transpose_times(*L.P, E, Ec);  // Pᵀ E, coarse x b
+  // CHOLMOD solves column-major double blocks: the coarse block (small) is copied.
+  const Eigen::MatrixXd Yc = m_coarse.solve(Eigen::MatrixXd(Ec.template cast<double>()));
+  Y = Yc.cast<T>();
+  times_add(*L.Prow, Y, X);  // X += P Y
+  chebyshev(L, R, X, false);
 }
 
 void AggregationAmg::prolong(const RowBlock& Y, RowBlock& X) const { multilevel::times(m_Prow, Y, X); }
 
 void AggregationAmg::apply(const RowBlock& R, RowBlock& X) const {
-  chebyshev(R, X, true);
-  RowBlock &E = m_ws.E, &Ec = m_ws.Ec, &Y = m_ws.Y;
-  sym_residual(m_A, X, R, E);
-  transpose_times(m_P, E, Ec);  // Pᵀ E, coarse x b
-  // CHOLMOD solves column-major blocks: the coarse block (small) is copied.
-  const Eigen::MatrixXd Yc = m_coarse.solve(Eigen::MatrixXd(Ec));
-  Y = Yc;
-  times_add(m_Prow, Y, X);  // X += P Y
-  chebyshev(R, X, false);
+  if (!m_options.single_precision) {
+    cycle(m_double, R, X);
+    return;
+  }
+  convert(R, m_single.R);
+  cycle(m_single, m_single.R, m_single.X);
+  convert(m_single.X, X);
 }
 
 }  // namespace ssid::estimator::multilevel

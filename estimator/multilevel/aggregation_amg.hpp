@@ -55,6 +55,13 @@ struct AmgOptions {
   /// eigen-solver's iterations by a third (94k lattice: 34 -> 23 with radius 1,
   /// 43 -> 27 with radius 2) for a coarse factor about twice as dense.
   int prolongator_steps = 2;
+  /// The cycle (smoothing, restriction, prolongation) in single precision, the
+  /// coarse solve in double. Why: a preconditioner needs a few digits, and its
+  /// sparse block products are bound by memory traffic, which floats halve (the 94k
+  /// lattice: 14-16 s -> 12-13 s, same iterations). The cycle is then symmetric to about
+  /// 1e-8 rather than 1e-15 (relative; the test frame), which LOBPCG, converging
+  /// to 1e-6, does not see.
+  bool single_precision = true;
 };
 
 class AggregationAmg {
@@ -66,6 +73,9 @@ class AggregationAmg {
   /// the coarse matrix cannot be factorised. A must outlive this object.
   AggregationAmg(const SparseMatrix& A, const std::vector<long>& groups, const Eigen::MatrixXd& B,
                  const AmgOptions& options = {});
+  // The cycle's levels point into this object.
+  AggregationAmg(const AggregationAmg&) = delete;
+  AggregationAmg& operator=(const AggregationAmg&) = delete;
 
   /// X ≈ A⁻¹ R, one symmetric two-level cycle. Not thread-safe: the cycle's
   /// blocks are kept between calls (a fresh n x b block costs its page faults).
@@ -88,11 +98,28 @@ class AggregationAmg {
   const Times& times() const { return m_times; }
 
  private:
+  /// The operators the cycle runs on, in precision T (double: the members below;
+  /// float: copies), and the cycle's blocks, kept between calls (a fresh n x b
+  /// block costs its page faults).
+  template <class T>
+  struct Level {
+    const SparseOf<T>* A = nullptr;
+    const SparseOf<T>* P = nullptr;
+    const SparseRowOf<T>* Prow = nullptr;
+    const T* dinv = nullptr;
+    mutable RowBlockOf<T> res, d, E, Ec, Y, R, X;
+  };
+
   void block_jacobi(const RowBlock& R, RowBlock& Z) const;
   /// One fused smoothing pass: z = β D⁻¹ res, d = α d + z (d = z when α = 0), then
   /// X += d (X = d when set_x).
-  void jacobi_step(const RowBlock& res, double alpha, double beta, RowBlock& d, RowBlock& X, bool set_x) const;
-  void chebyshev(const RowBlock& R, RowBlock& X, bool zero_start) const;
+  template <class T>
+  void jacobi_step(const Level<T>& L, const RowBlockOf<T>& res, double alpha, double beta, RowBlockOf<T>& d,
+                   RowBlockOf<T>& X, bool set_x) const;
+  template <class T>
+  void chebyshev(const Level<T>& L, const RowBlockOf<T>& R, RowBlockOf<T>& X, bool zero_start) const;
+  template <class T>
+  void cycle(const Level<T>& L, const RowBlockOf<T>& R, RowBlockOf<T>& X) const;
 
   const SparseMatrix& m_A;
   AmgOptions m_options;
@@ -106,10 +133,11 @@ class AggregationAmg {
   SparseRowMatrix m_Prow;
   CholmodFactor m_coarse;
   Times m_times;
-  struct Workspace {
-    RowBlock res, d, E, Ec, Y;
-  };
-  mutable Workspace m_ws;
+  Level<double> m_double;
+  Level<float> m_single;
+  SparseOf<float> m_Af, m_Pf;
+  SparseRowOf<float> m_Prowf;
+  std::vector<float> m_dinvf;
 };
 
 }  // namespace ssid::estimator::multilevel

@@ -36,9 +36,9 @@ namespace {
 enum class Into { Overwrite, Residual, Subtract, Add };  // Y = AX, Y = B − AX, Y −= AX, Y += AX
 
 // Y.row(i) (per `into`) Σ over the stored entries (j, a) of outer index i of a X.row(j).
-template <class Sparse>
-void outer_rows_times(const Sparse& A, const RowBlock& X, RowBlock& Y, Into into = Into::Overwrite,
-                      const RowBlock* base = nullptr) {
+template <class Sparse, class T>
+void outer_rows_times(const Sparse& A, const RowBlockOf<T>& X, RowBlockOf<T>& Y, Into into = Into::Overwrite,
+                      const RowBlockOf<T>* base = nullptr) {
   const long rows = A.outerSize(), b = X.cols();
   if (into == Into::Overwrite || into == Into::Residual) Y.resize(rows, b);
   else if (Y.rows() != rows || Y.cols() != b) throw std::invalid_argument("sparse block product: Y's shape");
@@ -46,21 +46,21 @@ void outer_rows_times(const Sparse& A, const RowBlock& X, RowBlock& Y, Into into
     throw std::invalid_argument("sparse block product: the base block's shape");
   const auto* outer = A.outerIndexPtr();
   const auto* inner = A.innerIndexPtr();
-  const double* val = A.valuePtr();
-  const double* x = X.data();
-  const double* bs = base ? base->data() : nullptr;
-  double* y = Y.data();
-  const double sign = (into == Into::Residual || into == Into::Subtract) ? -1.0 : 1.0;
+  const T* val = A.valuePtr();
+  const T* x = X.data();
+  const T* bs = base ? base->data() : nullptr;
+  T* y = Y.data();
+  const T sign = (into == Into::Residual || into == Into::Subtract) ? T(-1) : T(1);
   parallel_for(rows, [=](long begin, long end) {
     for (long i = begin; i < end; ++i) {
-      double* __restrict yi = y + i * b;  // Y never overlaps X or the base
+      T* __restrict yi = y + i * b;  // Y never overlaps X or the base
       if (into == Into::Overwrite)
-        for (long c = 0; c < b; ++c) yi[c] = 0.0;
+        for (long c = 0; c < b; ++c) yi[c] = T(0);
       else if (into == Into::Residual)
         for (long c = 0; c < b; ++c) yi[c] = bs[i * b + c];
       for (auto p = outer[i]; p < outer[i + 1]; ++p) {
-        const double a = sign * val[p];
-        const double* __restrict xj = x + static_cast<long>(inner[p]) * b;
+        const T a = sign * val[p];
+        const T* __restrict xj = x + static_cast<long>(inner[p]) * b;
 #pragma GCC ivdep
         for (long c = 0; c < b; ++c) yi[c] += a * xj[c];
       }
@@ -68,43 +68,75 @@ void outer_rows_times(const Sparse& A, const RowBlock& X, RowBlock& Y, Into into
   });
 }
 
-void check_symmetric(const SparseMatrix& A, const RowBlock& X) {
+template <class T>
+void check_symmetric(const SparseOf<T>& A, const RowBlockOf<T>& X) {
   if (!A.isCompressed() || A.rows() != A.cols() || A.cols() != X.rows())
     throw std::invalid_argument("sym_times: A must be square, compressed and match X");
 }
 
 }  // namespace
 
-void sym_times(const SparseMatrix& A, const RowBlock& X, RowBlock& Y) {
+template <class T>
+void sym_times(const SparseOf<T>& A, const RowBlockOf<T>& X, RowBlockOf<T>& Y) {
   check_symmetric(A, X);
   outer_rows_times(A, X, Y);
 }
 
-void sym_residual(const SparseMatrix& A, const RowBlock& X, const RowBlock& B, RowBlock& Y) {
+template <class T>
+void sym_residual(const SparseOf<T>& A, const RowBlockOf<T>& X, const RowBlockOf<T>& B, RowBlockOf<T>& Y) {
   check_symmetric(A, X);
   outer_rows_times(A, X, Y, Into::Residual, &B);
 }
 
-void sym_subtract(const SparseMatrix& A, const RowBlock& X, RowBlock& Y) {
+template <class T>
+void sym_subtract(const SparseOf<T>& A, const RowBlockOf<T>& X, RowBlockOf<T>& Y) {
   check_symmetric(A, X);
   outer_rows_times(A, X, Y, Into::Subtract);
 }
 
-void times_add(const SparseRowMatrix& A, const RowBlock& X, RowBlock& Y) {
+template <class T>
+void times_add(const SparseRowOf<T>& A, const RowBlockOf<T>& X, RowBlockOf<T>& Y) {
   if (!A.isCompressed() || A.cols() != X.rows()) throw std::invalid_argument("times_add: A must be compressed and match X");
   outer_rows_times(A, X, Y, Into::Add);
 }
 
-void times(const SparseRowMatrix& A, const RowBlock& X, RowBlock& Y) {
+template <class T>
+void times(const SparseRowOf<T>& A, const RowBlockOf<T>& X, RowBlockOf<T>& Y) {
   if (!A.isCompressed() || A.cols() != X.rows()) throw std::invalid_argument("times: A must be compressed and match X");
   outer_rows_times(A, X, Y);
 }
 
-void transpose_times(const SparseMatrix& A, const RowBlock& X, RowBlock& Y) {
+template <class T>
+void transpose_times(const SparseOf<T>& A, const RowBlockOf<T>& X, RowBlockOf<T>& Y) {
   if (!A.isCompressed() || A.rows() != X.rows())
     throw std::invalid_argument("transpose_times: A must be compressed and match X");
   outer_rows_times(A, X, Y);  // column j of A is row j of Aᵀ
 }
+
+template <class From, class To>
+void convert(const RowBlockOf<From>& X, RowBlockOf<To>& Y) {
+  Y.resize(X.rows(), X.cols());
+  const long b = X.cols();
+  const From* x = X.data();
+  To* y = Y.data();
+  parallel_for(X.rows(), [=](long begin, long end) {
+    for (long i = begin * b; i < end * b; ++i) y[i] = static_cast<To>(x[i]);
+  });
+}
+
+#define SSID_BLOCK_OPS(T)                                                                                \
+  template void sym_times<T>(const SparseOf<T>&, const RowBlockOf<T>&, RowBlockOf<T>&);                  \
+  template void sym_residual<T>(const SparseOf<T>&, const RowBlockOf<T>&, const RowBlockOf<T>&,          \
+                                RowBlockOf<T>&);                                                         \
+  template void sym_subtract<T>(const SparseOf<T>&, const RowBlockOf<T>&, RowBlockOf<T>&);               \
+  template void times_add<T>(const SparseRowOf<T>&, const RowBlockOf<T>&, RowBlockOf<T>&);               \
+  template void times<T>(const SparseRowOf<T>&, const RowBlockOf<T>&, RowBlockOf<T>&);                   \
+  template void transpose_times<T>(const SparseOf<T>&, const RowBlockOf<T>&, RowBlockOf<T>&);
+SSID_BLOCK_OPS(double)
+SSID_BLOCK_OPS(float)
+#undef SSID_BLOCK_OPS
+template void convert<double, float>(const RowBlockOf<double>&, RowBlockOf<float>&);
+template void convert<float, double>(const RowBlockOf<float>&, RowBlockOf<double>&);
 
 namespace {
 

@@ -15,9 +15,17 @@
 
 namespace ssid::estimator::multilevel {
 
-using RowBlock = Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, Eigen::RowMajor>;
-using SparseMatrix = Eigen::SparseMatrix<double>;                    // column-major
-using SparseRowMatrix = Eigen::SparseMatrix<double, Eigen::RowMajor>;
+template <class T>
+using RowBlockOf = Eigen::Matrix<T, Eigen::Dynamic, Eigen::Dynamic, Eigen::RowMajor>;
+template <class T>
+using SparseOf = Eigen::SparseMatrix<T>;  // column-major
+template <class T>
+using SparseRowOf = Eigen::SparseMatrix<T, Eigen::RowMajor>;
+using RowBlock = RowBlockOf<double>;
+using SparseMatrix = SparseOf<double>;
+using SparseRowMatrix = SparseRowOf<double>;
+/// Single precision: the preconditioner's blocks (docs/eigen_solver.md).
+using RowBlockF = RowBlockOf<float>;
 
 /// Runs body(begin, end) over [0, n) split into one contiguous range per hardware
 /// thread (serially below `serial_below` items). Plain threads that block when done:
@@ -25,20 +33,30 @@ using SparseRowMatrix = Eigen::SparseMatrix<double, Eigen::RowMajor>;
 /// cores (the 64k-DOF lattice solved 27 % faster with passive waiting).
 void parallel_for(long n, const std::function<void(long begin, long end)>& body, long serial_below = 4096);
 
+// The sparse block products, for T = double and float.
 /// Y = A X for a symmetric A in full (both triangles) column-major storage:
 /// column i of A is row i. Threaded over rows.
-void sym_times(const SparseMatrix& A, const RowBlock& X, RowBlock& Y);
+template <class T>
+void sym_times(const SparseOf<T>& A, const RowBlockOf<T>& X, RowBlockOf<T>& Y);
 /// Y = B − A X (a residual; Y resized, must not be B or X) and Y −= A X: the same
 /// product fused with the update, one pass over the blocks instead of two or three.
-void sym_residual(const SparseMatrix& A, const RowBlock& X, const RowBlock& B, RowBlock& Y);
-void sym_subtract(const SparseMatrix& A, const RowBlock& X, RowBlock& Y);
+template <class T>
+void sym_residual(const SparseOf<T>& A, const RowBlockOf<T>& X, const RowBlockOf<T>& B, RowBlockOf<T>& Y);
+template <class T>
+void sym_subtract(const SparseOf<T>& A, const RowBlockOf<T>& X, RowBlockOf<T>& Y);
 /// Y = A X for a row-major sparse A (any shape). Threaded over rows.
-void times(const SparseRowMatrix& A, const RowBlock& X, RowBlock& Y);
+template <class T>
+void times(const SparseRowOf<T>& A, const RowBlockOf<T>& X, RowBlockOf<T>& Y);
 /// Y += A X (Y of A X's shape, not X).
-void times_add(const SparseRowMatrix& A, const RowBlock& X, RowBlock& Y);
+template <class T>
+void times_add(const SparseRowOf<T>& A, const RowBlockOf<T>& X, RowBlockOf<T>& Y);
 /// Y = Aᵀ X for a row-major sparse A (rows(A) = rows(X)), computed as the
 /// product of the column-major A (the transpose's rows): threaded over columns of A.
-void transpose_times(const SparseMatrix& A, const RowBlock& X, RowBlock& Y);
+template <class T>
+void transpose_times(const SparseOf<T>& A, const RowBlockOf<T>& X, RowBlockOf<T>& Y);
+/// Y = X in another precision, threaded.
+template <class From, class To>
+void convert(const RowBlockOf<From>& X, RowBlockOf<To>& Y);
 
 /// A B for column-major sparse matrices, B's columns split over the cores (Eigen's
 /// sparse product runs on one: the preconditioner's setup of the 1M-DOF lattice

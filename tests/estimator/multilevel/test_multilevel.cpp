@@ -164,12 +164,27 @@ TEST_CASE("aggregation preconditioner: symmetric, positive definite, and conjuga
   CHECK(amg.coarse_size() < n / 4);
   CHECK(amg.coarse_size() == 6 * amg.aggregates());  // six rigid-body modes on every aggregate
 
-  RowBlock XY = Eigen::MatrixXd::Random(n, 2), T;
-  amg.apply(XY, T);
-  const double xty = XY.col(0).dot(T.col(1)), ytx = XY.col(1).dot(T.col(0));
-  CHECK(std::abs(xty - ytx) <= 1e-10 * std::sqrt(XY.col(0).dot(T.col(0)) * XY.col(1).dot(T.col(1))));
-  CHECK(XY.col(0).dot(T.col(0)) > 0.0);
-  CHECK(XY.col(1).dot(T.col(1)) > 0.0);
+  // Symmetric and positive: to round-off in double, to single precision's
+  // round-off in float (a relative 6e-8 per operation; 1e-8 measured here).
+  multilevel::AmgOptions in_double;
+  in_double.single_precision = false;
+  const multilevel::AggregationAmg amg_double(A, f.groups, f.rigid, in_double);
+  const RowBlock XY = Eigen::MatrixXd::Random(n, 2);
+  for (const auto* cycle : {&amg_double, &amg}) {
+    RowBlock T;
+    cycle->apply(XY, T);
+    const double xty = XY.col(0).dot(T.col(1)), ytx = XY.col(1).dot(T.col(0));
+    const double tol = cycle == &amg_double ? 1e-10 : 1e-6;
+    INFO((cycle == &amg_double ? "double" : "single") << " precision: asymmetry " << std::abs(xty - ytx));
+    CHECK(std::abs(xty - ytx) <= tol * std::sqrt(XY.col(0).dot(T.col(0)) * XY.col(1).dot(T.col(1))));
+    CHECK(XY.col(0).dot(T.col(0)) > 0.0);
+    CHECK(XY.col(1).dot(T.col(1)) > 0.0);
+  }
+  // The single-precision cycle is the double one to single precision.
+  RowBlock Td, Ts;
+  amg_double.apply(XY, Td);
+  amg.apply(XY, Ts);
+  CHECK((dense(Ts) - dense(Td)).norm() <= 1e-5 * dense(Td).norm());
 
   // Preconditioned conjugate gradients on A x = b, against plain CG.
   auto cg = [&](bool precondition) {
