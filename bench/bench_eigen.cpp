@@ -10,7 +10,7 @@
 ///
 /// usage: bench_eigen N [--nd ND] [--block B] [--ncv NCV] [--tol TOL] [--sturm] [--method auto|spectra|block]
 ///                      [--dof-ordering] [--export DIR] [--export-only]
-///                      [--method multilevel [--radius R] [--psteps S] [--degree D] [--guard G] [--ml-tol T]] [--compare]
+///                      [--method multilevel [--radius R] [--psteps S] [--degree D] [--guard G] [--ml-tol T] [--no-deflate]] [--compare]
 ///                      [--factor-only] [--analyze-only]
 ///   N = 12 → 10 368 DOF, 25 → 93 750 DOF, 55 → 998 250 DOF.
 ///   By default the ordering is computed on the grid-point graph (EigenOptions::
@@ -243,7 +243,7 @@ int main(int argc, char** argv) {
   EigenMethod method = EigenMethod::Auto;
   double tol = 1e-10;
   ssid::estimator::multilevel::MultilevelOptions ml;
-  bool compare = false;
+  bool compare = false, no_deflate = false;
   bool sturm = false, dof_ordering = false, export_only = false, factor_only = false, analyze_only = false;
   std::string export_dir;
   for (int i = 2; i < argc; ++i) {
@@ -266,6 +266,7 @@ int main(int argc, char** argv) {
     else if (!std::strcmp(argv[i], "--ml-tol") && i + 1 < argc) ml.tol = std::stod(argv[++i]);
     else if (!std::strcmp(argv[i], "--guard") && i + 1 < argc) ml.guard = std::stoi(argv[++i]);
     else if (!std::strcmp(argv[i], "--compare")) compare = true;
+    else if (!std::strcmp(argv[i], "--no-deflate")) no_deflate = true;
     else if (!std::strcmp(argv[i], "--dof-ordering")) dof_ordering = true;
     else if (!std::strcmp(argv[i], "--export-only")) export_only = true;
     else if (!std::strcmp(argv[i], "--factor-only")) factor_only = true;
@@ -338,6 +339,7 @@ int main(int argc, char** argv) {
   o.sturm_check = false;
   o.dof_groups = groups;
   o.multilevel = ml;
+  o.multilevel.deflate = !no_deflate;
   if (method == EigenMethod::Multilevel || method == EigenMethod::Auto) o.near_null_space = rigid_body_modes(m);
   if (method == EigenMethod::Multilevel) {
     const double t_start = now_s();

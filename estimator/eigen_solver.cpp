@@ -218,6 +218,7 @@ void solve_multilevel(const SparseMatrix& K, const SparseMatrix& M, double sigma
   res.iterations = run.iterations;
   res.solves = run.preconditioned;
   res.coarse_size = run.coarse_size;
+  res.deflated = run.deflated;
   res.analyze_seconds = 0.0;
   res.factor_seconds = run.setup_seconds;
   res.lanczos_seconds = run.coarse_modes_seconds + run.lobpcg_seconds;

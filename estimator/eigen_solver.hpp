@@ -153,6 +153,7 @@ struct EigenResult {
   std::string method;    ///< "Spectra", "BlockLanczos" or "Multilevel"
   long iterations = 0;   ///< Spectra restarts, block Lanczos block solves or LOBPCG iterations, summed over runs
   long coarse_size = 0;  ///< Multilevel: DOFs of the coarse model
+  int deflated = 0;      ///< Multilevel: exact zero-energy modes taken from near_null_space first
   long solves = 0;       ///< right-hand-side columns solved with the factor
   long sturm_count = -1; ///< eigenvalues below the band top by inertia; −1 when not counted
   int analyses = 0;      ///< symbolic analyses done by this solve (0 when reused)

@@ -3,9 +3,8 @@
 #include "estimator/block_lanczos.hpp"
 #include "estimator/eigen_solver.hpp"
 #include "estimator/multilevel/lobpcg.hpp"
+#include "estimator/zero_energy_modes.hpp"
 
-#include <Eigen/Cholesky>
-#include <Eigen/Eigenvalues>
 #include <algorithm>
 #include <chrono>
 #include <memory>
@@ -17,47 +16,6 @@ namespace ssid::estimator::multilevel {
 namespace {
 using Clock = std::chrono::steady_clock;
 double seconds_since(Clock::time_point t) { return std::chrono::duration<double>(Clock::now() - t).count(); }
-
-/// The combinations of the near-null space B that are exact eigenvectors of the
-/// model (a free structure's rigid-body modes, exact from its geometry): eigenpairs
-/// of the projected pencil (Bᵀ K B, Bᵀ M B) whose residual ‖(K − λM)z‖ / ‖(K − σM)z‖
-/// is below `tol`, at most `max_modes`. Their λ and M-normalised z are returned;
-/// the deflation gets z scaled to Zᵀ A Z = I, A = K − σM.
-/// Why: LOBPCG then iterates on the elastic modes only; for 35 elastic modes of a
-/// free structure the block shrinks from 51 to 45 columns, and the dense work of
-/// each iteration goes with the block's square.
-int zero_energy_modes(const SparseMatrix& K, const SparseMatrix& M, double sigma, const Eigen::MatrixXd& B,
-                      double tol, int max_modes, Eigen::VectorXd& lambda, Eigen::MatrixXd& z, Deflation& d) {
-  lambda.resize(0), z.resize(B.rows(), 0);
-  if (B.cols() == 0 || max_modes < 1) return 0;
-  const Eigen::MatrixXd KB = K * B, MB = M * B;
-  const Eigen::MatrixXd Gk = B.transpose() * KB, Gm = B.transpose() * MB;
-  if (Eigen::LLT<Eigen::MatrixXd>(0.5 * (Gm + Gm.transpose())).info() != Eigen::Success) return 0;  // massless
-  Eigen::GeneralizedSelfAdjointEigenSolver<Eigen::MatrixXd> es(0.5 * (Gk + Gk.transpose()),
-                                                               0.5 * (Gm + Gm.transpose()));
-  if (es.info() != Eigen::Success) return 0;
-  std::vector<Eigen::Index> keep;
-  for (Eigen::Index j = 0; j < es.eigenvalues().size() && static_cast<int>(keep.size()) < max_modes; ++j) {
-    const double lam = es.eigenvalues()(j);
-    const Eigen::VectorXd c = es.eigenvectors().col(j);
-    const Eigen::VectorXd kz = KB * c, mz = MB * c;
-    const double shifted = (kz - sigma * mz).norm();
-    if (lam - sigma > 0.0 && shifted > 0.0 && (kz - lam * mz).norm() <= tol * shifted) keep.push_back(j);
-  }
-  const long n = B.rows();
-  const auto r = static_cast<Eigen::Index>(keep.size());
-  lambda.resize(r), z.resize(n, r);
-  d.Z.resize(n, r), d.AZ.resize(n, r);
-  for (Eigen::Index k = 0; k < r; ++k) {
-    const Eigen::VectorXd c = es.eigenvectors().col(keep[static_cast<size_t>(k)]);
-    lambda(k) = es.eigenvalues()(keep[static_cast<size_t>(k)]);
-    z.col(k) = B * c;  // cᵀ Bᵀ M B c = 1
-    const double s = 1.0 / std::sqrt(lambda(k) - sigma);  // zᵀ A z = λ − σ
-    d.Z.col(k) = s * z.col(k);
-    d.AZ.col(k) = s * (KB * c - sigma * (MB * c));
-  }
-  return static_cast<int>(r);
-}
 }  // namespace
 
 MultilevelRun multilevel_lowest(const SparseMatrix& K_in, const SparseMatrix& M_in, double sigma, int nev,
@@ -125,10 +83,20 @@ MultilevelRun multilevel_lowest(const SparseMatrix& K_in, const SparseMatrix& M_
 
   // Exact zero-energy modes (rigid-body modes of a free structure) taken out of the
   // iteration, which then looks for the remaining nev − r modes.
+  // (zero_energy_modes.hpp; the iteration is kept A-orthogonal to them, A = K − σM:
+  // Z = z / √(λ − σ), since zᵀ A z = λ − σ for an M-normalised z).
+  const ZeroEnergyModes zm =
+      o.deflate ? zero_energy_modes(K, M, sigma, B, 1e-2 * o.tol, nev) : ZeroEnergyModes{{}, Eigen::MatrixXd(n, 0)};
+  const Eigen::VectorXd& zero_lambda = zm.lambda;
+  const Eigen::MatrixXd& zero_z = zm.z;
+  const int r = static_cast<int>(zm.z.cols());
+  run.deflated = r;
   Deflation deflation;
-  Eigen::VectorXd zero_lambda;
-  Eigen::MatrixXd zero_z;
-  const int r = zero_energy_modes(K, M, sigma, B, 1e-2 * o.tol, nev, zero_lambda, zero_z, deflation);
+  if (r > 0) {
+    const Eigen::VectorXd s = (zero_lambda.array() - sigma).rsqrt();
+    deflation.Z = zero_z * s.asDiagonal();
+    deflation.AZ = (K * zero_z - sigma * (M * zero_z)) * s.asDiagonal();
+  }
   if (r > 0)
     report(progress, "multilevel: " + std::to_string(r) + " zero-energy modes of the near-null space deflated", 0.1);
   const int nev_it = nev - r;

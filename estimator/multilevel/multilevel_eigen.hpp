@@ -27,6 +27,7 @@ struct MultilevelOptions {
   double tol = 1e-6;  ///< ‖(K − λM)φ‖ / ‖(K − σM)φ‖ per mode (eigenvalues then agree with a direct solve to ~1e-12)
   int maxit = 300;    ///< LOBPCG iterations
   int guard = 0;      ///< extra block columns beyond ND; 0: max(8, ND/4)
+  bool deflate = true;  ///< the exact zero-energy modes of B taken out first (zero_energy_modes.hpp)
 };
 
 struct MultilevelRun {
@@ -43,6 +44,7 @@ struct MultilevelRun {
   int iterations = 0;
   long preconditioned = 0;  ///< residual columns through the preconditioner
   long coarse_size = 0, aggregates = 0;
+  int deflated = 0;  ///< zero-energy modes of B returned as they are
   double setup_seconds = 0, coarse_modes_seconds = 0, lobpcg_seconds = 0;
 };
 
