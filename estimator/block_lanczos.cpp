@@ -89,7 +89,18 @@ BlockLanczosResult block_lanczos(const std::function<MatrixXd(const MatrixXd&)>&
         mw.noalias() -= MW.leftCols(kept) * r;
         R.col(c).head(kept) += r;
       }
-      const double nrm = std::sqrt(std::max(0.0, w.dot(mw)));
+      double nrm = std::sqrt(std::max(0.0, w.dot(mw)));
+      if (kept > 0 && nrm < 0.5 * before) {
+        // Heavy cancellation: the carried M w holds the round-off of the updates
+        // relative to `before`, not to what is left; a fresh product and one more
+        // pass restore M-orthogonality to round-off (the DGKS criterion).
+        mw = mass(MatrixXd(w)).col(0);
+        const VectorXd r = W.leftCols(kept).transpose() * mw;
+        w.noalias() -= W.leftCols(kept) * r;
+        R.col(c).head(kept) += r;
+        mw = mass(MatrixXd(w)).col(0);
+        nrm = std::sqrt(std::max(0.0, w.dot(mw)));
+      }
       if (nrm > 1e-8 * before && nrm > 0.0) {
         R(kept, c) = nrm;
         W.col(kept) = w / nrm;

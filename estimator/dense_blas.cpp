@@ -5,6 +5,7 @@
 
 #include <Eigen/Eigenvalues>
 #include <algorithm>
+#include <mutex>
 #include <vector>
 
 extern "C" {
@@ -51,16 +52,27 @@ const OpenBlasThreads& openblas_threads() {
 
 }  // namespace
 
+namespace {
+std::mutex serial_blas_mutex;
+int serial_blas_guards = 0;     // guards alive, over all threads
+int serial_blas_previous = 0;   // OpenBLAS's thread count before the first of them
+}  // namespace
+
 SerialBlas::SerialBlas() {
   const auto& f = openblas_threads();
   if (!f.set) return;
-  m_previous = f.get();
-  if (m_previous > 1) f.set(1);
-  else m_previous = 0;
+  const std::lock_guard<std::mutex> lock(serial_blas_mutex);
+  if (serial_blas_guards++ == 0) {
+    serial_blas_previous = f.get();
+    if (serial_blas_previous > 1) f.set(1);
+  }
 }
 
 SerialBlas::~SerialBlas() {
-  if (m_previous > 0) openblas_threads().set(m_previous);
+  const auto& f = openblas_threads();
+  if (!f.set) return;
+  const std::lock_guard<std::mutex> lock(serial_blas_mutex);
+  if (--serial_blas_guards == 0 && serial_blas_previous > 1) f.set(serial_blas_previous);
 }
 
 void gemm(bool trans_a, bool trans_b, double alpha, const Eigen::Ref<const Eigen::MatrixXd>& A,

@@ -29,16 +29,14 @@ void largest_eigenpairs(const Eigen::MatrixXd& T, long count, Eigen::VectorXd& v
 /// with a BLAS that has no such function). Why: the multilevel solver splits its
 /// tall-skinny products over the cores itself, and OpenBLAS's own threads, spinning
 /// (sched_yield) for work between calls, took 15-18 % of the CPU from the solver's
-/// threads. Process-wide while alive: one guard at a time.
+/// threads. Process-wide: the count is restored when the last guard alive, in any
+/// thread, goes.
 class SerialBlas {
  public:
   SerialBlas();
   ~SerialBlas();
   SerialBlas(const SerialBlas&) = delete;
   SerialBlas& operator=(const SerialBlas&) = delete;
-
- private:
-  int m_previous = 0;  ///< 0: nothing to restore
 };
 
 /// Aᵀ B as a new matrix.

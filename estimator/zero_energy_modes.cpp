@@ -2,6 +2,7 @@
 
 #include <Eigen/Cholesky>
 #include <Eigen/Eigenvalues>
+#include <cmath>
 #include <vector>
 
 namespace ssid::estimator {
@@ -22,7 +23,12 @@ ZeroEnergyModes zero_energy_modes(const Eigen::SparseMatrix<double>& K, const Ei
     const double lam = es.eigenvalues()(j);
     const Eigen::VectorXd kz = KB * es.eigenvectors().col(j), mz = MB * es.eigenvectors().col(j);
     const double shifted = (kz - sigma * mz).norm();
-    if (lam - sigma > 0.0 && shifted > 0.0 && (kz - lam * mz).norm() <= tol * shifted) keep.push_back(j);
+    // An eigenvector of the model, and of zero energy: an exact eigenvector of
+    // positive λ (ground springs proportional to the mass) need not be among the
+    // lowest modes, so it stays in the iteration.
+    if (lam - sigma > 0.0 && shifted > 0.0 && (kz - lam * mz).norm() <= tol * shifted &&
+        std::abs(lam) <= tol * (lam - sigma))
+      keep.push_back(j);
   }
   const auto r = static_cast<Eigen::Index>(keep.size());
   out.lambda.resize(r);

@@ -21,8 +21,8 @@ struct ZeroEnergyModes {
 };
 
 /// The eigenpairs (λ, c) of the projected pencil (Bᵀ K B, Bᵀ M B) whose vector
-/// z = B c has ‖(K − λM) z‖ ≤ tol ‖(K − σM) z‖ (σ the solver's shift, below the
-/// spectrum), at most `max_modes` of them, lowest first. None when B is empty or
+/// z = B c has ‖(K − λM) z‖ ≤ tol ‖(K − σM) z‖ and |λ| ≤ tol (λ − σ) (σ the
+/// solver's shift, below the spectrum), at most `max_modes` of them, lowest first. None when B is empty or
 /// carries no mass.
 ZeroEnergyModes zero_energy_modes(const Eigen::SparseMatrix<double>& K, const Eigen::SparseMatrix<double>& M,
                                   double sigma, const Eigen::MatrixXd& B, double tol, int max_modes);

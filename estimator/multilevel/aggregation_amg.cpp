@@ -120,11 +120,12 @@ AggregationAmg::AggregationAmg(const SparseMatrix& A, const std::vector<long>& g
     throw std::invalid_argument("AggregationAmg: " + std::to_string(groups.size()) + " groups and a " +
                                 std::to_string(B.rows()) + " x " + std::to_string(B.cols()) +
                                 " near-null space for " + std::to_string(n) + " DOFs");
-  if (options.aggregate_radius < 1 || options.prolongator_steps < 0 || options.smoother_degree < 1 ||
+  if (options.aggregate_radius < 0 || options.prolongator_steps < 0 || options.smoother_degree < 1 ||
       !(options.smoother_ratio > 1.0))
     throw std::invalid_argument(
-        "AggregationAmg: the radius and the smoother degree must be >= 1, the prolongator steps >= 0 and the "
-        "ratio > 1");
+        "AggregationAmg: the radius must be >= 0 (0: the default), the smoother degree >= 1, the prolongator steps "
+        ">= 0 and the ratio > 1");
+  if (m_options.aggregate_radius == 0) m_options.aggregate_radius = AmgOptions{}.aggregate_radius;
   using Clock = std::chrono::steady_clock;
   auto since = [](Clock::time_point t) { return std::chrono::duration<double>(Clock::now() - t).count(); };
   auto t = Clock::now();
@@ -344,11 +345,7 @@ void AggregationAmg::jacobi_step(const Level<T>& L, const RowBlockOf<T>& res, do
 // separate block expressions ran on one thread and cost as much as the products.
 template <class T>
 void AggregationAmg::chebyshev(const Level<T>& L, const RowBlockOf<T>& R, RowBlockOf<T>& X, bool zero_start) const {
-  const int degree = m_options.smoother_degree;
-  if (degree < 1) {
-    if (zero_start) X.setZero(R.rows(), R.cols());
-    return;
-  }
+  const int degree = m_options.smoother_degree;  // >= 1 (the constructor checks)
   const double lmax = m_rho, lmin = m_rho / m_options.smoother_ratio;
   const double theta = 0.5 * (lmax + lmin), delta = 0.5 * (lmax - lmin), sigma = theta / delta;
   double rho = 1.0 / sigma;

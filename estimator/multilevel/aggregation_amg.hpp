@@ -44,7 +44,7 @@ struct AmgOptions {
   /// 25 its 1.6 s against 21 its 2.4 s with radius 1; 94k 26 its 14-16 s against
   /// 23 its 22 s; 1M 24 its 230 s, where radius 1 makes a coarse model of 121k DOFs
   /// whose factor no longer pays and radius 3 needs 40 iterations;
-  /// docs/performance.md).
+  /// docs/performance.md). 0 means the default, 2.
   int aggregate_radius = 2;
   int smoother_degree = 4;       ///< Chebyshev degree before and after the coarse correction
   double smoother_ratio = 30.0;  ///< the Chebyshev interval is [ρ/ratio, ρ] of D⁻¹A

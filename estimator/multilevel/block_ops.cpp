@@ -3,31 +3,33 @@
 #include "estimator/dense_blas.hpp"
 
 #include <algorithm>
-#include <mutex>
 #include <stdexcept>
 #include <thread>
 #include <vector>
 
 namespace ssid::estimator::multilevel {
 
-namespace {
-long hardware_threads() { return std::min<long>(std::max(1u, std::thread::hardware_concurrency()), 64); }
-}  // namespace
+long worker_threads() { return std::min<long>(std::max(1u, std::thread::hardware_concurrency()), 64); }
 
-void parallel_for(long n, const std::function<void(long, long)>& body, long serial_below) {
-  const long threads = hardware_threads();
+long parallel_parts(long n, const std::function<void(long, long, long)>& body, long serial_below) {
+  const long threads = worker_threads();
   if (n < serial_below || threads == 1) {
-    body(0, n);
-    return;
+    body(0, 0, n);
+    return 1;
   }
   std::vector<std::thread> pool;
   const long chunk = (n + threads - 1) / threads;
   for (long t = 1; t < threads; ++t) {
     const long b = t * chunk, e = std::min(n, b + chunk);
-    if (b < e) pool.emplace_back(body, b, e);
+    if (b < e) pool.emplace_back(body, t, b, e);
   }
-  body(0, std::min(n, chunk));
+  body(0, 0, std::min(n, chunk));
   for (auto& th : pool) th.join();
+  return threads;
+}
+
+void parallel_for(long n, const std::function<void(long, long)>& body, long serial_below) {
+  parallel_parts(n, [&body](long, long begin, long end) { body(begin, end); }, serial_below);
 }
 
 namespace {
@@ -147,15 +149,14 @@ constexpr long kSplitRows = 8192;
 
 SparseMatrix parallel_product(const SparseMatrix& A, const SparseMatrix& B) {
   if (A.cols() != B.rows()) throw std::invalid_argument("parallel_product: shapes do not agree");
-  const long threads = hardware_threads(), nc = B.cols();
+  const long threads = worker_threads(), nc = B.cols();
   if (threads == 1 || nc < 64) return SparseMatrix(A * B);
-  // One part per thread, by columns; parallel_for's ranges are [t·chunk, ...).
-  const long chunk = (nc + threads - 1) / threads;
+  // One part per thread, by columns (parts left empty where a thread had none).
   std::vector<SparseMatrix> parts(static_cast<size_t>(threads));
-  parallel_for(
+  parallel_parts(
       nc,
-      [&](long begin, long end) {
-        SparseMatrix& part = parts[static_cast<size_t>(begin / chunk)];
+      [&](long t, long begin, long end) {
+        SparseMatrix& part = parts[static_cast<size_t>(t)];
         part = A * B.middleCols(begin, end - begin);
         part.makeCompressed();
       },
@@ -188,18 +189,14 @@ Eigen::MatrixXd gram(const RowBlock& X, const RowBlock& Y, long rows) {
     detail::gemm(false, true, 1.0, Eigen::Map<const Eigen::MatrixXd>(X.data() + b * bx, bx, e - b),
                  Eigen::Map<const Eigen::MatrixXd>(Y.data() + b * by, by, e - b), 0.0, out);
   };
-  if (m < kSplitRows * hardware_threads()) {
+  if (m < kSplitRows * worker_threads()) {
     part(0, m, G);
     return G;
   }
   const detail::SerialBlas serial;
-  std::mutex sum;
-  parallel_for(m, [&](long b, long e) {
-    Eigen::MatrixXd Gt(bx, by);
-    part(b, e, Gt);
-    const std::lock_guard<std::mutex> lock(sum);
-    G += Gt;
-  });
+  std::vector<Eigen::MatrixXd> partial(static_cast<size_t>(worker_threads()), Eigen::MatrixXd::Zero(bx, by));
+  const long parts = parallel_parts(m, [&](long t, long b, long e) { part(b, e, partial[static_cast<size_t>(t)]); });
+  for (long t = 0; t < parts; ++t) G += partial[static_cast<size_t>(t)];  // in order: the same bits every run
   return G;
 }
 
@@ -215,7 +212,7 @@ void times_dense_into(const RowBlock& X, const Eigen::Ref<const Eigen::MatrixXd>
     detail::gemm(true, false, 1.0, C, Eigen::Map<const Eigen::MatrixXd>(X.data() + b * k, k, e - b), beta, Yc);
   };
   const long n = X.rows();
-  if (n < kSplitRows * hardware_threads()) {
+  if (n < kSplitRows * worker_threads()) {
     part(0, n);
     return;
   }

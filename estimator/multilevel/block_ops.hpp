@@ -32,6 +32,14 @@ using RowBlockF = RowBlockOf<float>;
 /// an OpenMP runtime's spinning workers competed with the BLAS threads for the
 /// cores (the 64k-DOF lattice solved 27 % faster with passive waiting).
 void parallel_for(long n, const std::function<void(long begin, long end)>& body, long serial_below = 4096);
+/// The number of parts parallel_for and parallel_parts split into (the hardware
+/// threads, at most 64).
+long worker_threads();
+/// The same split, the body also told its part's index (0 .. parts − 1, ranges in
+/// order): partial results stored by part and combined in that order give the same
+/// bits on every run. Returns the number of parts (1 when serial).
+long parallel_parts(long n, const std::function<void(long part, long begin, long end)>& body,
+                    long serial_below = 4096);
 
 // The sparse block products, for T = double and float.
 /// Y = A X for a symmetric A in full (both triangles) column-major storage:

@@ -5,7 +5,6 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
-#include <mutex>
 #include <stdexcept>
 #include <string>
 #include <vector>
@@ -55,14 +54,16 @@ void residuals(const RowBlock& MX, const RowBlock& AX, const VectorXd& mu, RowBl
                VectorXd& ax2) {
   const long n = AX.rows(), b = AX.cols();
   R.resize(n, b);
-  r2 = VectorXd::Zero(b), ax2 = VectorXd::Zero(b);
   const double* mx = MX.data();
   const double* ax = AX.data();
   const double* m = mu.data();
   double* rr = R.data();
-  std::mutex sum;
-  parallel_for(n, [&, mx, ax, m, rr](long begin, long end) {
-    VectorXd r2t = VectorXd::Zero(b), ax2t = VectorXd::Zero(b);
+  // Partial sums by part, added in order: the same bits on every run.
+  std::vector<VectorXd> r2p(static_cast<size_t>(worker_threads()),
+                            VectorXd::Zero(b)),
+      ax2p = r2p;
+  const long parts = parallel_parts(n, [&, mx, ax, m, rr](long t, long begin, long end) {
+    VectorXd &r2t = r2p[static_cast<size_t>(t)], &ax2t = ax2p[static_cast<size_t>(t)];
     for (long i = begin; i < end; ++i)
       for (long j = 0; j < b; ++j) {
         const double a = ax[i * b + j], r = mx[i * b + j] - a * m[j];
@@ -70,25 +71,25 @@ void residuals(const RowBlock& MX, const RowBlock& AX, const VectorXd& mu, RowBl
         r2t(j) += r * r;
         ax2t(j) += a * a;
       }
-    const std::lock_guard<std::mutex> lock(sum);
-    r2 += r2t, ax2 += ax2t;
   });
+  r2 = VectorXd::Zero(b), ax2 = VectorXd::Zero(b);
+  for (long t = 0; t < parts; ++t) r2 += r2p[static_cast<size_t>(t)], ax2 += ax2p[static_cast<size_t>(t)];
 }
 
 /// Scales the columns of P (and AP) to unit A-norm, in place.
 void scale_to_unit_energy(RowBlock& P, RowBlock& AP) {
   const long n = P.rows(), p = P.cols();
-  VectorXd d = VectorXd::Zero(p);
   double* pp = P.data();
   double* ap = AP.data();
-  std::mutex sum;
-  parallel_for(n, [&, pp, ap](long begin, long end) {
-    VectorXd dt = VectorXd::Zero(p);
+  std::vector<VectorXd> dp(static_cast<size_t>(worker_threads()),
+                           VectorXd::Zero(p));
+  const long parts = parallel_parts(n, [&, pp, ap](long t, long begin, long end) {
+    VectorXd& dt = dp[static_cast<size_t>(t)];
     for (long i = begin; i < end; ++i)
       for (long j = 0; j < p; ++j) dt(j) += pp[i * p + j] * ap[i * p + j];
-    const std::lock_guard<std::mutex> lock(sum);
-    d += dt;
   });
+  VectorXd d = VectorXd::Zero(p);
+  for (long t = 0; t < parts; ++t) d += dp[static_cast<size_t>(t)];  // in order: the same bits every run
   for (long j = 0; j < p; ++j) d(j) = d(j) > 0.0 ? 1.0 / std::sqrt(d(j)) : 0.0;
   parallel_for(n, [=, &d](long begin, long end) {
     for (long i = begin; i < end; ++i)

@@ -101,10 +101,11 @@ MultilevelRun multilevel_lowest(const SparseMatrix& K_in, const SparseMatrix& M_
     report(progress, "multilevel: " + std::to_string(r) + " zero-energy modes of the near-null space deflated", 0.1);
   const int nev_it = nev - r;
   const long b_it = std::min<long>(nev_it + guard, n - r);
-  run.lambda.resize(nev);
-  run.vectors.resize(n, nev);
   // λ ascending: the deflated modes (λ ≈ 0) merged with the iteration's, by value.
+  // (Only a run that reaches the end has modes: the early returns leave them empty.)
   auto finish = [&](const Eigen::VectorXd& lam_it, const RowBlock& X_it) {
+    run.lambda.resize(nev);
+    run.vectors.resize(n, nev);
     std::vector<std::pair<double, int>> order;  // (λ, index: < r deflated, else r + LOBPCG column)
     for (int j = 0; j < r; ++j) order.emplace_back(zero_lambda(j), j);
     for (int j = 0; j < nev_it; ++j) order.emplace_back(lam_it(j), r + j);
