@@ -258,6 +258,7 @@ AggregationAmg::AggregationAmg(const SparseMatrix& A, const std::vector<long>& g
   t = Clock::now();
   const FactorStatus fs = m_coarse.factorize(SparseMatrix(Ac.triangularView<Eigen::Lower>()));
   m_times.coarse_factor = since(t);
+  m_times.coarse_analysis = m_coarse.last_analyze_seconds();
   if (!fs.ok() && fs.code != FactorStatus::Code::NearSingular)
     throw std::runtime_error("AggregationAmg: the coarse matrix (" + std::to_string(nc) +
                              " DOFs) cannot be factorised: " + fs.message);

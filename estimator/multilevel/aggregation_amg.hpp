@@ -42,7 +42,8 @@ struct AmgOptions {
   /// Graph distance from an aggregate's root to its members. 2 at every size with
   /// the two-step prolongator (the 3D lattice, LOBPCG iterations and wall time: 10k
   /// 25 its 1.6 s against 21 its 2.4 s with radius 1; 94k 26 its 14-16 s against
-  /// 23 its 22 s; 1M 24 its 230 s, where radius 1 makes a coarse model of 121k DOFs
+  /// 23 its 22 s; 1M 24 its 230 s with the double-precision cycle, where radius 1
+  /// makes a coarse model of 121k DOFs
   /// whose factor no longer pays and radius 3 needs 40 iterations;
   /// docs/performance.md). 0 means the default, 2.
   int aggregate_radius = 2;
@@ -94,6 +95,7 @@ class AggregationAmg {
   /// its smoothing, the coarse matrix product, the coarse factorisation.
   struct Times {
     double aggregation = 0, smoothing = 0, coarse_matrix = 0, coarse_factor = 0;
+    double coarse_analysis = 0;  ///< the symbolic analysis (orderings tried), part of coarse_factor
   };
   const Times& times() const { return m_times; }
 

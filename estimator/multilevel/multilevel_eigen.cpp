@@ -79,7 +79,9 @@ MultilevelRun multilevel_lowest(const SparseMatrix& K_in, const SparseMatrix& M_
   report(progress, "multilevel: preconditioner in " + std::to_string(run.setup_seconds) + " s (aggregation " +
                        std::to_string(at.aggregation) + ", smoothing " + std::to_string(at.smoothing) +
                        ", coarse matrix " + std::to_string(at.coarse_matrix) + ", coarse factor " +
-                       std::to_string(at.coarse_factor) + ")", 0.1);
+                       std::to_string(at.coarse_factor) + " of which analysis " +
+                       std::to_string(at.coarse_analysis) + ", ordering " + amg.coarse_factor().ordering() + ")",
+         0.1);
 
   // Exact zero-energy modes (rigid-body modes of a free structure) taken out of the
   // iteration, which then looks for the remaining nev − r modes.
