@@ -252,11 +252,16 @@ AggregationAmg::AggregationAmg(const SparseMatrix& A, const std::vector<long>& g
 
   // Coarse matrix and its factor.
   t = Clock::now();
-  const SparseMatrix Ac = parallel_product(SparseMatrix(m_P.transpose()), parallel_product(A, m_P));
+  // Coarse columns come aggregate by aggregate (consecutive): the blocks of the product.
+  m_coarse_blocks.assign(1, 0);
+  for (long c = 1; c <= nc; ++c)
+    if (c == nc || coarse_group[static_cast<size_t>(c)] != coarse_group[static_cast<size_t>(c) - 1])
+      m_coarse_blocks.push_back(c);
+  const SparseMatrix Ac = galerkin_lower(A, m_P, m_Prow, m_coarse_blocks);  // lower triangle
   m_times.coarse_matrix = since(t);
   m_coarse.set_dof_groups(coarse_group);
   t = Clock::now();
-  const FactorStatus fs = m_coarse.factorize(SparseMatrix(Ac.triangularView<Eigen::Lower>()));
+  const FactorStatus fs = m_coarse.factorize(Ac);
   m_times.coarse_factor = since(t);
   m_times.coarse_analysis = m_coarse.last_analyze_seconds();
   if (!fs.ok() && fs.code != FactorStatus::Code::NearSingular)

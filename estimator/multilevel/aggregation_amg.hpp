@@ -83,6 +83,9 @@ class AggregationAmg {
   void apply(const RowBlock& R, RowBlock& X) const;
 
   const SparseMatrix& prolongator() const { return m_P; }  ///< n x coarse, column-major
+  const SparseRowMatrix& prolongator_rows() const { return m_Prow; }  ///< the same, row-major
+  /// Column blocks of P, one per aggregate: [coarse_blocks()[k], coarse_blocks()[k+1]).
+  const std::vector<long>& coarse_blocks() const { return m_coarse_blocks; }
   /// X = P Y: coarse blocks interpolated to the model.
   void prolong(const RowBlock& Y, RowBlock& X) const;
   long coarse_size() const { return m_P.cols(); }
@@ -133,6 +136,7 @@ class AggregationAmg {
   long m_aggregates = 0;
   SparseMatrix m_P;
   SparseRowMatrix m_Prow;
+  std::vector<long> m_coarse_blocks;
   CholmodFactor m_coarse;
   Times m_times;
   Level<double> m_double;

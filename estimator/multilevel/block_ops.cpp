@@ -177,6 +177,86 @@ SparseMatrix parallel_product(const SparseMatrix& A, const SparseMatrix& B) {
   return C;
 }
 
+SparseMatrix galerkin_lower(const SparseMatrix& B, const SparseMatrix& P, const SparseRowMatrix& Prow,
+                            const std::vector<long>& starts) {
+  const long n = P.rows(), nc = P.cols();
+  if (B.rows() != n || B.cols() != n || Prow.rows() != n || Prow.cols() != nc || !B.isCompressed() ||
+      !P.isCompressed() || !Prow.isCompressed() || starts.empty() || starts.front() != 0 || starts.back() != nc)
+    throw std::invalid_argument("galerkin_lower: shapes, compression or column blocks do not agree");
+  const long nblocks = static_cast<long>(starts.size()) - 1;
+  struct Column {
+    std::vector<int> rows;
+    std::vector<double> values;
+  };
+  std::vector<Column> columns(static_cast<size_t>(nc));
+  parallel_for(
+      nblocks,
+      [&](long begin, long end) {
+        std::vector<long> mark(static_cast<size_t>(n), -1), cmark(static_cast<size_t>(nc), -1);
+        std::vector<long> touched, ctouched;
+        std::vector<double> Y, G;  // B P_block rows, Pᵀ (B P_block) rows; block width w
+        for (long blk = begin; blk < end; ++blk) {
+          const long c0 = starts[static_cast<size_t>(blk)], w = starts[static_cast<size_t>(blk) + 1] - c0;
+          touched.clear(), Y.clear();
+          for (long j = 0; j < w; ++j)
+            for (SparseMatrix::InnerIterator pit(P, c0 + j); pit; ++pit)
+              for (SparseMatrix::InnerIterator bit(B, pit.row()); bit; ++bit) {  // column = row of B
+                long& m = mark[static_cast<size_t>(bit.row())];
+                if (m < 0) {
+                  m = static_cast<long>(touched.size());
+                  touched.push_back(bit.row());
+                  Y.resize(Y.size() + static_cast<size_t>(w), 0.0);
+                }
+                Y[static_cast<size_t>(m * w + j)] += bit.value() * pit.value();
+              }
+          ctouched.clear(), G.clear();
+          for (size_t t = 0; t < touched.size(); ++t) {
+            const long i = touched[t];
+            const double* y = Y.data() + t * static_cast<size_t>(w);
+            for (SparseRowMatrix::InnerIterator qit(Prow, i); qit; ++qit) {
+              const long q = qit.col();
+              if (q < c0) continue;  // the lower triangle only
+              long& m = cmark[static_cast<size_t>(q)];
+              if (m < 0) {
+                m = static_cast<long>(ctouched.size());
+                ctouched.push_back(q);
+                G.resize(G.size() + static_cast<size_t>(w), 0.0);
+              }
+              double* g = G.data() + m * w;
+              for (long j = 0; j < w; ++j) g[j] += qit.value() * y[j];
+            }
+            mark[static_cast<size_t>(i)] = -1;
+          }
+          std::vector<long> order(ctouched.size());
+          for (size_t k = 0; k < order.size(); ++k) order[k] = static_cast<long>(k);
+          std::sort(order.begin(), order.end(), [&](long a, long b) { return ctouched[static_cast<size_t>(a)] < ctouched[static_cast<size_t>(b)]; });
+          for (long j = 0; j < w; ++j) {
+            Column& col = columns[static_cast<size_t>(c0 + j)];
+            for (const long k : order) {
+              const long q = ctouched[static_cast<size_t>(k)];
+              if (q >= c0 + j) col.rows.push_back(static_cast<int>(q)), col.values.push_back(G[static_cast<size_t>(k * w + j)]);
+            }
+          }
+          for (const long q : ctouched) cmark[static_cast<size_t>(q)] = -1;
+        }
+      },
+      2);
+  long nnz = 0;
+  for (const auto& c : columns) nnz += static_cast<long>(c.rows.size());
+  SparseMatrix L(nc, nc);
+  L.resizeNonZeros(nnz);
+  long at = 0;
+  for (long j = 0; j < nc; ++j) {
+    L.outerIndexPtr()[j] = static_cast<int>(at);
+    const Column& c = columns[static_cast<size_t>(j)];
+    std::copy(c.rows.begin(), c.rows.end(), L.innerIndexPtr() + at);
+    std::copy(c.values.begin(), c.values.end(), L.valuePtr() + at);
+    at += static_cast<long>(c.rows.size());
+  }
+  L.outerIndexPtr()[nc] = static_cast<int>(at);
+  return L;
+}
+
 Eigen::MatrixXd gram(const RowBlock& X, const RowBlock& Y, long rows) {
   if (X.rows() != Y.rows()) throw std::invalid_argument("gram: blocks of different lengths");
   const long m = rows < 0 ? static_cast<long>(X.rows()) : std::min<long>(rows, X.rows());

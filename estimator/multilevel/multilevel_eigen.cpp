@@ -131,7 +131,8 @@ MultilevelRun multilevel_lowest(const SparseMatrix& K_in, const SparseMatrix& M_
   const SparseMatrix& P = amg.prolongator();
   // The coarse model (Pᵀ K P, Pᵀ M P) shifted by σ is the AMG's coarse matrix,
   // already factorised: its lowest b modes come from block Lanczos on that factor.
-  const SparseMatrix Mc = parallel_product(SparseMatrix(P.transpose()), parallel_product(M, P));
+  const SparseMatrix Mc =
+      galerkin_lower(M, P, amg.prolongator_rows(), amg.coarse_blocks()).selfadjointView<Eigen::Lower>();
   report(progress, "multilevel: coarse mass matrix in " + std::to_string(seconds_since(t)) + " s", 0.1);
   const CholmodFactor& Fc = amg.coarse_factor();
   if (run.coarse_size - 1 < nev) {

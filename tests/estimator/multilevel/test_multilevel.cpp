@@ -145,6 +145,20 @@ TEST_CASE("multilevel kernels split over the cores agree with Eigen's products",
   multilevel::times_add(Ar, X, Z);  // X − A X
   CHECK((dense(Z) - (dense(X) - AX)).norm() <= 1e-13 * AX.norm());
 
+  // The Galerkin product's lower triangle, column blocks of uneven widths (an
+  // aggregate may carry fewer than six coarse DOFs), against Eigen's Pᵀ A P.
+  {
+    const Eigen::SparseMatrix<double> P = Eigen::MatrixXd::Random(n, 23).sparseView(0.995, 1.0);
+    const Eigen::SparseMatrix<double, Eigen::RowMajor> Prow = P;
+    const std::vector<long> starts = {0, 6, 12, 13, 18, 23};
+    const Eigen::MatrixXd G = Eigen::MatrixXd(multilevel::galerkin_lower(A, P, Prow, starts));
+    const Eigen::MatrixXd Ge = Eigen::MatrixXd(Eigen::SparseMatrix<double>(P.transpose()) * (A * P));
+    const Eigen::MatrixXd Gl = Ge.triangularView<Eigen::Lower>();
+    CHECK(P.nonZeros() > 1000);
+    CHECK((G - Gl).norm() <= 1e-13 * Ge.norm());
+    CHECK(G.triangularView<Eigen::StrictlyUpper>().toDenseMatrix().norm() == 0.0);
+  }
+
   // Sparse times sparse, split by columns, against Eigen's.
   const Eigen::SparseMatrix<double> B = Eigen::MatrixXd::Random(n, 300).sparseView(0.9, 1.0);
   const Eigen::SparseMatrix<double> AB = multilevel::parallel_product(A, B), ABe = A * B;
