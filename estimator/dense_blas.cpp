@@ -50,12 +50,10 @@ const OpenBlasThreads& openblas_threads() {
   return f;
 }
 
-}  // namespace
-
-namespace {
 std::mutex serial_blas_mutex;
 int serial_blas_guards = 0;     // guards alive, over all threads
 int serial_blas_previous = 0;   // OpenBLAS's thread count before the first of them
+
 }  // namespace
 
 SerialBlas::SerialBlas() {

@@ -167,15 +167,16 @@ AggregationAmg::AggregationAmg(const SparseMatrix& A, const std::vector<long>& g
   // ρ(D⁻¹A) by power iteration (D⁻¹A is similar to the symmetric D^{-½}AD^{-½}:
   // its eigenvalues are real and positive; 30 steps from a random start come within
   // a few per cent from below, hence the 10 % margin).
+  m_double.A = &m_A, m_double.dinv = m_dinv.data();
   {
     std::mt19937 rng(7);
     std::uniform_real_distribution<double> u(-1.0, 1.0);
-    RowBlock v(n, 1), w, z;
+    RowBlock v(n, 1), w, z, unused;
     for (long i = 0; i < n; ++i) v(i, 0) = u(rng);
     double est = 0.0;
     for (int it = 0; it < 30; ++it) {
       sym_times(A, v, w);
-      block_jacobi(w, z);
+      jacobi_step(m_double, w, 0.0, 1.0, z, unused, true);  // z = D⁻¹ w
       est = z.norm() / v.norm();
       v = z / z.norm();
     }
@@ -267,7 +268,7 @@ AggregationAmg::AggregationAmg(const SparseMatrix& A, const std::vector<long>& g
   if (!fs.ok() && fs.code != FactorStatus::Code::NearSingular)
     throw std::runtime_error("AggregationAmg: the coarse matrix (" + std::to_string(nc) +
                              " DOFs) cannot be factorised: " + fs.message);
-  m_double.A = &m_A, m_double.P = &m_P, m_double.Prow = &m_Prow, m_double.dinv = m_dinv.data();
+  m_double.P = &m_P, m_double.Prow = &m_Prow;
   if (m_options.single_precision) {
     m_Af = A.cast<float>();
     m_Pf = m_P.cast<float>();
@@ -276,29 +277,6 @@ AggregationAmg::AggregationAmg(const SparseMatrix& A, const std::vector<long>& g
     m_dinvf.assign(m_dinv.begin(), m_dinv.end());
     m_single.A = &m_Af, m_single.P = &m_Pf, m_single.Prow = &m_Prowf, m_single.dinv = m_dinvf.data();
   }
-}
-
-void AggregationAmg::block_jacobi(const RowBlock& R, RowBlock& Z) const {
-  const long ng = static_cast<long>(m_start.size()) - 1, b = R.cols();
-  Z.resize(R.rows(), b);
-  const double* r = R.data();
-  double* z = Z.data();
-  parallel_for(ng, [&](long begin, long end) {
-    for (long a = begin; a < end; ++a) {
-      const long s = m_start[static_cast<size_t>(a)], k = m_start[static_cast<size_t>(a) + 1] - s;
-      const double* d = m_dinv.data() + m_dinv_start[static_cast<size_t>(a)];
-      for (long i = 0; i < k; ++i) {
-        double* __restrict zi = z + m_dofs[static_cast<size_t>(s + i)] * b;  // Z and R never overlap
-        for (long c = 0; c < b; ++c) zi[c] = 0.0;
-        for (long j = 0; j < k; ++j) {
-          const double dij = d[i * k + j];
-          const double* __restrict rj = r + m_dofs[static_cast<size_t>(s + j)] * b;
-#pragma GCC ivdep
-          for (long c = 0; c < b; ++c) zi[c] += dij * rj[c];
-        }
-      }
-    }
-  });
 }
 
 template <class T>

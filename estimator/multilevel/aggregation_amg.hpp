@@ -115,7 +115,6 @@ class AggregationAmg {
     mutable RowBlockOf<T> res, d, E, Ec, Y, R, X;
   };
 
-  void block_jacobi(const RowBlock& R, RowBlock& Z) const;
   /// One fused smoothing pass: z = β D⁻¹ res, d = α d + z (d = z when α = 0), then
   /// X += d (X = d when set_x).
   template <class T>

@@ -25,8 +25,6 @@ using SparseRowOf = Eigen::SparseMatrix<T, Eigen::RowMajor>;
 using RowBlock = RowBlockOf<double>;
 using SparseMatrix = SparseOf<double>;
 using SparseRowMatrix = SparseRowOf<double>;
-/// Single precision: the preconditioner's blocks (docs/eigen_solver.md).
-using RowBlockF = RowBlockOf<float>;
 
 /// Runs body(begin, end) over [0, n) split into one contiguous range per hardware
 /// thread (serially below `serial_below` items). Plain threads that block when done:

@@ -59,9 +59,7 @@ void residuals(const RowBlock& MX, const RowBlock& AX, const VectorXd& mu, RowBl
   const double* m = mu.data();
   double* rr = R.data();
   // Partial sums by part, added in order: the same bits on every run.
-  std::vector<VectorXd> r2p(static_cast<size_t>(worker_threads()),
-                            VectorXd::Zero(b)),
-      ax2p = r2p;
+  std::vector<VectorXd> r2p(static_cast<size_t>(worker_threads()), VectorXd::Zero(b)), ax2p = r2p;
   const long parts = parallel_parts(n, [&, mx, ax, m, rr](long t, long begin, long end) {
     VectorXd &r2t = r2p[static_cast<size_t>(t)], &ax2t = ax2p[static_cast<size_t>(t)];
     for (long i = begin; i < end; ++i)
@@ -76,13 +74,22 @@ void residuals(const RowBlock& MX, const RowBlock& AX, const VectorXd& mu, RowBl
   for (long t = 0; t < parts; ++t) r2 += r2p[static_cast<size_t>(t)], ax2 += ax2p[static_cast<size_t>(t)];
 }
 
+/// ‖r_j‖ / (μ_j ‖A x_j‖) from the squared norms; `undefined` where A x_j = 0 or μ_j ≤ 0.
+VectorXd relative_residuals(const VectorXd& r2, const VectorXd& ax2, const VectorXd& mu, double undefined) {
+  VectorXd rel(r2.size());
+  for (Eigen::Index j = 0; j < rel.size(); ++j) {
+    const double ax = std::sqrt(ax2(j));
+    rel(j) = ax > 0.0 && mu(j) > 0.0 ? std::sqrt(r2(j)) / (mu(j) * ax) : undefined;
+  }
+  return rel;
+}
+
 /// Scales the columns of P (and AP) to unit A-norm, in place.
 void scale_to_unit_energy(RowBlock& P, RowBlock& AP) {
   const long n = P.rows(), p = P.cols();
   double* pp = P.data();
   double* ap = AP.data();
-  std::vector<VectorXd> dp(static_cast<size_t>(worker_threads()),
-                           VectorXd::Zero(p));
+  std::vector<VectorXd> dp(static_cast<size_t>(worker_threads()), VectorXd::Zero(p));
   const long parts = parallel_parts(n, [&, pp, ap](long t, long begin, long end) {
     VectorXd& dt = dp[static_cast<size_t>(t)];
     for (long i = begin; i < end; ++i)
@@ -179,16 +186,15 @@ LobpcgResult lobpcg_largest(const SparseMatrix& A, const SparseMatrix& M, const 
   }
   // Invariants at the top of each iteration: X is A-orthonormal with XᵀMX = diag(μ)
   // (the Rayleigh–Ritz step makes it so), P is the conjugate block of the last step.
-  VectorXd rel(b);
+  VectorXd rel;
   for (res.iterations = 0; res.iterations < o.maxit; ++res.iterations) {
     // Residuals and the active set.
     VectorXd r2, ax2;
     residuals(MX, AX, res.mu, R, r2, ax2);
+    rel = relative_residuals(r2, ax2, res.mu, 0.0);
     std::vector<Eigen::Index> active;
     int wanted_done = 0;
     for (Eigen::Index j = 0; j < b; ++j) {
-      const double ax = std::sqrt(ax2(j));
-      rel(j) = ax > 0.0 && res.mu(j) > 0.0 ? std::sqrt(r2(j)) / (res.mu(j) * ax) : 0.0;
       // A NaN residual or a non-positive Ritz value is never "converged".
       if (!(rel(j) <= o.tol) || !(res.mu(j) > 0.0)) active.push_back(j);
       else if (j < o.nev) ++wanted_done;
@@ -272,11 +278,7 @@ LobpcgResult lobpcg_largest(const SparseMatrix& A, const SparseMatrix& M, const 
     // Out of iterations: the residuals of the X returned, not of the one before.
     VectorXd r2, ax2;
     residuals(MX, AX, res.mu, R, r2, ax2);
-    for (Eigen::Index j = 0; j < b; ++j) {
-      const double ax = std::sqrt(ax2(j));
-      rel(j) = ax > 0.0 && res.mu(j) > 0.0 ? std::sqrt(r2(j)) / (res.mu(j) * ax)
-                                            : std::numeric_limits<double>::infinity();
-    }
+    rel = relative_residuals(r2, ax2, res.mu, std::numeric_limits<double>::infinity());
   }
   res.residuals = rel;
   res.X = std::move(X);

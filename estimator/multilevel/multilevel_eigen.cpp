@@ -98,9 +98,8 @@ MultilevelRun multilevel_lowest(const SparseMatrix& K_in, const SparseMatrix& M_
     const Eigen::VectorXd s = (zero_lambda.array() - sigma).rsqrt();
     deflation.Z = zero_z * s.asDiagonal();
     deflation.AZ = (K * zero_z - sigma * (M * zero_z)) * s.asDiagonal();
-  }
-  if (r > 0)
     report(progress, "multilevel: " + std::to_string(r) + " zero-energy modes of the near-null space deflated", 0.1);
+  }
   const int nev_it = nev - r;
   const long b_it = std::min<long>(nev_it + guard, n - r);
   // λ ascending: the deflated modes (λ ≈ 0) merged with the iteration's, by value.
@@ -126,6 +125,12 @@ MultilevelRun multilevel_lowest(const SparseMatrix& K_in, const SparseMatrix& M_
   }
 
   // Start block: the coarse model's lowest b modes above its r zero-energy ones, interpolated.
+  if (run.coarse_size - 1 < nev) {
+    run.failure = MultilevelRun::Failure::Breakdown;
+    run.message = "the coarse model has " + std::to_string(run.coarse_size) + " DOFs, too few for " +
+                  std::to_string(nev) + " modes (the model is too small for this method)";
+    return run;
+  }
   t = Clock::now();
   report(progress, "multilevel: coarse modes (" + std::to_string(run.coarse_size) + " DOFs)", 0.1);
   const SparseMatrix& P = amg.prolongator();
@@ -135,12 +140,6 @@ MultilevelRun multilevel_lowest(const SparseMatrix& K_in, const SparseMatrix& M_
       galerkin_lower(M, P, amg.prolongator_rows(), amg.coarse_blocks()).selfadjointView<Eigen::Lower>();
   report(progress, "multilevel: coarse mass matrix in " + std::to_string(seconds_since(t)) + " s", 0.1);
   const CholmodFactor& Fc = amg.coarse_factor();
-  if (run.coarse_size - 1 < nev) {
-    run.failure = MultilevelRun::Failure::Breakdown;
-    run.message = "the coarse model has " + std::to_string(run.coarse_size) + " DOFs, too few for " +
-                  std::to_string(nev) + " modes (the model is too small for this method)";
-    return run;
-  }
   BlockLanczosOptions bo;
   bo.nev = static_cast<int>(std::min<long>(r + b_it, run.coarse_size - 1));
   bo.tol = 1e-5;  // a start for LOBPCG, not an answer
