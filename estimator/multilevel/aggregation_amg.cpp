@@ -268,58 +268,20 @@ AggregationAmg::AggregationAmg(const SparseMatrix& A, const std::vector<long>& g
   if (!fs.ok() && fs.code != FactorStatus::Code::NearSingular)
     throw std::runtime_error("AggregationAmg: the coarse matrix (" + std::to_string(nc) +
                              " DOFs) cannot be factorised: " + fs.message);
-  m_double.P = &m_P, m_double.Prow = &m_Prow;
+  m_double.Prow = &m_Prow;
   if (m_options.single_precision) {
     m_Af = A.cast<float>();
-    m_Pf = m_P.cast<float>();
     m_Prowf = m_Prow.cast<float>();
-    m_Af.makeCompressed(), m_Pf.makeCompressed(), m_Prowf.makeCompressed();
+    m_Af.makeCompressed(), m_Prowf.makeCompressed();
     m_dinvf.assign(m_dinv.begin(), m_dinv.end());
-    m_single.A = &m_Af, m_single.P = &m_Pf, m_single.Prow = &m_Prowf, m_single.dinv = m_dinvf.data();
+    m_single.A = &m_Af, m_single.Prow = &m_Prowf, m_single.dinv = m_dinvf.data();
   }
 }
 
 template <class T>
-void AggregationAmg::jacobi_step(const Level<T>& L, const RowBlockOf<T>& res, double alpha_in, double beta_in,
+void AggregationAmg::jacobi_step(const Level<T>& L, const RowBlockOf<T>& res, double alpha, double beta,
                                  RowBlockOf<T>& d, RowBlockOf<T>& X, bool set_x) const {
-  const long ng = static_cast<long>(m_start.size()) - 1, b = res.cols();
-  const T alpha = static_cast<T>(alpha_in), beta = static_cast<T>(beta_in);
-  if (alpha_in == 0.0) d.resize(res.rows(), b);  // d is written before it is read
-  if (set_x) X.resize(res.rows(), b);
-  const T* r = res.data();
-  T* dd = d.data();
-  T* x = X.data();
-  parallel_for(ng, [&, r, dd, x](long begin, long end) {
-    std::vector<T> z;  // D⁻¹ res of one grid point, k x b
-    for (long a = begin; a < end; ++a) {
-      const long s = m_start[static_cast<size_t>(a)], k = m_start[static_cast<size_t>(a) + 1] - s;
-      const T* dinv = L.dinv + m_dinv_start[static_cast<size_t>(a)];
-      z.assign(static_cast<size_t>(k * b), T(0));
-      for (long i = 0; i < k; ++i) {
-        T* __restrict zi = z.data() + i * b;
-        for (long j = 0; j < k; ++j) {
-          const T dij = beta * dinv[i * k + j];
-          const T* __restrict rj = r + m_dofs[static_cast<size_t>(s + j)] * b;
-#pragma GCC ivdep
-          for (long c = 0; c < b; ++c) zi[c] += dij * rj[c];
-        }
-      }
-      for (long i = 0; i < k; ++i) {
-        const long row = m_dofs[static_cast<size_t>(s + i)] * b;
-        const T* __restrict zi = z.data() + i * b;
-        T* __restrict di = dd + row;
-        T* __restrict xi = x + row;
-        if (alpha_in == 0.0)
-          for (long c = 0; c < b; ++c) di[c] = zi[c];
-        else
-          for (long c = 0; c < b; ++c) di[c] = alpha * di[c] + zi[c];
-        if (set_x)
-          for (long c = 0; c < b; ++c) xi[c] = di[c];
-        else
-          for (long c = 0; c < b; ++c) xi[c] += di[c];
-      }
-    }
-  });
+  block_jacobi_pass(GridBlocks<T>{&m_start, &m_dofs, &m_dinv_start, L.dinv}, res, alpha, beta, d, X, set_x);
 }
 
 // Chebyshev iteration on A X = R preconditioned by D (Saad, Iterative Methods,
@@ -354,7 +316,7 @@ void AggregationAmg::cycle(const Level<T>& L, const RowBlockOf<T>& R, RowBlockOf
   chebyshev(L, R, X, true);
   RowBlockOf<T> &E = L.E, &Ec = L.Ec, &Y = L.Y;
   sym_residual(*L.A, X, R, E);
-  transpose_times(*L.P, E, Ec);  // Pᵀ E, coarse x b
+  transpose_times(*L.Prow, E, Ec);  // Pᵀ E, coarse x b
   // CHOLMOD solves column-major double blocks: the coarse block (small) is copied.
   const Eigen::MatrixXd Yc = m_coarse.solve(Eigen::MatrixXd(Ec.template cast<double>()));
   Y = Yc.cast<T>();

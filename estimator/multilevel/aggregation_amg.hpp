@@ -109,7 +109,6 @@ class AggregationAmg {
   template <class T>
   struct Level {
     const SparseOf<T>* A = nullptr;
-    const SparseOf<T>* P = nullptr;
     const SparseRowOf<T>* Prow = nullptr;
     const T* dinv = nullptr;
     mutable RowBlockOf<T> res, d, E, Ec, Y, R, X;
@@ -140,7 +139,7 @@ class AggregationAmg {
   Times m_times;
   Level<double> m_double;
   Level<float> m_single;
-  SparseOf<float> m_Af, m_Pf;
+  SparseOf<float> m_Af;
   SparseRowOf<float> m_Prowf;
   std::vector<float> m_dinvf;
 };

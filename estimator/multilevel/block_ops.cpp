@@ -1,6 +1,7 @@
 #include "estimator/multilevel/block_ops.hpp"
 
 #include "estimator/dense_blas.hpp"
+#include "estimator/multilevel/column_tiles.hpp"
 
 #include <algorithm>
 #include <stdexcept>
@@ -37,38 +38,130 @@ namespace {
 /// How a product is written into Y.
 enum class Into { Overwrite, Residual, Subtract, Add };  // Y = AX, Y = B − AX, Y −= AX, Y += AX
 
-// Y.row(i) (per `into`) Σ over the stored entries (j, a) of outer index i of a X.row(j).
+/// The arguments of one sparse block product (see outer_rows_times).
+template <class T>
+struct RowsArgs {
+  const int* outer;
+  const int* inner;
+  const T* val;
+  const T* x;
+  const T* base;  // the residual's B, or null
+  T* y;
+  long b;
+  Into into;
+};
+
+// Rows [begin, end) of Y (per `into`) Σ over the stored entries (j, a) of outer index i
+// of a X.row(j), each row in register tiles (column_tiles.hpp).
+template <class T>
+[[gnu::always_inline]] inline void rows_kernel(const RowsArgs<T>& a, long begin, long end) {
+  const long b = a.b;
+  const T sign = (a.into == Into::Residual || a.into == Into::Subtract) ? T(-1) : T(1);
+  for (long i = begin; i < end; ++i) {
+    T* yi = a.y + i * b;  // Y never overlaps X or the base
+    const T* init = a.into == Into::Residual ? a.base + i * b : a.into == Into::Overwrite ? nullptr : yi;
+    const int p0 = a.outer[i], p1 = a.outer[i + 1];
+    tiles::for_tiles<T>(b, [&](auto tag, long c) {
+      tiles::TileFor<T, decltype(tag)> acc;
+      if (init) acc.load(init + c);
+      else acc.zero();
+      for (int p = p0; p < p1; ++p) acc.fma(sign * a.val[p], a.x + static_cast<long>(a.inner[p]) * b + c);
+      acc.store(yi + c);
+    });
+  }
+}
+
+// One copy of each kernel per instruction set, chosen when the program loads
+// (GCC function multi-versioning): the default build targets plain x86-64 (SSE2),
+// and the tiles' vectors are 2-4x wider with AVX2 or AVX-512.
+#define SSID_KERNEL_CLONES __attribute__((target_clones("arch=x86-64-v4", "arch=x86-64-v3", "default")))
+SSID_KERNEL_CLONES void rows_float(const RowsArgs<float>& a, long begin, long end) { rows_kernel(a, begin, end); }
+SSID_KERNEL_CLONES void rows_double(const RowsArgs<double>& a, long begin, long end) { rows_kernel(a, begin, end); }
+void rows(const RowsArgs<float>& a, long begin, long end) { rows_float(a, begin, end); }
+void rows(const RowsArgs<double>& a, long begin, long end) { rows_double(a, begin, end); }
+
+// out.row(j) += a X.row(i) over the stored entries (j, a) of outer index i, rows
+// [begin, end): the transpose product of a row-major A, scattered.
+template <class T>
+[[gnu::always_inline]] inline void scatter_kernel(const RowsArgs<T>& a, long begin, long end, T* out) {
+  const long b = a.b;
+  for (long i = begin; i < end; ++i) {
+    const int p0 = a.outer[i], p1 = a.outer[i + 1];
+    if (p0 == p1) continue;
+    tiles::for_tiles<T>(b, [&](auto tag, long c) {
+      tiles::TileFor<T, decltype(tag)> xi;
+      xi.load(a.x + i * b + c);
+      for (int p = p0; p < p1; ++p) xi.add_scaled_to(a.val[p], out + static_cast<long>(a.inner[p]) * b + c);
+    });
+  }
+}
+
+SSID_KERNEL_CLONES void scatter_float(const RowsArgs<float>& a, long begin, long end, float* out) {
+  scatter_kernel(a, begin, end, out);
+}
+SSID_KERNEL_CLONES void scatter_double(const RowsArgs<double>& a, long begin, long end, double* out) {
+  scatter_kernel(a, begin, end, out);
+}
+void scatter(const RowsArgs<float>& a, long begin, long end, float* out) { scatter_float(a, begin, end, out); }
+void scatter(const RowsArgs<double>& a, long begin, long end, double* out) { scatter_double(a, begin, end, out); }
+
+// Y (per `into`) A X, A's outer index i giving Y's row i.
 template <class Sparse, class T>
 void outer_rows_times(const Sparse& A, const RowBlockOf<T>& X, RowBlockOf<T>& Y, Into into = Into::Overwrite,
                       const RowBlockOf<T>* base = nullptr) {
-  const long rows = A.outerSize(), b = X.cols();
-  if (into == Into::Overwrite || into == Into::Residual) Y.resize(rows, b);
-  else if (Y.rows() != rows || Y.cols() != b) throw std::invalid_argument("sparse block product: Y's shape");
-  if (into == Into::Residual && (base->rows() != rows || base->cols() != b))
+  const long rows_ = A.outerSize(), b = X.cols();
+  if (into == Into::Overwrite || into == Into::Residual) Y.resize(rows_, b);
+  else if (Y.rows() != rows_ || Y.cols() != b) throw std::invalid_argument("sparse block product: Y's shape");
+  if (into == Into::Residual && (base->rows() != rows_ || base->cols() != b))
     throw std::invalid_argument("sparse block product: the base block's shape");
-  const auto* outer = A.outerIndexPtr();
-  const auto* inner = A.innerIndexPtr();
-  const T* val = A.valuePtr();
-  const T* x = X.data();
-  const T* bs = base ? base->data() : nullptr;
-  T* y = Y.data();
-  const T sign = (into == Into::Residual || into == Into::Subtract) ? T(-1) : T(1);
-  parallel_for(rows, [=](long begin, long end) {
-    for (long i = begin; i < end; ++i) {
-      T* __restrict yi = y + i * b;  // Y never overlaps X or the base
-      if (into == Into::Overwrite)
-        for (long c = 0; c < b; ++c) yi[c] = T(0);
-      else if (into == Into::Residual)
-        for (long c = 0; c < b; ++c) yi[c] = bs[i * b + c];
-      for (auto p = outer[i]; p < outer[i + 1]; ++p) {
-        const T a = sign * val[p];
-        const T* __restrict xj = x + static_cast<long>(inner[p]) * b;
-#pragma GCC ivdep
-        for (long c = 0; c < b; ++c) yi[c] += a * xj[c];
-      }
-    }
-  });
+  const RowsArgs<T> args{A.outerIndexPtr(), A.innerIndexPtr(), A.valuePtr(), X.data(),
+                         base ? base->data() : nullptr, Y.data(), b, into};
+  parallel_for(rows_, [&args](long begin, long end) { rows(args, begin, end); });
 }
+
+/// The arguments of one block-Jacobi pass (see block_jacobi_pass).
+template <class T>
+struct JacobiArgs {
+  const long* start;
+  const long* dofs;
+  const long* dinv_start;
+  const T* dinv;
+  const T* res;
+  T* d;
+  T* x;
+  long b;
+  T alpha, beta;
+  bool alpha_zero, set_x;
+};
+
+template <class T>
+[[gnu::always_inline]] inline void jacobi_kernel(const JacobiArgs<T>& a, long begin, long end) {
+  const long b = a.b;
+  for (long g = begin; g < end; ++g) {
+    const long s = a.start[g], k = a.start[g + 1] - s;
+    const long* dofs = a.dofs + s;
+    const T* dinv = a.dinv + a.dinv_start[g];
+    for (long i = 0; i < k; ++i) {
+      T* di = a.d + dofs[i] * b;
+      T* xi = a.x + dofs[i] * b;
+      tiles::for_tiles<T>(b, [&](auto tag, long c) {
+        tiles::TileFor<T, decltype(tag)> z;  // β (D⁻¹ res)_i, then d_i
+        z.zero();
+        for (long j = 0; j < k; ++j) z.fma(a.beta * dinv[i * k + j], a.res + dofs[j] * b + c);
+        if (!a.alpha_zero) z.fma(a.alpha, di + c);
+        z.store(di + c);
+        if (a.set_x) z.store(xi + c);
+        else z.add_to(xi + c);
+      });
+    }
+  }
+}
+
+SSID_KERNEL_CLONES void jacobi_float(const JacobiArgs<float>& a, long begin, long end) { jacobi_kernel(a, begin, end); }
+SSID_KERNEL_CLONES void jacobi_double(const JacobiArgs<double>& a, long begin, long end) { jacobi_kernel(a, begin, end); }
+void jacobi(const JacobiArgs<float>& a, long begin, long end) { jacobi_float(a, begin, end); }
+void jacobi(const JacobiArgs<double>& a, long begin, long end) { jacobi_double(a, begin, end); }
+#undef SSID_KERNEL_CLONES
 
 template <class T>
 void check_symmetric(const SparseOf<T>& A, const RowBlockOf<T>& X) {
@@ -109,10 +202,32 @@ void times(const SparseRowOf<T>& A, const RowBlockOf<T>& X, RowBlockOf<T>& Y) {
 }
 
 template <class T>
-void transpose_times(const SparseOf<T>& A, const RowBlockOf<T>& X, RowBlockOf<T>& Y) {
+void transpose_times(const SparseRowOf<T>& A, const RowBlockOf<T>& X, RowBlockOf<T>& Y) {
   if (!A.isCompressed() || A.rows() != X.rows())
     throw std::invalid_argument("transpose_times: A must be compressed and match X");
-  outer_rows_times(A, X, Y);  // column j of A is row j of Aᵀ
+  const long m = A.cols(), b = X.cols();
+  Y.setZero(m, b);
+  const RowsArgs<T> args{A.outerIndexPtr(), A.innerIndexPtr(), A.valuePtr(), X.data(), nullptr, Y.data(), b,
+                         Into::Add};
+  // Each thread scatters its rows of A into its own copy of Y (the first into Y
+  // itself); the copies are added in order, so the bits do not depend on timing.
+  std::vector<RowBlockOf<T>> partial(static_cast<size_t>(worker_threads()));
+  const long parts = parallel_parts(A.rows(), [&](long t, long begin, long end) {
+    T* out = Y.data();
+    if (t > 0) {
+      partial[static_cast<size_t>(t)].setZero(m, b);
+      out = partial[static_cast<size_t>(t)].data();
+    }
+    scatter(args, begin, end, out);
+  });
+  if (parts == 1) return;
+  T* y = Y.data();
+  parallel_for(m * b, [&](long begin, long end) {
+    for (long t = 1; t < parts; ++t) {
+      const T* q = partial[static_cast<size_t>(t)].data();
+      for (long i = begin; i < end; ++i) y[i] += q[i];
+    }
+  });
 }
 
 template <class From, class To>
@@ -126,6 +241,20 @@ void convert(const RowBlockOf<From>& X, RowBlockOf<To>& Y) {
   });
 }
 
+template <class T>
+void block_jacobi_pass(const GridBlocks<T>& blocks, const RowBlockOf<T>& res, double alpha, double beta,
+                       RowBlockOf<T>& d, RowBlockOf<T>& X, bool set_x) {
+  const long n = res.rows(), b = res.cols();
+  if (alpha == 0.0) d.resize(n, b);  // d is written before it is read
+  else if (d.rows() != n || d.cols() != b) throw std::invalid_argument("block_jacobi_pass: d's shape");
+  if (set_x) X.resize(n, b);
+  else if (X.rows() != n || X.cols() != b) throw std::invalid_argument("block_jacobi_pass: X's shape");
+  const JacobiArgs<T> args{blocks.start->data(), blocks.dofs->data(), blocks.dinv_start->data(), blocks.dinv,
+                           res.data(), d.data(), X.data(), b, static_cast<T>(alpha), static_cast<T>(beta),
+                           alpha == 0.0, set_x};
+  parallel_for(static_cast<long>(blocks.start->size()) - 1, [&args](long begin, long end) { jacobi(args, begin, end); });
+}
+
 #define SSID_BLOCK_OPS(T)                                                                                \
   template void sym_times<T>(const SparseOf<T>&, const RowBlockOf<T>&, RowBlockOf<T>&);                  \
   template void sym_residual<T>(const SparseOf<T>&, const RowBlockOf<T>&, const RowBlockOf<T>&,          \
@@ -133,7 +262,9 @@ void convert(const RowBlockOf<From>& X, RowBlockOf<To>& Y) {
   template void sym_subtract<T>(const SparseOf<T>&, const RowBlockOf<T>&, RowBlockOf<T>&);               \
   template void times_add<T>(const SparseRowOf<T>&, const RowBlockOf<T>&, RowBlockOf<T>&);               \
   template void times<T>(const SparseRowOf<T>&, const RowBlockOf<T>&, RowBlockOf<T>&);                   \
-  template void transpose_times<T>(const SparseOf<T>&, const RowBlockOf<T>&, RowBlockOf<T>&);
+  template void transpose_times<T>(const SparseRowOf<T>&, const RowBlockOf<T>&, RowBlockOf<T>&);                     \
+  template void block_jacobi_pass<T>(const GridBlocks<T>&, const RowBlockOf<T>&, double, double, RowBlockOf<T>&, \
+                                     RowBlockOf<T>&, bool);
 SSID_BLOCK_OPS(double)
 SSID_BLOCK_OPS(float)
 #undef SSID_BLOCK_OPS

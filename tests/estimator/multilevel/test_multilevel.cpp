@@ -84,7 +84,7 @@ Eigen::MatrixXd dense(const RowBlock& X) { return Eigen::MatrixXd(X); }
 TEST_CASE("multilevel block kernels agree with Eigen's products", "[multilevel]") {
   const auto [K, M] = test::random_pencil(60, 11);
   const Eigen::SparseMatrix<double, Eigen::RowMajor> R = Eigen::MatrixXd::Random(40, 60).sparseView(0.5, 1.0);
-  const Eigen::SparseMatrix<double> Rc = Eigen::MatrixXd::Random(60, 25).sparseView(0.5, 1.0);
+  const Eigen::SparseMatrix<double, Eigen::RowMajor> Rc = Eigen::MatrixXd::Random(60, 25).sparseView(0.5, 1.0);
   const RowBlock X = Eigen::MatrixXd::Random(60, 7), Y = Eigen::MatrixXd::Random(60, 5);
   RowBlock Z;
   multilevel::sym_times(K, X, Z);
@@ -144,6 +144,8 @@ TEST_CASE("multilevel kernels split over the cores agree with Eigen's products",
   const Eigen::SparseMatrix<double, Eigen::RowMajor> Ar = A;
   multilevel::times_add(Ar, X, Z);  // X − A X
   CHECK((dense(Z) - (dense(X) - AX)).norm() <= 1e-13 * AX.norm());
+  multilevel::transpose_times(Ar, X, Z);  // scattered by rows, one copy of Z per thread: Aᵀ X = A X
+  CHECK((dense(Z) - AX).norm() <= 1e-13 * AX.norm());
 
   // The Galerkin product's lower triangle, column blocks of uneven widths (an
   // aggregate may carry fewer than six coarse DOFs), against Eigen's Pᵀ A P.
@@ -164,6 +166,101 @@ TEST_CASE("multilevel kernels split over the cores agree with Eigen's products",
   const Eigen::SparseMatrix<double> AB = multilevel::parallel_product(A, B), ABe = A * B;
   CHECK(AB.nonZeros() == ABe.nonZeros());
   CHECK((Eigen::MatrixXd(AB) - Eigen::MatrixXd(ABe)).norm() <= 1e-14 * Eigen::MatrixXd(ABe).norm());
+}
+
+namespace {
+
+/// The sparse block kernels and the block-Jacobi pass in precision T against Eigen
+/// in double, for a block of b columns.
+template <class T>
+void check_kernels_at_width(long b, double tol) {
+  using Block = multilevel::RowBlockOf<T>;
+  using Dense = Eigen::Matrix<T, Eigen::Dynamic, Eigen::Dynamic>;
+  const long n = 37;
+  std::mt19937 rng(static_cast<unsigned>(b));
+  std::uniform_real_distribution<double> u(-1.0, 1.0);
+  std::vector<Eigen::Triplet<T>> t;
+  for (long i = 0; i < n; ++i)
+    for (long j = 0; j <= i; ++j)
+      if (i == j || u(rng) > 0.6) {
+        const T v = static_cast<T>(i == j ? 8.0 : u(rng));
+        t.emplace_back(i, j, v);
+        if (i != j) t.emplace_back(j, i, v);
+      }
+  Eigen::SparseMatrix<T> A(n, n);
+  A.setFromTriplets(t.begin(), t.end());
+  A.makeCompressed();
+  Eigen::SparseMatrix<T, Eigen::RowMajor> R = Dense(Dense::Random(n, 23)).sparseView(T(0.5), T(1));
+  R.makeCompressed();
+  Block X(n, b), B(n, b), Xs(23, b);
+  for (Eigen::Index i = 0; i < X.size(); ++i) X.data()[i] = static_cast<T>(u(rng)), B.data()[i] = static_cast<T>(u(rng));
+  for (Eigen::Index i = 0; i < Xs.size(); ++i) Xs.data()[i] = static_cast<T>(u(rng));
+  const Eigen::MatrixXd Ad = Eigen::MatrixXd(A.template cast<double>()), Rd = Eigen::MatrixXd(R.template cast<double>());
+  const Eigen::MatrixXd Xd = Eigen::MatrixXd(X.template cast<double>()), Bd = Eigen::MatrixXd(B.template cast<double>());
+  const Eigen::MatrixXd AX = Ad * Xd;
+  auto err = [](const Block& Z, const Eigen::MatrixXd& ref) {
+    return (Eigen::MatrixXd(Z.template cast<double>()) - ref).norm() / ref.norm();
+  };
+  Block Z;
+  multilevel::sym_times(A, X, Z);
+  CHECK(err(Z, AX) <= tol);
+  multilevel::sym_residual(A, X, B, Z);
+  CHECK(err(Z, Bd - AX) <= tol);
+  Z = B;
+  multilevel::sym_subtract(A, X, Z);
+  CHECK(err(Z, Bd - AX) <= tol);
+  multilevel::times(R, Xs, Z);
+  const Eigen::MatrixXd RXs = Rd * Eigen::MatrixXd(Xs.template cast<double>());
+  CHECK(err(Z, RXs) <= tol);
+  Z = B;
+  multilevel::times_add(R, Xs, Z);
+  CHECK(err(Z, Bd + RXs) <= tol);
+  multilevel::transpose_times(R, X, Z);
+  CHECK(err(Z, Rd.transpose() * Xd) <= tol);
+
+  // Block Jacobi over grid points of 1, 2 and 3 DOFs (scattered rows), D⁻¹ dense per block.
+  const std::vector<long> start = {0, 3, 4, 6, 9, 10};
+  const std::vector<long> dofs = {5, 0, 12, 7, 30, 2, 11, 19, 36, 4};
+  std::vector<long> dinv_start = {0};
+  for (size_t g = 0; g + 1 < start.size(); ++g) {
+    const long k = start[g + 1] - start[g];
+    dinv_start.push_back(dinv_start.back() + k * k);
+  }
+  std::vector<T> dinv(static_cast<size_t>(dinv_start.back()));
+  for (auto& v : dinv) v = static_cast<T>(u(rng));
+  Eigen::MatrixXd Dinv = Eigen::MatrixXd::Zero(n, n);
+  for (size_t g = 0; g + 1 < start.size(); ++g) {
+    const long s0 = start[g], k = start[g + 1] - s0;
+    for (long i = 0; i < k; ++i)
+      for (long j = 0; j < k; ++j)
+        Dinv(dofs[static_cast<size_t>(s0 + i)], dofs[static_cast<size_t>(s0 + j)]) = dinv[static_cast<size_t>(dinv_start[g] + i * k + j)];
+  }
+  const multilevel::GridBlocks<T> blocks{&start, &dofs, &dinv_start, dinv.data()};
+  Eigen::MatrixXd inside = Eigen::MatrixXd::Zero(n, b);  // rows the blocks cover
+  for (const long r : dofs) inside.row(r).setOnes();
+  Block d = B, Xj = X;
+  multilevel::block_jacobi_pass(blocks, B, 0.5, 2.0, d, Xj, false);  // d = 0.5 d + 2 D⁻¹ B, X += d
+  const Eigen::MatrixXd dref = (0.5 * Bd + 2.0 * Dinv * Bd).cwiseProduct(inside);
+  const Eigen::MatrixXd dgot = Eigen::MatrixXd(d.template cast<double>()).cwiseProduct(inside);
+  CHECK((dgot - dref).norm() <= tol * dref.norm());
+  const Eigen::MatrixXd xgot = Eigen::MatrixXd(Xj.template cast<double>()).cwiseProduct(inside);
+  CHECK((xgot - (Xd.cwiseProduct(inside) + dref)).norm() <= tol * dref.norm());
+  multilevel::block_jacobi_pass(blocks, B, 0.0, 1.0, d, Xj, true);  // d = X = D⁻¹ B on the blocks' rows
+  const Eigen::MatrixXd zref = (Dinv * Bd).cwiseProduct(inside);
+  CHECK((Eigen::MatrixXd(d.template cast<double>()).cwiseProduct(inside) - zref).norm() <= tol * zref.norm());
+  CHECK((Eigen::MatrixXd(Xj.template cast<double>()).cwiseProduct(inside) - zref).norm() <= tol * zref.norm());
+}
+
+}  // namespace
+
+TEST_CASE("multilevel kernels agree with Eigen at every register-tile width", "[multilevel]") {
+  // Widths that take each tile (four, two, one 64-byte vectors, 32 and 16 bytes,
+  // single values) alone and together, in both precisions.
+  for (const long b : {1L, 2L, 3L, 4L, 5L, 7L, 8L, 12L, 15L, 16L, 17L, 31L, 32L, 45L, 64L, 67L, 130L}) {
+    CAPTURE(b);
+    check_kernels_at_width<double>(b, 1e-14);
+    check_kernels_at_width<float>(b, 1e-5);
+  }
 }
 
 TEST_CASE("aggregation preconditioner: symmetric, positive definite, and conjugate gradients converge fast",

@@ -1,0 +1,119 @@
+/// \file bench_kernels.cpp
+/// The multilevel eigen-solver's kernels, one by one, on the benchmark lattice
+/// (bench/lattice.hpp) ordered as the solver orders it (DOFs with mass first), with
+/// blocks of the width LOBPCG uses at the start (45 columns: 35 wanted + 10 guard):
+/// the sparse block products in double (LOBPCG's A X) and single precision (the
+/// smoother's), the prolongation and restriction, one preconditioner application
+/// and its coarse solve, and the dense Gram and update products of the
+/// Rayleigh–Ritz step. Each is run `reps` times; the best and median wall times are
+/// printed with the bytes each pass must move at least (matrix once, blocks read and
+/// written once), so the figure says how far a kernel is from the memory bandwidth.
+///
+/// usage: bench_kernels N [--cols B] [--reps R]
+///   N = 25 → 93 750 DOF, 55 → 998 250 DOF (docs/performance.md).
+#include <algorithm>
+#include <cstdio>
+#include <cstring>
+#include <functional>
+#include <string>
+#include <vector>
+
+#include "bench/lattice.hpp"
+#include "estimator/eigen_solver.hpp"
+#include "estimator/multilevel/aggregation_amg.hpp"
+#include "estimator/multilevel/block_ops.hpp"
+
+namespace {
+
+using namespace bench;
+namespace ml = ssid::estimator::multilevel;
+
+void report(const char* name, int reps, double bytes, double flops, const std::function<void()>& f) {
+  std::vector<double> t;
+  for (int r = 0; r < reps; ++r) t.push_back(timed(f).first);
+  std::sort(t.begin(), t.end());
+  const double best = t.front(), median = t[t.size() / 2];
+  std::printf("%-34s best %8.4f s  median %8.4f s  %6.1f GB/s  %6.1f GFlop/s\n", name, best, median,
+              bytes / best * 1e-9, flops / best * 1e-9);
+}
+
+template <class T>
+ml::RowBlockOf<T> random_block(long n, long b) {
+  return Eigen::Matrix<T, Eigen::Dynamic, Eigen::Dynamic, Eigen::RowMajor>::Random(n, b);
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  if (argc < 2) {
+    std::fprintf(stderr, "usage: bench_kernels N [--cols B] [--reps R]\n");
+    return 2;
+  }
+  const int n = std::stoi(argv[1]);
+  long b = 45;
+  int reps = 5;
+  for (int i = 2; i < argc; ++i) {
+    if (!std::strcmp(argv[i], "--cols") && i + 1 < argc) b = std::stol(argv[++i]);
+    else if (!std::strcmp(argv[i], "--reps") && i + 1 < argc) reps = std::stoi(argv[++i]);
+    else {
+      std::fprintf(stderr, "bench_kernels: unknown or incomplete option %s\n", argv[i]);
+      return 2;
+    }
+  }
+  const Model m = lattice(n, Section{});
+  const long ndof = m.K.rows();
+  // The solver's ordering: translations (mass) first, rotations after.
+  Eigen::PermutationMatrix<Eigen::Dynamic, Eigen::Dynamic, int> perm(ndof);
+  const long half = ndof / 2;
+  for (long i = 0; i < ndof; ++i) perm.indices()(i) = static_cast<int>(i % 6 < 3 ? (i / 6) * 3 + i % 6 : half + (i / 6) * 3 + i % 6 - 3);
+  const double sigma = ssid::estimator::automatic_shift(m.K, m.M);
+  const ml::SparseMatrix A0 = m.K - sigma * m.M;
+  ml::SparseMatrix A = perm * A0 * perm.transpose();
+  A.makeCompressed();
+  std::vector<long> groups(static_cast<size_t>(ndof));
+  Eigen::MatrixXd B0 = rigid_body_modes(m), B(ndof, 6);
+  for (long i = 0; i < ndof; ++i) {
+    groups[static_cast<size_t>(perm.indices()(i))] = i / 6;
+    B.row(perm.indices()(i)) = B0.row(i);
+  }
+  double t0 = now_s();
+  const ml::AggregationAmg amg(A, groups, B);
+  std::printf("lattice %d^3: %ld DOF, nnz(A) %ld, nnz(P) %ld, coarse %ld DOF; preconditioner %.1f s; %ld columns, "
+              "%d threads\n",
+              n, ndof, static_cast<long>(A.nonZeros()), static_cast<long>(amg.prolongator().nonZeros()),
+              amg.coarse_size(), now_s() - t0, b, static_cast<int>(ml::worker_threads()));
+
+  const double nnzA = static_cast<double>(A.nonZeros()), nnzP = static_cast<double>(amg.prolongator().nonZeros());
+  const double nb = static_cast<double>(ndof) * static_cast<double>(b), nc = static_cast<double>(amg.coarse_size());
+  {
+    const ml::RowBlock X = random_block<double>(ndof, b);
+    ml::RowBlock Y;
+    report("sym_times double", reps, nnzA * 12 + nb * 16, 2 * nnzA * b, [&] { ml::sym_times(A, X, Y); });
+    const Eigen::SparseMatrix<float> Af = A.cast<float>();
+    ml::RowBlockOf<float> Xf;
+    ml::convert(X, Xf);
+    ml::RowBlockOf<float> Yf, Ef;
+    report("sym_times float", reps, nnzA * 8 + nb * 8, 2 * nnzA * b, [&] { ml::sym_times(Af, Xf, Yf); });
+    report("sym_residual float", reps, nnzA * 8 + nb * 12, 2 * nnzA * b, [&] { ml::sym_residual(Af, Xf, Xf, Yf); });
+    const Eigen::SparseMatrix<float, Eigen::RowMajor> Prowf = amg.prolongator_rows().cast<float>();
+    report("restriction P^T E float", reps, nnzP * 8 + nb * 4 + nc * b * 4, 2 * nnzP * b,
+           [&] { ml::transpose_times(Prowf, Xf, Ef); });
+    Yf = Xf;
+    report("prolongation X += P Y float", reps, nnzP * 8 + nb * 8 + nc * b * 4, 2 * nnzP * b,
+           [&] { ml::times_add(Prowf, Ef, Yf); });
+    const Eigen::MatrixXd Rc = Eigen::MatrixXd::Random(amg.coarse_size(), b);
+    report("coarse solve", reps, 2 * amg.coarse_factor().factor_bytes(), 4 * amg.coarse_factor().factor_nnz() * b,
+           [&] { const Eigen::MatrixXd Xc = amg.coarse_factor().solve(Rc); });
+    report("preconditioner (one cycle)", reps, 0, 0, [&] { amg.apply(X, Y); });
+  }
+  {
+    const ml::RowBlock X = random_block<double>(ndof, b), Y = random_block<double>(ndof, b);
+    report("gram X^T Y", reps, nb * 16, 2 * nb * b, [&] { const Eigen::MatrixXd G = ml::gram(X, Y); });
+    const ml::RowBlock XWP = random_block<double>(ndof, 3 * b);
+    const Eigen::MatrixXd C = Eigen::MatrixXd::Random(3 * b, b);
+    ml::RowBlock Z;
+    report("update [X W P] C", reps, nb * 32, 2 * nb * 3 * b, [&] { ml::times_dense_into(XWP, C, 0.0, Z); });
+  }
+  std::printf("peak RSS %ld MiB\n", peak_rss_mib());
+  return 0;
+}
