@@ -34,6 +34,7 @@
 #include <vector>
 
 #include "bench/lattice.hpp"
+#include "estimator/allocation_policy.hpp"
 #include "estimator/eigen_solver.hpp"
 
 namespace {
@@ -91,6 +92,7 @@ void print_checks(const ssid::estimator::EigenResult& r, int rigid) {
 }  // namespace
 
 int main(int argc, char** argv) {
+  ssid::estimator::keep_freed_memory();  // as ssid does (allocation_policy.hpp)
   using namespace ssid::estimator;
   if (argc < 2) {
     std::fprintf(stderr,
@@ -121,6 +123,7 @@ int main(int argc, char** argv) {
                                    : EigenMethod::Auto;
     }
     else if (!std::strcmp(argv[i], "--radius") && i + 1 < argc) ml.amg.aggregate_radius = std::stoi(argv[++i]);
+    else if (!std::strcmp(argv[i], "--double-coarse")) ml.amg.coarse_single_precision = false;
     else if (!std::strcmp(argv[i], "--degree") && i + 1 < argc) ml.amg.smoother_degree = std::stoi(argv[++i]);
     else if (!std::strcmp(argv[i], "--psteps") && i + 1 < argc) ml.amg.prolongator_steps = std::stoi(argv[++i]);
     else if (!std::strcmp(argv[i], "--ml-tol") && i + 1 < argc) ml.tol = std::stod(argv[++i]);

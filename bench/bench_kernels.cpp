@@ -19,6 +19,7 @@
 #include <vector>
 
 #include "bench/lattice.hpp"
+#include "estimator/allocation_policy.hpp"
 #include "estimator/eigen_solver.hpp"
 #include "estimator/multilevel/aggregation_amg.hpp"
 #include "estimator/multilevel/block_ops.hpp"
@@ -45,6 +46,7 @@ ml::RowBlockOf<T> random_block(long n, long b) {
 }  // namespace
 
 int main(int argc, char** argv) {
+  ssid::estimator::keep_freed_memory();  // as ssid does (allocation_policy.hpp)
   if (argc < 2) {
     std::fprintf(stderr, "usage: bench_kernels N [--cols B] [--reps R]\n");
     return 2;
@@ -104,6 +106,11 @@ int main(int argc, char** argv) {
     const Eigen::MatrixXd Rc = Eigen::MatrixXd::Random(amg.coarse_size(), b);
     report("coarse solve", reps, 2 * amg.coarse_factor().factor_bytes(), 4 * amg.coarse_factor().factor_nnz() * b,
            [&] { const Eigen::MatrixXd Xc = amg.coarse_factor().solve(Rc); });
+    const ssid::estimator::SingleSupernodalFactor single = amg.coarse_factor().single_precision_copy();
+    ssid::estimator::SingleSupernodalFactor::Work work;
+    ml::RowBlockOf<float> Rcf = Rc.cast<float>(), Xcf(amg.coarse_size(), b);
+    report("coarse solve, single precision", reps, amg.coarse_factor().factor_bytes(),
+           4 * amg.coarse_factor().factor_nnz() * b, [&] { single.solve(Rcf.data(), Xcf.data(), b, work); });
     report("preconditioner (one cycle)", reps, 0, 0, [&] { amg.apply(X, Y); });
   }
   {

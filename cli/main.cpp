@@ -6,6 +6,7 @@
 #include <iostream>
 
 #include "cli/cli_util.hpp"
+#include "estimator/allocation_policy.hpp"
 #include "formats/parse_error.hpp"
 
 namespace ssid::cli {
@@ -55,6 +56,8 @@ int main(int argc, char** argv) {
     std::cout << "ssid 0.1.0\n";
     return 0;
   }
+  // One job per process: freed blocks stay in the heap (allocation_policy.hpp).
+  ssid::estimator::keep_freed_memory();
   ssid::cli::Args args(argv + 2, argv + argc);
   for (const auto& c : ssid::cli::commands()) {
     if (name != c.name) continue;

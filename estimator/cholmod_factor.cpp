@@ -378,6 +378,30 @@ Eigen::MatrixXd CholmodFactor::solve(const Eigen::Ref<const Eigen::MatrixXd>& B)
   return X;
 }
 
+SingleSupernodalFactor CholmodFactor::single_precision_copy() const {
+  const cholmod_factor* L = m_state->L;
+  if (!factorized() || !L->is_super)
+    throw std::logic_error("CholmodFactor::single_precision_copy needs a successful supernodal factorisation");
+  SingleSupernodalFactor f;
+  f.n = static_cast<long>(L->n);
+  const auto* perm = static_cast<const SuiteSparse_long*>(L->Perm);
+  f.perm.resize(static_cast<size_t>(f.n));
+  for (long k = 0; k < f.n; ++k) f.perm[static_cast<size_t>(k)] = perm ? static_cast<long>(perm[k]) : k;
+  const size_t ns = L->nsuper + 1;
+  auto copy = [](const void* p, size_t count) {
+    const auto* q = static_cast<const SuiteSparse_long*>(p);
+    return std::vector<long>(q, q + count);
+  };
+  f.super = copy(L->super, ns);
+  f.pi = copy(L->pi, ns);
+  f.px = copy(L->px, ns);
+  f.rows = copy(L->s, static_cast<size_t>(f.pi.back()));
+  const auto* x = static_cast<const double*>(L->x);
+  f.values.resize(static_cast<size_t>(f.px.back()));
+  std::transform(x, x + f.values.size(), f.values.begin(), [](double v) { return static_cast<float>(v); });
+  return f;
+}
+
 long CholmodFactor::rows() const { return m_state->n; }
 bool CholmodFactor::factorized() const {
   const auto* L = m_state->L;

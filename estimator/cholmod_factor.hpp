@@ -26,6 +26,7 @@
 /// The 64-bit CHOLMOD interface (cholmod_l_*) is used so that factors of
 /// million-DOF models (more than 2³¹ entries in L) fit.
 #include <Eigen/SparseCore>
+#include "estimator/single_factor.hpp"
 #include <cstddef>
 #include <memory>
 #include <string>
@@ -109,6 +110,10 @@ class CholmodFactor {
   void solve(const double* b, double* x, long ncols = 1) const;
 
   Eigen::MatrixXd solve(const Eigen::Ref<const Eigen::MatrixXd>& B) const;
+
+  /// The factor rounded to single precision, for solves where a few digits do
+  /// (single_factor.hpp). Throws std::logic_error unless factorised and supernodal.
+  SingleSupernodalFactor single_precision_copy() const;
 
   long rows() const;
   bool factorized() const;

@@ -270,6 +270,7 @@ AggregationAmg::AggregationAmg(const SparseMatrix& A, const std::vector<long>& g
                              " DOFs) cannot be factorised: " + fs.message);
   m_double.Prow = &m_Prow;
   if (m_options.single_precision) {
+    if (m_options.coarse_single_precision && m_coarse.supernodal()) m_coarse_single = m_coarse.single_precision_copy();
     m_Af = A.cast<float>();
     m_Prowf = m_Prow.cast<float>();
     m_Af.makeCompressed(), m_Prowf.makeCompressed();
@@ -317,11 +318,25 @@ void AggregationAmg::cycle(const Level<T>& L, const RowBlockOf<T>& R, RowBlockOf
   RowBlockOf<T> &E = L.E, &Ec = L.Ec, &Y = L.Y;
   sym_residual(*L.A, X, R, E);
   transpose_times(*L.Prow, E, Ec);  // Pᵀ E, coarse x b
-  // CHOLMOD solves column-major double blocks: the coarse block (small) is copied.
-  const Eigen::MatrixXd Yc = m_coarse.solve(Eigen::MatrixXd(Ec.template cast<double>()));
-  Y = Yc.cast<T>();
+  coarse_solve(Ec, Y);
   times_add(*L.Prow, Y, X);  // X += P Y
   chebyshev(L, R, X, false);
+}
+
+template <>
+void AggregationAmg::coarse_solve(const RowBlockOf<float>& Ec, RowBlockOf<float>& Y) const {
+  if (!m_coarse_single.empty()) {
+    Y.resize(Ec.rows(), Ec.cols());
+    m_coarse_single.solve(Ec.data(), Y.data(), Ec.cols(), m_coarse_work);
+    return;
+  }
+  // CHOLMOD solves column-major double blocks: the coarse block (small) is copied.
+  Y = m_coarse.solve(Eigen::MatrixXd(Ec.cast<double>())).cast<float>();
+}
+
+template <>
+void AggregationAmg::coarse_solve(const RowBlockOf<double>& Ec, RowBlockOf<double>& Y) const {
+  Y = m_coarse.solve(Eigen::MatrixXd(Ec));
 }
 
 void AggregationAmg::prolong(const RowBlock& Y, RowBlock& X) const { multilevel::times(m_Prow, Y, X); }

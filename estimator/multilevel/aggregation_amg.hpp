@@ -63,6 +63,11 @@ struct AmgOptions {
   /// 1e-8 rather than 1e-15 (relative; the test frame), which LOBPCG, converging
   /// to 1e-6, does not see.
   bool single_precision = true;
+  /// With single_precision: the coarse solve too, on a copy of the coarse factor
+  /// rounded to single precision (single_factor.hpp), when the factor is
+  /// supernodal. Why: the coarse solve was over half of the cycle at 1M DOFs
+  /// (docs/performance.md).
+  bool coarse_single_precision = true;
 };
 
 class AggregationAmg {
@@ -121,6 +126,9 @@ class AggregationAmg {
                    RowBlockOf<T>& X, bool set_x) const;
   template <class T>
   void chebyshev(const Level<T>& L, const RowBlockOf<T>& R, RowBlockOf<T>& X, bool zero_start) const;
+  /// Y = Aᶜ⁻¹ Ec (single precision: on the rounded factor when there is one).
+  template <class T>
+  void coarse_solve(const RowBlockOf<T>& Ec, RowBlockOf<T>& Y) const;
   template <class T>
   void cycle(const Level<T>& L, const RowBlockOf<T>& R, RowBlockOf<T>& X) const;
 
@@ -136,6 +144,8 @@ class AggregationAmg {
   SparseRowMatrix m_Prow;
   std::vector<long> m_coarse_blocks;
   CholmodFactor m_coarse;
+  SingleSupernodalFactor m_coarse_single;  // empty unless coarse_single_precision
+  mutable SingleSupernodalFactor::Work m_coarse_work;
   Times m_times;
   Level<double> m_double;
   Level<float> m_single;

@@ -1,0 +1,32 @@
+// keep_freed_memory: after it, a large block comes from the heap (no mmap of its
+// own) and is reused when freed and allocated again.
+#include "estimator/allocation_policy.hpp"
+
+#include <catch2/catch.hpp>
+
+#include <cstdlib>
+#include <cstring>
+#if defined(__GLIBC__)
+#include <malloc.h>
+#endif
+
+TEST_CASE("keep_freed_memory serves large blocks from the heap", "[alloc]") {
+#if defined(__GLIBC__)
+  REQUIRE(ssid::estimator::keep_freed_memory());
+  const size_t mapped_before = mallinfo2().hblkhd;  // bytes in mmap'ed blocks
+  const size_t big = 96u << 20;                     // far above glibc's 32 MB mmap threshold
+  char* p = static_cast<char*>(std::malloc(big));
+  REQUIRE(p != nullptr);
+  std::memset(p, 1, big);
+  CHECK(mallinfo2().hblkhd == mapped_before);  // not an mmap of its own
+  std::free(p);
+  const size_t heap_after_free = mallinfo2().arena;
+  CHECK(heap_after_free >= big);  // kept in the heap, not trimmed
+  char* q = static_cast<char*>(std::malloc(big));
+  REQUIRE(q != nullptr);
+  CHECK(mallinfo2().arena == heap_after_free);  // reused: the heap did not grow
+  std::free(q);
+#else
+  CHECK_FALSE(ssid::estimator::keep_freed_memory());
+#endif
+}
