@@ -92,7 +92,6 @@ void print_checks(const ssid::estimator::EigenResult& r, int rigid) {
 }  // namespace
 
 int main(int argc, char** argv) {
-  ssid::estimator::keep_freed_memory();  // as ssid does (allocation_policy.hpp)
   using namespace ssid::estimator;
   if (argc < 2) {
     std::fprintf(stderr,
@@ -105,7 +104,7 @@ int main(int argc, char** argv) {
   EigenMethod method = EigenMethod::Auto;
   double tol = 1e-10;
   ssid::estimator::multilevel::MultilevelOptions ml;
-  bool compare = false, no_deflate = false;
+  bool compare = false, no_deflate = false, keep_freed = true;
   bool sturm = false, dof_ordering = false, export_only = false, factor_only = false, analyze_only = false;
   std::string export_dir;
   for (int i = 2; i < argc; ++i) {
@@ -123,6 +122,7 @@ int main(int argc, char** argv) {
                                    : EigenMethod::Auto;
     }
     else if (!std::strcmp(argv[i], "--radius") && i + 1 < argc) ml.amg.aggregate_radius = std::stoi(argv[++i]);
+    else if (!std::strcmp(argv[i], "--system-malloc")) keep_freed = false;
     else if (!std::strcmp(argv[i], "--double-coarse")) ml.amg.coarse_single_precision = false;
     else if (!std::strcmp(argv[i], "--degree") && i + 1 < argc) ml.amg.smoother_degree = std::stoi(argv[++i]);
     else if (!std::strcmp(argv[i], "--psteps") && i + 1 < argc) ml.amg.prolongator_steps = std::stoi(argv[++i]);
@@ -143,6 +143,8 @@ int main(int argc, char** argv) {
     std::fprintf(stderr, "bench_eigen: --export-only needs --export DIR\n");
     return 2;
   }
+  // As ssid does (allocation_policy.hpp); --system-malloc leaves glibc's defaults.
+  if (keep_freed) ssid::estimator::keep_freed_memory();
   const Section sec;
   double t = now_s();
   const Model m = lattice(n, sec);

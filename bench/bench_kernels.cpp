@@ -80,10 +80,12 @@ int main(int argc, char** argv) {
   }
   double t0 = now_s();
   const ml::AggregationAmg amg(A, groups, B);
-  std::printf("lattice %d^3: %ld DOF, nnz(A) %ld, nnz(P) %ld, coarse %ld DOF; preconditioner %.1f s; %ld columns, "
-              "%d threads\n",
+  const auto& at = amg.times();
+  std::printf("lattice %d^3: %ld DOF, nnz(A) %ld, nnz(P) %ld, coarse %ld DOF; preconditioner %.1f s (coarse factor "
+              "%.1f s, %s); %ld columns, %d threads\n",
               n, ndof, static_cast<long>(A.nonZeros()), static_cast<long>(amg.prolongator().nonZeros()),
-              amg.coarse_size(), now_s() - t0, b, static_cast<int>(ml::worker_threads()));
+              amg.coarse_size(), now_s() - t0, at.coarse_factor, amg.coarse_factor_single() ? "single" : "double", b,
+              static_cast<int>(ml::worker_threads()));
 
   const double nnzA = static_cast<double>(A.nonZeros()), nnzP = static_cast<double>(amg.prolongator().nonZeros());
   const double nb = static_cast<double>(ndof) * static_cast<double>(b), nc = static_cast<double>(amg.coarse_size());
@@ -104,13 +106,15 @@ int main(int argc, char** argv) {
     report("prolongation X += P Y float", reps, nnzP * 8 + nb * 8 + nc * b * 4, 2 * nnzP * b,
            [&] { ml::times_add(Prowf, Ef, Yf); });
     const Eigen::MatrixXd Rc = Eigen::MatrixXd::Random(amg.coarse_size(), b);
-    report("coarse solve", reps, 2 * amg.coarse_factor().factor_bytes(), 4 * amg.coarse_factor().factor_nnz() * b,
-           [&] { const Eigen::MatrixXd Xc = amg.coarse_factor().solve(Rc); });
-    const ssid::estimator::SingleSupernodalFactor single = amg.coarse_factor().single_precision_copy();
-    ssid::estimator::SingleSupernodalFactor::Work work;
-    ml::RowBlockOf<float> Rcf = Rc.cast<float>(), Xcf(amg.coarse_size(), b);
-    report("coarse solve, single precision", reps, amg.coarse_factor().factor_bytes(),
-           4 * amg.coarse_factor().factor_nnz() * b, [&] { single.solve(Rcf.data(), Xcf.data(), b, work); });
+    if (const auto* single = amg.coarse_factor_single()) {
+      ssid::estimator::SingleSupernodalFactor::Work work;
+      ml::RowBlockOf<float> Rcf = Rc.cast<float>(), Xcf(amg.coarse_size(), b);
+      report("coarse solve, single precision", reps, amg.coarse_factor().factor_bytes(),
+             4 * amg.coarse_factor().factor_nnz() * b, [&] { single->solve(Rcf.data(), Xcf.data(), b, work); });
+    }
+    if (amg.coarse_factor().factorized())
+      report("coarse solve, double", reps, 2 * amg.coarse_factor().factor_bytes(),
+             4 * amg.coarse_factor().factor_nnz() * b, [&] { const Eigen::MatrixXd Xc = amg.coarse_factor().solve(Rc); });
     report("preconditioner (one cycle)", reps, 0, 0, [&] { amg.apply(X, Y); });
   }
   {

@@ -378,12 +378,29 @@ Eigen::MatrixXd CholmodFactor::solve(const Eigen::Ref<const Eigen::MatrixXd>& B)
   return X;
 }
 
-SingleSupernodalFactor CholmodFactor::single_precision_copy() const {
-  const cholmod_factor* L = m_state->L;
-  if (!factorized() || !L->is_super)
-    throw std::logic_error("CholmodFactor::single_precision_copy needs a successful supernodal factorisation");
+FactorStatus CholmodFactor::factorize_single(const SparseMatrix& A, SingleSupernodalFactor& out) {
+  require_square(A, "CholmodFactor::factorize_single");
+  const bool borrow = is_lower_compressed(A);
+  const SparseMatrix lower = borrow ? SparseMatrix() : lower_triangle(A);
+  const SparseMatrix& low = borrow ? A : lower;
+  if (!same_pattern(low)) analyze(low);
+  auto& s = *m_state;
+  FactorStatus st;
+  if (!s.L->is_super) {
+    st.code = FactorStatus::Code::Failed;
+    st.message = "single-precision factorisation needs a supernodal analysis";
+    return st;
+  }
+  if (m_memory_limit > 0.0 && 0.5 * factor_bytes() > m_memory_limit) {
+    st.code = FactorStatus::Code::TooLarge;
+    st.message = "the single-precision factor needs " + std::to_string(0.5 * factor_bytes() / 1073741824.0) +
+                 " GiB, more than the limit of " + std::to_string(m_memory_limit / 1073741824.0) + " GiB";
+    return st;
+  }
+  const auto t0 = std::chrono::steady_clock::now();
+  const cholmod_factor* L = s.L;
   SingleSupernodalFactor f;
-  f.n = static_cast<long>(L->n);
+  f.n = s.n;
   const auto* perm = static_cast<const SuiteSparse_long*>(L->Perm);
   f.perm.resize(static_cast<size_t>(f.n));
   for (long k = 0; k < f.n; ++k) f.perm[static_cast<size_t>(k)] = perm ? static_cast<long>(perm[k]) : k;
@@ -396,16 +413,52 @@ SingleSupernodalFactor CholmodFactor::single_precision_copy() const {
   f.pi = copy(L->pi, ns);
   f.px = copy(L->px, ns);
   f.rows = copy(L->s, static_cast<size_t>(f.pi.back()));
-  const auto* x = static_cast<const double*>(L->x);
-  f.values.resize(static_cast<size_t>(f.px.back()));
-  std::transform(x, x + f.values.size(), f.values.begin(), [](double v) { return static_cast<float>(v); });
-  return f;
+  // C = P A Pᵀ, lower triangle, column by column in L's numbering.
+  std::vector<long> iperm(static_cast<size_t>(f.n));
+  for (long k = 0; k < f.n; ++k) iperm[static_cast<size_t>(f.perm[static_cast<size_t>(k)])] = k;
+  std::vector<long> Cp(static_cast<size_t>(f.n) + 1, 0), Ci(static_cast<size_t>(low.nonZeros()));
+  std::vector<double> Cx(Ci.size());
+  for (long j = 0; j < f.n; ++j)
+    for (SparseMatrix::InnerIterator it(low, j); it; ++it)
+      ++Cp[static_cast<size_t>(std::min(iperm[static_cast<size_t>(it.row())], iperm[static_cast<size_t>(j)])) + 1];
+  std::partial_sum(Cp.begin(), Cp.end(), Cp.begin());
+  std::vector<long> fill(Cp.begin(), Cp.end() - 1);
+  for (long j = 0; j < f.n; ++j)
+    for (SparseMatrix::InnerIterator it(low, j); it; ++it) {
+      const long a = iperm[static_cast<size_t>(it.row())], b = iperm[static_cast<size_t>(j)];
+      const long q = fill[static_cast<size_t>(std::min(a, b))]++;
+      Ci[static_cast<size_t>(q)] = std::max(a, b);
+      Cx[static_cast<size_t>(q)] = it.value();
+    }
+  const long bad = factorize_supernodal_single(Cp, Ci, Cx, f);
+  m_factorize_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+  ++m_factorizations;
+  if (bad >= 0) {
+    st.code = FactorStatus::Code::NotPositiveDefinite;
+    st.column = f.perm[static_cast<size_t>(bad)];
+    st.message = "matrix is not positive definite in single precision: non-positive pivot at row/column " +
+                 std::to_string(st.column);
+    return st;
+  }
+  // CHOLMOD's estimate: (min diag L / max diag L)².
+  float dmin = 0.0f, dmax = 0.0f;
+  for (long sn = 0; sn + 1 < static_cast<long>(ns); ++sn) {
+    const long nsrow = f.pi[static_cast<size_t>(sn) + 1] - f.pi[static_cast<size_t>(sn)];
+    for (long c = 0; c < f.super[static_cast<size_t>(sn) + 1] - f.super[static_cast<size_t>(sn)]; ++c) {
+      const float d = f.values[static_cast<size_t>(f.px[static_cast<size_t>(sn)] + c * nsrow + c)];
+      dmin = (sn == 0 && c == 0) ? d : std::min(dmin, d);
+      dmax = std::max(dmax, d);
+    }
+  }
+  st.rcond = dmax > 0.0f ? static_cast<double>(dmin / dmax) * static_cast<double>(dmin / dmax) : 0.0;
+  out = std::move(f);
+  return st;
 }
 
 long CholmodFactor::rows() const { return m_state->n; }
 bool CholmodFactor::factorized() const {
   const auto* L = m_state->L;
-  return L && L->minor == L->n && (L->is_super || L->xtype != CHOLMOD_PATTERN);
+  return L && L->minor == L->n && L->xtype != CHOLMOD_PATTERN;  // a symbolic analysis alone is not a factor
 }
 long CholmodFactor::solve_count() const { return m_state->solves; }
 double CholmodFactor::factor_nnz() const { return m_lnz; }

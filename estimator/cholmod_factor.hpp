@@ -111,9 +111,14 @@ class CholmodFactor {
 
   Eigen::MatrixXd solve(const Eigen::Ref<const Eigen::MatrixXd>& B) const;
 
-  /// The factor rounded to single precision, for solves where a few digits do
-  /// (single_factor.hpp). Throws std::logic_error unless factorised and supernodal.
-  SingleSupernodalFactor single_precision_copy() const;
+  /// The factorisation in single precision only (factorize_supernodal_single in
+  /// single_factor.hpp) on this object's supernodal analysis, done here when A's
+  /// pattern differs from the last one; CHOLMOD's double factor is not computed,
+  /// so solve() is not available afterwards. Why: the multilevel preconditioner's
+  /// coarse factor (1.6·10¹² flops at 1M DOFs) needs a few digits only, and single
+  /// precision halves its time and memory. The status's rcond is CHOLMOD's
+  /// (min diag L / max diag L)². Requires a supernodal factor kind.
+  FactorStatus factorize_single(const SparseMatrix& A, SingleSupernodalFactor& out);
 
   long rows() const;
   bool factorized() const;

@@ -37,4 +37,17 @@ struct SingleSupernodalFactor {
   void solve(const float* b, float* x, long nrhs, Work& work) const;
 };
 
+/// Numeric Cholesky factorisation in single precision on a supernodal symbolic
+/// structure: f holds n, perm, super, pi, px and rows (values are allocated here);
+/// C = P A Pᵀ is given by its lower triangle in L's numbering, column by column
+/// (CSC: column j's rows Ci[Cp[j] .. Cp[j+1]), each ≥ j, any order). Left-looking:
+/// each supernode gathers its columns of C, subtracts the updates of the
+/// supernodes below it in the elimination tree that reach it (ssyrk and sgemm on
+/// their rows, then a scatter), and factors itself (spotrf on the diagonal block,
+/// strsm below it); CHOLMOD's own supernodal algorithm, in single precision, which
+/// CHOLMOD 3 does not offer. Returns −1, or the column of L whose pivot was not
+/// positive (the factor is then unusable).
+long factorize_supernodal_single(const std::vector<long>& Cp, const std::vector<long>& Ci,
+                                 const std::vector<double>& Cx, SingleSupernodalFactor& f);
+
 }  // namespace ssid::estimator

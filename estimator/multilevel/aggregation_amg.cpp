@@ -262,7 +262,10 @@ AggregationAmg::AggregationAmg(const SparseMatrix& A, const std::vector<long>& g
   m_times.coarse_matrix = since(t);
   m_coarse.set_dof_groups(coarse_group);
   t = Clock::now();
-  const FactorStatus fs = m_coarse.factorize(Ac);
+  // Single precision: factorised in single precision only (the cycle's coarse solve
+  // is all that uses it); otherwise CHOLMOD's double factor.
+  const bool single_coarse = m_options.single_precision && m_options.coarse_single_precision;
+  const FactorStatus fs = single_coarse ? m_coarse.factorize_single(Ac, m_coarse_single) : m_coarse.factorize(Ac);
   m_times.coarse_factor = since(t);
   m_times.coarse_analysis = m_coarse.last_analyze_seconds();
   if (!fs.ok() && fs.code != FactorStatus::Code::NearSingular)
@@ -270,7 +273,6 @@ AggregationAmg::AggregationAmg(const SparseMatrix& A, const std::vector<long>& g
                              " DOFs) cannot be factorised: " + fs.message);
   m_double.Prow = &m_Prow;
   if (m_options.single_precision) {
-    if (m_options.coarse_single_precision && m_coarse.supernodal()) m_coarse_single = m_coarse.single_precision_copy();
     m_Af = A.cast<float>();
     m_Prowf = m_Prow.cast<float>();
     m_Af.makeCompressed(), m_Prowf.makeCompressed();

@@ -63,10 +63,12 @@ struct AmgOptions {
   /// 1e-8 rather than 1e-15 (relative; the test frame), which LOBPCG, converging
   /// to 1e-6, does not see.
   bool single_precision = true;
-  /// With single_precision: the coarse solve too, on a copy of the coarse factor
-  /// rounded to single precision (single_factor.hpp), when the factor is
-  /// supernodal. Why: the coarse solve was over half of the cycle at 1M DOFs
-  /// (docs/performance.md).
+  /// With single_precision: the coarse matrix is factorised in single precision
+  /// too (CholmodFactor::factorize_single), and CHOLMOD's double factor is not
+  /// computed. Why: at 1M DOFs the coarse factor (1.6·10¹² flops) was 27 s of the
+  /// setup and its solve over half of the cycle (docs/performance.md); the coarse
+  /// matrix of a shifted structural model is well conditioned (about 10⁴ for the
+  /// benchmark lattice), far from what single precision cannot factor.
   bool coarse_single_precision = true;
 };
 
@@ -97,8 +99,13 @@ class AggregationAmg {
   long aggregates() const { return m_aggregates; }
   double spectral_radius() const { return m_rho; }  ///< estimate of ρ(D⁻¹A) used by the smoothers
   /// The factor of Aᶜ = Pᵀ A P (also the shift-invert operator of the coarse model
-  /// when A = K − σM: Pᵀ K P − σ Pᵀ M P).
+  /// when A = K − σM: Pᵀ K P − σ Pᵀ M P): its analysis always, its double
+  /// factor only when the coarse factor is not in single precision.
   const CholmodFactor& coarse_factor() const { return m_coarse; }
+  /// The coarse factor in single precision (AmgOptions::coarse_single_precision); null when there is none.
+  const SingleSupernodalFactor* coarse_factor_single() const {
+    return m_coarse_single.empty() ? nullptr : &m_coarse_single;
+  }
   /// Wall seconds of the setup's parts: aggregation and the tentative prolongator,
   /// its smoothing, the coarse matrix product, the coarse factorisation.
   struct Times {
@@ -144,7 +151,7 @@ class AggregationAmg {
   SparseRowMatrix m_Prow;
   std::vector<long> m_coarse_blocks;
   CholmodFactor m_coarse;
-  SingleSupernodalFactor m_coarse_single;  // empty unless coarse_single_precision
+  SingleSupernodalFactor m_coarse_single;  // empty unless the coarse factor is in single precision
   mutable SingleSupernodalFactor::Work m_coarse_work;
   Times m_times;
   Level<double> m_double;

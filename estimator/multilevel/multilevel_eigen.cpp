@@ -144,8 +144,26 @@ MultilevelRun multilevel_lowest(const SparseMatrix& K_in, const SparseMatrix& M_
   bo.nev = static_cast<int>(std::min<long>(r + b_it, run.coarse_size - 1));
   bo.tol = 1e-5;  // a start for LOBPCG, not an answer
   BlockLanczosResult coarse;
+  double solve_seconds = 0.0;
+  // The preconditioner's coarse factor, in single precision when it is (the start
+  // needs a few digits: LOBPCG refines it).
+  const SingleSupernodalFactor* Fs = amg.coarse_factor_single();
+  SingleSupernodalFactor::Work work;
   try {
-    coarse = block_lanczos([&Fc](const Eigen::MatrixXd& X) { return Fc.solve(X); },
+    coarse = block_lanczos(
+        [&Fc, Fs, &work, &solve_seconds](const Eigen::MatrixXd& X) {
+          const auto ts = Clock::now();
+          Eigen::MatrixXd Y;
+          if (Fs) {
+            RowBlockOf<float> Xf = X.cast<float>(), Yf(X.rows(), X.cols());
+            Fs->solve(Xf.data(), Yf.data(), X.cols(), work);
+            Y = Yf.cast<double>();
+          } else {
+            Y = Fc.solve(X);
+          }
+          solve_seconds += seconds_since(ts);
+          return Y;
+        },
                            [&Mc](const Eigen::MatrixXd& X) {  // threaded (Eigen's product runs on one)
                              RowBlock Y;
                              sym_times(Mc, RowBlock(X), Y);
@@ -167,7 +185,9 @@ MultilevelRun multilevel_lowest(const SparseMatrix& K_in, const SparseMatrix& M_
   amg.prolong(coarse.vectors.rightCols(coarse.vectors.cols() - r), X0);
   run.coarse_modes_seconds = seconds_since(t);
 
-  report(progress, "multilevel: coarse modes in " + std::to_string(run.coarse_modes_seconds) + " s", 0.15);
+  report(progress, "multilevel: coarse modes in " + std::to_string(run.coarse_modes_seconds) + " s (" +
+                       std::to_string(coarse.block_solves) + " block solves, " + std::to_string(solve_seconds) +
+                       " s)", 0.15);
   t = Clock::now();
   LobpcgOptions lo;
   lo.nev = nev_it;

@@ -1,7 +1,7 @@
-// The single-precision copy of a supernodal factor: its solves are backward
+// The supernodal factorisation in single precision: its solves are backward
 // stable in single precision (residual ~1e-7 of ‖A‖‖x‖) and agree with CHOLMOD's
-// double solve to what the condition number allows, for row-major blocks of any
-// width, in place too.
+// double factor and solve to what the condition number allows, for row-major
+// blocks of any width, in place too; a non-positive pivot is named.
 #include "estimator/single_factor.hpp"
 
 #include <catch2/catch.hpp>
@@ -20,9 +20,15 @@ using RowMajorF = Eigen::Matrix<float, Eigen::Dynamic, Eigen::Dynamic, Eigen::Ro
 namespace {
 
 void check_single_solves(const SpMat& A) {
-  CholmodFactor f(FactorKind::Supernodal);
+  CholmodFactor f(FactorKind::Supernodal);  // the reference: CHOLMOD in double
   REQUIRE(f.factorize(A).ok());
-  const SingleSupernodalFactor s = f.single_precision_copy();
+  SingleSupernodalFactor s;
+  CholmodFactor g(FactorKind::Supernodal);
+  const FactorStatus st = g.factorize_single(A, s);
+  REQUIRE(st.ok());
+  CHECK(st.rcond > 0.0);
+  CHECK_FALSE(g.factorized());  // no double factor: solve() is not available
+  CHECK_THROWS_AS(g.solve(Eigen::MatrixXd::Ones(A.rows(), 1)), std::logic_error);
   REQUIRE(s.n == A.rows());
   REQUIRE(s.super.size() >= 2);
   const Eigen::MatrixXd Ad = Eigen::MatrixXd(A);
@@ -55,7 +61,7 @@ TEST_CASE("Single-precision supernodal solves: backward stable, any block width,
     check_single_solves(K);
   }
   // A lattice truss: many supernodes with rows below them (the scatter and gather
-  // of the off-diagonal rows), in a scrambled numbering (the permutation).
+  // of the off-diagonal rows, the updates between supernodes), in a reversed numbering.
   const int nn = 6 * 6 * 6;
   std::vector<int> perm(3 * nn);
   std::iota(perm.begin(), perm.end(), 0);
@@ -64,12 +70,19 @@ TEST_CASE("Single-precision supernodal solves: backward stable, any block width,
   check_single_solves(K0 + SpMat(M * 0.5));
 }
 
-TEST_CASE("Single-precision copy needs a supernodal factor", "[cholmod]") {
-  const auto [K, M] = random_pencil(30, 5u);
-  CholmodFactor simplicial(FactorKind::Simplicial), none;
-  REQUIRE(simplicial.factorize(K).ok());
-  CHECK_THROWS_AS(simplicial.single_precision_copy(), std::logic_error);
-  CHECK_THROWS_AS(none.single_precision_copy(), std::logic_error);
+TEST_CASE("Single-precision factorisation names a non-positive pivot", "[cholmod]") {
+  const auto [K0, M] = free_lattice_truss(4);
+  CholmodFactor f(FactorKind::Supernodal);
+  SingleSupernodalFactor s;
+  const FactorStatus st = f.factorize_single(K0 - SpMat(M * 1e6), s);  // far below the lowest eigenvalue: indefinite
+  CHECK(st.code == FactorStatus::Code::NotPositiveDefinite);
+  CHECK(st.column >= 0);
+  CHECK(s.empty());
+  CholmodFactor simplicial(FactorKind::Simplicial);
+  CHECK(simplicial.factorize_single(K0 + SpMat(M), s).code == FactorStatus::Code::Failed);
+}
+
+TEST_CASE("An empty single-precision factor refuses to solve", "[cholmod]") {
   SingleSupernodalFactor empty;
   SingleSupernodalFactor::Work w;
   float b = 1.0f, x = 0.0f;
