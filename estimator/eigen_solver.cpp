@@ -7,6 +7,7 @@
 #include <unistd.h>
 
 #include <algorithm>
+#include <utility>
 #include <chrono>
 #include <cmath>
 #include <random>
@@ -210,7 +211,7 @@ void solve_multilevel(const SparseMatrix& K, const SparseMatrix& M, double sigma
   if (nd < o.nd)
     res.warnings.push_back("only " + std::to_string(nd) + " of the " + std::to_string(o.nd) +
                            " requested modes are computed (DOFs with mass: " + std::to_string(n_massive) + ")");
-  const multilevel::MultilevelRun run = multilevel::multilevel_lowest(
+  multilevel::MultilevelRun run = multilevel::multilevel_lowest(
       K, M, sigma, nd, o.dof_groups, o.near_null_space, o.multilevel, o.progress);
   res.nev = nd;
   res.ncv = 0;
@@ -231,7 +232,7 @@ void solve_multilevel(const SparseMatrix& K, const SparseMatrix& M, double sigma
     res.message = "multilevel eigen-solver: " + run.message;
   }
   res.eigenvalues = run.lambda;
-  res.modes = run.vectors;
+  res.modes = std::move(run.vectors);
   if (res.modes.rows() != K.rows()) res.modes.resize(K.rows(), 0);  // stopped before any mode
   normalise(res.modes, mass, o.norm);
   compute_checks(K, M, res);

@@ -3,12 +3,31 @@
 #include "estimator/dense_blas.hpp"
 #include "estimator/multilevel/column_tiles.hpp"
 
+#include <sys/mman.h>
+
 #include <algorithm>
+#include <cstdint>
 #include <stdexcept>
 #include <thread>
 #include <vector>
 
 namespace ssid::estimator::multilevel {
+
+template <class T>
+void resize_block(RowBlockOf<T>& Y, long rows, long cols) {
+  const T* before = Y.data();
+  Y.resize(rows, cols);
+#ifdef MADV_HUGEPAGE
+  constexpr std::uintptr_t huge = std::uintptr_t{2} << 20;
+  const std::size_t bytes = sizeof(T) * static_cast<std::size_t>(Y.size());
+  if (Y.data() == before || bytes < (std::size_t{64} << 20)) return;
+  const auto begin = (reinterpret_cast<std::uintptr_t>(Y.data()) + huge - 1) & ~(huge - 1);
+  const auto end = (reinterpret_cast<std::uintptr_t>(Y.data()) + bytes) & ~(huge - 1);
+  if (end > begin) madvise(reinterpret_cast<void*>(begin), end - begin, MADV_HUGEPAGE);  // advice: failure is harmless
+#endif
+}
+template void resize_block<double>(RowBlockOf<double>&, long, long);
+template void resize_block<float>(RowBlockOf<float>&, long, long);
 
 long worker_threads() { return std::min<long>(std::max(1u, std::thread::hardware_concurrency()), 64); }
 
@@ -61,7 +80,7 @@ template <class T>
     T* yi = a.y + i * b;  // Y never overlaps X or the base
     const T* init = a.into == Into::Residual ? a.base + i * b : a.into == Into::Overwrite ? nullptr : yi;
     const int p0 = a.outer[i], p1 = a.outer[i + 1];
-    tiles::for_tiles<T>(b, [&](auto tag, long c) {
+    tiles::for_tiles<T>(b, [&](auto tag, long c) __attribute__((always_inline)) {
       tiles::TileFor<T, decltype(tag)> acc;
       if (init) acc.load(init + c);
       else acc.zero();
@@ -88,7 +107,7 @@ template <class T>
   for (long i = begin; i < end; ++i) {
     const int p0 = a.outer[i], p1 = a.outer[i + 1];
     if (p0 == p1) continue;
-    tiles::for_tiles<T>(b, [&](auto tag, long c) {
+    tiles::for_tiles<T>(b, [&](auto tag, long c) __attribute__((always_inline)) {
       tiles::TileFor<T, decltype(tag)> xi;
       xi.load(a.x + i * b + c);
       for (int p = p0; p < p1; ++p) xi.add_scaled_to(a.val[p], out + static_cast<long>(a.inner[p]) * b + c);
@@ -110,7 +129,7 @@ template <class Sparse, class T>
 void outer_rows_times(const Sparse& A, const RowBlockOf<T>& X, RowBlockOf<T>& Y, Into into = Into::Overwrite,
                       const RowBlockOf<T>* base = nullptr) {
   const long rows_ = A.outerSize(), b = X.cols();
-  if (into == Into::Overwrite || into == Into::Residual) Y.resize(rows_, b);
+  if (into == Into::Overwrite || into == Into::Residual) resize_block(Y, rows_, b);
   else if (Y.rows() != rows_ || Y.cols() != b) throw std::invalid_argument("sparse block product: Y's shape");
   if (into == Into::Residual && (base->rows() != rows_ || base->cols() != b))
     throw std::invalid_argument("sparse block product: the base block's shape");
@@ -144,7 +163,7 @@ template <class T>
     for (long i = 0; i < k; ++i) {
       T* di = a.d + dofs[i] * b;
       T* xi = a.x + dofs[i] * b;
-      tiles::for_tiles<T>(b, [&](auto tag, long c) {
+      tiles::for_tiles<T>(b, [&](auto tag, long c) __attribute__((always_inline)) {
         tiles::TileFor<T, decltype(tag)> z;  // β (D⁻¹ res)_i, then d_i
         z.zero();
         for (long j = 0; j < k; ++j) z.fma(a.beta * dinv[i * k + j], a.res + dofs[j] * b + c);
@@ -232,7 +251,7 @@ void transpose_times(const SparseRowOf<T>& A, const RowBlockOf<T>& X, RowBlockOf
 
 template <class From, class To>
 void convert(const RowBlockOf<From>& X, RowBlockOf<To>& Y) {
-  Y.resize(X.rows(), X.cols());
+  resize_block(Y, X.rows(), X.cols());
   const long b = X.cols();
   const From* x = X.data();
   To* y = Y.data();
@@ -245,9 +264,9 @@ template <class T>
 void block_jacobi_pass(const GridBlocks<T>& blocks, const RowBlockOf<T>& res, double alpha, double beta,
                        RowBlockOf<T>& d, RowBlockOf<T>& X, bool set_x) {
   const long n = res.rows(), b = res.cols();
-  if (alpha == 0.0) d.resize(n, b);  // d is written before it is read
+  if (alpha == 0.0) resize_block(d, n, b);  // d is written before it is read
   else if (d.rows() != n || d.cols() != b) throw std::invalid_argument("block_jacobi_pass: d's shape");
-  if (set_x) X.resize(n, b);
+  if (set_x) resize_block(X, n, b);
   else if (X.rows() != n || X.cols() != b) throw std::invalid_argument("block_jacobi_pass: X's shape");
   const JacobiArgs<T> args{blocks.start->data(), blocks.dofs->data(), blocks.dinv_start->data(), blocks.dinv,
                            res.data(), d.data(), X.data(), b, static_cast<T>(alpha), static_cast<T>(beta),
@@ -413,7 +432,7 @@ Eigen::MatrixXd gram(const RowBlock& X, const RowBlock& Y, long rows) {
 
 void times_dense_into(const RowBlock& X, const Eigen::Ref<const Eigen::MatrixXd>& C, double beta, RowBlock& Y) {
   if (X.cols() != C.rows()) throw std::invalid_argument("times_dense_into: shapes do not agree");
-  if (beta == 0.0) Y.resize(X.rows(), C.cols());
+  if (beta == 0.0) resize_block(Y, X.rows(), C.cols());
   else if (Y.rows() != X.rows() || Y.cols() != C.cols()) throw std::invalid_argument("times_dense_into: Y's shape");
   if (Y.size() == 0) return;
   // (X C)ᵀ = Cᵀ Xᵀ, column range [b, e) of Yc = rows [b, e) of Y: one serial BLAS call per thread.

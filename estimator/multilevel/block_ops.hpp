@@ -11,6 +11,7 @@
 /// block as the b x n column-major matrix it is in memory.
 #include <Eigen/Core>
 #include <Eigen/SparseCore>
+#include <cstddef>
 #include <functional>
 #include <vector>
 
@@ -25,6 +26,17 @@ using SparseRowOf = Eigen::SparseMatrix<T, Eigen::RowMajor>;
 using RowBlock = RowBlockOf<double>;
 using SparseMatrix = SparseOf<double>;
 using SparseRowMatrix = SparseRowOf<double>;
+
+/// Y.resize(rows, cols), and when that gave Y new storage of at least 64 MiB, asks
+/// the kernel to back it with transparent huge pages (Linux madvise
+/// MADV_HUGEPAGE; nothing elsewhere, nothing when the system has them off). Why:
+/// on a virtual machine the first touch of a fresh 4 KiB page costs several µs;
+/// the 1M-DOF solve spent 0.5-1 s on each new 360 MB block (LOBPCG's start: 3.5 s
+/// for four blocks), against one fault per 2 MiB with huge pages. Not below
+/// 64 MiB: advising the coarse level's blocks too (8-24 MB, allocated and freed
+/// many times) made the 1M start 2.5x slower.
+template <class T>
+void resize_block(RowBlockOf<T>& Y, long rows, long cols);
 
 /// Runs body(begin, end) over [0, n) split into one contiguous range per hardware
 /// thread (serially below `serial_below` items). Plain threads that block when done:

@@ -53,7 +53,7 @@ void deflate(const Deflation& d, RowBlock& V) {
 void residuals(const RowBlock& MX, const RowBlock& AX, const VectorXd& mu, RowBlock& R, VectorXd& r2,
                VectorXd& ax2) {
   const long n = AX.rows(), b = AX.cols();
-  R.resize(n, b);
+  resize_block(R, n, b);
   const double* mx = MX.data();
   const double* ax = AX.data();
   const double* m = mu.data();
@@ -106,7 +106,7 @@ void scale_to_unit_energy(RowBlock& P, RowBlock& AP) {
 
 /// out = the columns `idx` of X.
 void select_columns(const RowBlock& X, const std::vector<Eigen::Index>& idx, RowBlock& out) {
-  out.resize(X.rows(), static_cast<Eigen::Index>(idx.size()));
+  resize_block(out, X.rows(), static_cast<long>(idx.size()));
   const long k = static_cast<long>(idx.size()), b = X.cols();
   const double* x = X.data();
   double* o = out.data();
@@ -168,7 +168,9 @@ LobpcgResult lobpcg_largest(const SparseMatrix& A, const SparseMatrix& M, const 
   LobpcgResult res;
   // Every n-row block lives for the whole iteration and is written in place; the
   // scratch blocks take the products before a swap.
-  RowBlock X = X0, AX, MX, P, AP, MP, W, AW, MW, R, Ra, S1, S2;
+  RowBlock X, AX, MX, P, AP, MP, W, AW, MW, R, Ra, S1, S2;
+  resize_block(X, n, X0.cols());
+  X = X0;
   deflate(deflation, X);
   sym_times(A, X, AX);
   if (a_orthonormalise(X, AX, S1) < o.nev) throw std::invalid_argument("lobpcg: the start block is rank deficient");
