@@ -10,9 +10,12 @@
 /// kernel when freed, so each new block is page-faulted and zeroed by the kernel
 /// again: 8 % of the CPU time of the 1M-DOF solve went to the kernel's page
 /// clearing (perf), and keeping freed memory in the heap took the solve from 168 s
-/// to 158 s (docs/performance.md). The price: the process does not give memory back
-/// to the system until it exits (peak RSS 11.6 -> 12.2 GiB there), which suits a
-/// one-job command.
+/// to 158 s (docs/performance.md). The price: the process gives little memory back
+/// to the system before it exits (only a free top of the heap above 2 GiB, the
+/// largest trim threshold glibc takes; peak RSS 11.6 -> 12.2 GiB there), which
+/// suits a one-job command. Allocations in threads other than the main one may
+/// still be mapped on their own (glibc's secondary arenas); the solver allocates its
+/// blocks in the calling thread.
 namespace ssid::estimator {
 
 /// Serve large allocations from the heap and keep freed memory there (glibc:

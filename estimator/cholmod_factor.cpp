@@ -324,6 +324,7 @@ FactorStatus CholmodFactor::factorize(const SparseMatrix& A, double near_singula
     return st;
   }
   const auto t0 = std::chrono::steady_clock::now();
+  m_single_only = false;
   const int ok = cholmod_l_factorize(&s.A, s.L, &s.cm);
   m_factorize_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
   ++m_factorizations;
@@ -385,6 +386,7 @@ FactorStatus CholmodFactor::factorize_single(const SparseMatrix& A, SingleSupern
   const SparseMatrix& low = borrow ? A : lower;
   if (!same_pattern(low)) analyze(low);
   auto& s = *m_state;
+  m_single_only = true;
   FactorStatus st;
   if (!s.L->is_super) {
     st.code = FactorStatus::Code::Failed;
@@ -458,7 +460,9 @@ FactorStatus CholmodFactor::factorize_single(const SparseMatrix& A, SingleSupern
 long CholmodFactor::rows() const { return m_state->n; }
 bool CholmodFactor::factorized() const {
   const auto* L = m_state->L;
-  return L && L->minor == L->n && L->xtype != CHOLMOD_PATTERN;  // a symbolic analysis alone is not a factor
+  // A symbolic analysis alone is not a factor; after factorize_single, the values
+  // of an earlier double factorisation would belong to another matrix.
+  return !m_single_only && L && L->minor == L->n && L->xtype != CHOLMOD_PATTERN;
 }
 long CholmodFactor::solve_count() const { return m_state->solves; }
 double CholmodFactor::factor_nnz() const { return m_lnz; }

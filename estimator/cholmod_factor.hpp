@@ -114,7 +114,8 @@ class CholmodFactor {
   /// The factorisation in single precision only (factorize_supernodal_single in
   /// single_factor.hpp) on this object's supernodal analysis, done here when A's
   /// pattern differs from the last one; CHOLMOD's double factor is not computed,
-  /// so solve() is not available afterwards. Why: the multilevel preconditioner's
+  /// so solve() is not available afterwards (nor a double factor of an earlier
+  /// matrix: factorized() is false until the next factorize()). Why: the multilevel preconditioner's
   /// coarse factor (1.6·10¹² flops at 1M DOFs) needs a few digits only, and single
   /// precision halves its time and memory. The status's rcond is CHOLMOD's
   /// (min diag L / max diag L)². Requires a supernodal factor kind.
@@ -159,6 +160,7 @@ class CholmodFactor {
   double m_memory_limit = 0.0;
   int m_analyses = 0;
   int m_factorizations = 0;
+  bool m_single_only = false;  // the last factorisation was factorize_single: no double factor
   double m_analyze_s = 0.0, m_factorize_s = 0.0;
 };
 

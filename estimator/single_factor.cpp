@@ -5,6 +5,7 @@
 #include <algorithm>
 #include <cstring>
 #include <stdexcept>
+#include <string>
 
 extern "C" {
 // LAPACK (Fortran ABI; the trailing length is the hidden character-argument length).
@@ -124,7 +125,8 @@ long factorize_supernodal_single(const std::vector<long>& Cp, const std::vector<
     const int nc = static_cast<int>(nscol), ldl = static_cast<int>(nsrow);
     int info = 0;
     spotrf_("L", &nc, Ls, &ldl, &info, 1);
-    if (info != 0) return info > 0 ? k1 + info - 1 : k1;
+    if (info < 0) throw std::logic_error("factorize_supernodal_single: spotrf argument " + std::to_string(-info) + " illegal");
+    if (info > 0) return k1 + info - 1;
     if (nsrow > nscol) {
       cblas_strsm(CblasColMajor, CblasRight, CblasLower, CblasTrans, CblasNonUnit, static_cast<int>(nsrow - nscol), nc,
                   1.0f, Ls, ldl, Ls + nscol, ldl);

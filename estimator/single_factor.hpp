@@ -1,16 +1,19 @@
 #pragma once
 /// \file single_factor.hpp
-/// A supernodal Cholesky factor copied to single precision, and its solves on
-/// row-major blocks: the multilevel preconditioner's coarse solve.
+/// A supernodal Cholesky factor in single precision (factorize_supernodal_single,
+/// on CHOLMOD's supernodal analysis), and its solves on row-major blocks: the
+/// multilevel preconditioner's coarse factor and solve.
 ///
-/// Why: the coarse solve of the 1M-DOF lattice reads a factor of 2.7·10⁸ entries
-/// for every preconditioner application (about 1 s in double with 45 right-hand
-/// sides, over half of the cycle). A preconditioner needs a few digits, the rest of
-/// its cycle already runs in single precision, and single-precision BLAS does twice
-/// the flops per instruction on half the bytes. The factor is computed in double
-/// by CHOLMOD (single-precision factorisation is not in SuiteSparse 5) and rounded:
-/// each solve is then backward stable in single precision, i.e. it solves
-/// (A + E) x = b with ‖E‖ ≈ 10⁻⁷ ‖A‖ up to a modest factor.
+/// Why: the coarse factor of the 1M-DOF lattice takes 1.6·10¹² flops and its solve
+/// reads 2.7·10⁸ entries for every preconditioner application (in double: 27 s, and
+/// about 1 s with 45 right-hand sides, over half of the cycle). A preconditioner
+/// needs a few digits, the rest of its cycle already runs in single precision, and
+/// single-precision BLAS does twice the flops per instruction on half the bytes.
+/// CHOLMOD 3 (SuiteSparse 5) has no single precision, hence the factorisation here.
+/// Cholesky is backward stable: the factor and each solve solve (A + E) x = b with
+/// ‖E‖ ≈ 10⁻⁷ ‖A‖ up to a modest factor, so the answer loses about κ(A)·10⁻⁷; a
+/// matrix too ill-conditioned for that fails with a non-positive pivot or a small
+/// rcond, and the caller falls back to double (AggregationAmg does).
 ///
 /// Layout (CHOLMOD's supernodal L of P A Pᵀ = L Lᵀ): supernode s holds the columns
 /// [super[s], super[s+1]) of L; its rows are rows[pi[s] .. pi[s+1]) (the first
@@ -46,7 +49,8 @@ struct SingleSupernodalFactor {
 /// their rows, then a scatter), and factors itself (spotrf on the diagonal block,
 /// strsm below it); CHOLMOD's own supernodal algorithm, in single precision, which
 /// CHOLMOD 3 does not offer. Returns −1, or the column of L whose pivot was not
-/// positive (the factor is then unusable).
+/// positive (the factor is then unusable). Throws std::logic_error if LAPACK
+/// reports an illegal argument (a bad structure).
 long factorize_supernodal_single(const std::vector<long>& Cp, const std::vector<long>& Ci,
                                  const std::vector<double>& Cx, SingleSupernodalFactor& f);
 

@@ -265,7 +265,17 @@ AggregationAmg::AggregationAmg(const SparseMatrix& A, const std::vector<long>& g
   // Single precision: factorised in single precision only (the cycle's coarse solve
   // is all that uses it); otherwise CHOLMOD's double factor.
   const bool single_coarse = m_options.single_precision && m_options.coarse_single_precision;
-  const FactorStatus fs = single_coarse ? m_coarse.factorize_single(Ac, m_coarse_single) : m_coarse.factorize(Ac);
+  FactorStatus fs;
+  if (single_coarse) {
+    fs = m_coarse.factorize_single(Ac, m_coarse_single);
+    if (!fs.ok() || !(fs.rcond >= m_options.single_min_rcond)) {
+      // Too ill-conditioned for single precision: CHOLMOD's double factor instead.
+      m_coarse_single = SingleSupernodalFactor{};
+      fs = m_coarse.factorize(Ac);
+    }
+  } else {
+    fs = m_coarse.factorize(Ac);
+  }
   m_times.coarse_factor = since(t);
   m_times.coarse_analysis = m_coarse.last_analyze_seconds();
   if (!fs.ok() && fs.code != FactorStatus::Code::NearSingular)

@@ -15,12 +15,12 @@ namespace ssid::estimator::multilevel {
 
 template <class T>
 void resize_block(RowBlockOf<T>& Y, long rows, long cols) {
-  const T* before = Y.data();
-  Y.resize(rows, cols);
+  const Eigen::Index before = Y.size();
+  Y.resize(rows, cols);  // new storage exactly when the size changes (possibly at the same address)
 #ifdef MADV_HUGEPAGE
   constexpr std::uintptr_t huge = std::uintptr_t{2} << 20;
   const std::size_t bytes = sizeof(T) * static_cast<std::size_t>(Y.size());
-  if (Y.data() == before || bytes < (std::size_t{64} << 20)) return;
+  if (Y.size() == before || bytes < (std::size_t{64} << 20)) return;
   const auto begin = (reinterpret_cast<std::uintptr_t>(Y.data()) + huge - 1) & ~(huge - 1);
   const auto end = (reinterpret_cast<std::uintptr_t>(Y.data()) + bytes) & ~(huge - 1);
   if (end > begin) madvise(reinterpret_cast<void*>(begin), end - begin, MADV_HUGEPAGE);  // advice: failure is harmless
@@ -243,6 +243,7 @@ void transpose_times(const SparseRowOf<T>& A, const RowBlockOf<T>& X, RowBlockOf
   T* y = Y.data();
   parallel_for(m * b, [&](long begin, long end) {
     for (long t = 1; t < parts; ++t) {
+      if (partial[static_cast<size_t>(t)].size() == 0) continue;  // a part with no rows
       const T* q = partial[static_cast<size_t>(t)].data();
       for (long i = begin; i < end; ++i) y[i] += q[i];
     }

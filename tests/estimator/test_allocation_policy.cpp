@@ -1,5 +1,7 @@
 // keep_freed_memory: after it, a large block comes from the heap (no mmap of its
-// own) and is reused when freed and allocated again.
+// own) and is reused when freed and allocated again. (It changes the process's
+// allocator for the cases that run after it in the same process: harmless, and
+// ctest runs each case in a process of its own.)
 #include "estimator/allocation_policy.hpp"
 
 #include <catch2/catch.hpp>
@@ -18,13 +20,14 @@ TEST_CASE("keep_freed_memory serves large blocks from the heap", "[alloc]") {
   char* p = static_cast<char*>(std::malloc(big));
   REQUIRE(p != nullptr);
   std::memset(p, 1, big);
-  CHECK(mallinfo2().hblkhd == mapped_before);  // not an mmap of its own
+  CHECK(mallinfo2().hblkhd == mapped_before);  // not an mmap of its own: from the heap
+  const size_t heap = mallinfo2().arena;
+  CHECK(heap >= big);
   std::free(p);
-  const size_t heap_after_free = mallinfo2().arena;
-  CHECK(heap_after_free >= big);  // kept in the heap, not trimmed
+  CHECK(mallinfo2().arena == heap);  // kept in the heap, not trimmed
   char* q = static_cast<char*>(std::malloc(big));
   REQUIRE(q != nullptr);
-  CHECK(mallinfo2().arena == heap_after_free);  // reused: the heap did not grow
+  CHECK(mallinfo2().arena == heap);  // reused: the heap did not grow
   std::free(q);
 #else
   CHECK_FALSE(ssid::estimator::keep_freed_memory());

@@ -19,7 +19,16 @@ using RowMajorF = Eigen::Matrix<float, Eigen::Dynamic, Eigen::Dynamic, Eigen::Ro
 
 namespace {
 
-void check_single_solves(const SpMat& A) {
+/// Supernodes with rows below their own columns (whose updates and off-diagonal
+/// solves the checks exercise).
+long supernodes_with_rows_below(const SingleSupernodalFactor& s) {
+  long count = 0;
+  for (size_t k = 0; k + 1 < s.super.size(); ++k)
+    count += (s.pi[k + 1] - s.pi[k]) > (s.super[k + 1] - s.super[k]);
+  return count;
+}
+
+void check_single_solves(const SpMat& A, long min_updating_supernodes) {
   CholmodFactor f(FactorKind::Supernodal);  // the reference: CHOLMOD in double
   REQUIRE(f.factorize(A).ok());
   SingleSupernodalFactor s;
@@ -29,8 +38,8 @@ void check_single_solves(const SpMat& A) {
   CHECK(st.rcond > 0.0);
   CHECK_FALSE(g.factorized());  // no double factor: solve() is not available
   CHECK_THROWS_AS(g.solve(Eigen::MatrixXd::Ones(A.rows(), 1)), std::logic_error);
+  CHECK(supernodes_with_rows_below(s) >= min_updating_supernodes);
   REQUIRE(s.n == A.rows());
-  REQUIRE(s.super.size() >= 2);
   const Eigen::MatrixXd Ad = Eigen::MatrixXd(A);
   const double cond = [&] {
     Eigen::SelfAdjointEigenSolver<Eigen::MatrixXd> es(Ad);
@@ -58,7 +67,7 @@ void check_single_solves(const SpMat& A) {
 TEST_CASE("Single-precision supernodal solves: backward stable, any block width, in place", "[cholmod]") {
   for (int n : {40, 200}) {
     const auto [K, M] = random_pencil(n, 3u + static_cast<unsigned>(n));
-    check_single_solves(K);
+    check_single_solves(K, 0);  // dense: one or a few supernodes
   }
   // A lattice truss: many supernodes with rows below them (the scatter and gather
   // of the off-diagonal rows, the updates between supernodes), in a reversed numbering.
@@ -67,19 +76,37 @@ TEST_CASE("Single-precision supernodal solves: backward stable, any block width,
   std::iota(perm.begin(), perm.end(), 0);
   std::reverse(perm.begin(), perm.end());
   const auto [K0, M] = free_lattice_truss(6, perm);
-  check_single_solves(K0 + SpMat(M * 0.5));
+  check_single_solves(K0 + SpMat(M * 0.5), 20);
 }
 
 TEST_CASE("Single-precision factorisation names a non-positive pivot", "[cholmod]") {
   const auto [K0, M] = free_lattice_truss(4);
   CholmodFactor f(FactorKind::Supernodal);
   SingleSupernodalFactor s;
-  const FactorStatus st = f.factorize_single(K0 - SpMat(M * 1e6), s);  // far below the lowest eigenvalue: indefinite
+  const SpMat indefinite = K0 - SpMat(M * 1e6);  // far below the lowest eigenvalue
+  const FactorStatus st = f.factorize_single(indefinite, s);
   CHECK(st.code == FactorStatus::Code::NotPositiveDefinite);
-  CHECK(st.column >= 0);
   CHECK(s.empty());
+  CholmodFactor d(FactorKind::Supernodal);  // the same ordering, in double: the same first bad pivot
+  const FactorStatus sd = d.factorize(indefinite);
+  REQUIRE(sd.code == FactorStatus::Code::NotPositiveDefinite);
+  CHECK(st.column == sd.column);
   CholmodFactor simplicial(FactorKind::Simplicial);
   CHECK(simplicial.factorize_single(K0 + SpMat(M), s).code == FactorStatus::Code::Failed);
+}
+
+TEST_CASE("factorize_single leaves no double factor behind", "[cholmod]") {
+  const auto [K0, M] = free_lattice_truss(4);
+  const SpMat A = K0 + SpMat(M), B = K0 + SpMat(M * 2.0);  // the same pattern
+  CholmodFactor f(FactorKind::Supernodal);
+  REQUIRE(f.factorize(A).ok());
+  REQUIRE(f.factorized());
+  SingleSupernodalFactor s;
+  REQUIRE(f.factorize_single(B, s).ok());
+  CHECK_FALSE(f.factorized());  // A's double values must not answer for B
+  CHECK_THROWS_AS(f.solve(Eigen::MatrixXd::Ones(A.rows(), 1)), std::logic_error);
+  REQUIRE(f.factorize(B).ok());
+  CHECK(f.factorized());
 }
 
 TEST_CASE("An empty single-precision factor refuses to solve", "[cholmod]") {

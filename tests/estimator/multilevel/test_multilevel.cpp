@@ -105,7 +105,8 @@ TEST_CASE("multilevel block kernels agree with Eigen's products", "[multilevel]"
 
 TEST_CASE("multilevel kernels split over the cores agree with Eigen's products", "[multilevel]") {
   // Large enough that the dense products are split by rows (one serial BLAS call
-  // per thread, partial Gram matrices summed) and the sparse product by columns.
+  // per thread, partial Gram matrices summed), the sparse product by columns and
+  // the transposed product by rows (scattered into a copy per thread).
   const long n = std::max<long>(40000, 2 * 8192 * multilevel::worker_threads() + 7);  // split at 8192 rows a thread
   std::mt19937 rng(21);
   std::uniform_real_distribution<double> u(-1.0, 1.0);
@@ -144,8 +145,17 @@ TEST_CASE("multilevel kernels split over the cores agree with Eigen's products",
   const Eigen::SparseMatrix<double, Eigen::RowMajor> Ar = A;
   multilevel::times_add(Ar, X, Z);  // X − A X
   CHECK((dense(Z) - (dense(X) - AX)).norm() <= 1e-13 * AX.norm());
-  multilevel::transpose_times(Ar, X, Z);  // scattered by rows, one copy of Z per thread: Aᵀ X = A X
-  CHECK((dense(Z) - AX).norm() <= 1e-13 * AX.norm());
+  {
+    // The transposed product, scattered by rows into one copy of Z per thread, of
+    // a matrix that is not symmetric (Aᵀ X and A X differ).
+    Eigen::SparseMatrix<double, Eigen::RowMajor> N = Ar;
+    for (long i = 0; i + 5 < n; i += 7) N.coeffRef(i, i + 5) += 3.0;
+    N.makeCompressed();
+    multilevel::transpose_times(N, X, Z);
+    const Eigen::MatrixXd NtX = Eigen::SparseMatrix<double>(N.transpose()) * dense(X);
+    CHECK((dense(Z) - NtX).norm() <= 1e-13 * NtX.norm());
+    CHECK((NtX - AX).norm() > 1.0);
+  }
 
   // The Galerkin product's lower triangle, column blocks of uneven widths (an
   // aggregate may carry fewer than six coarse DOFs), against Eigen's Pᵀ A P.
@@ -307,6 +317,16 @@ TEST_CASE("aggregation preconditioner: symmetric, positive definite, and conjuga
   amg_mixed.apply(XY, Tm);
   CHECK((dense(Tm) - dense(Td)).norm() <= 1e-5 * dense(Td).norm());
   CHECK((dense(Ts) - dense(Td)).norm() <= 1e-3 * dense(Td).norm());
+  // A coarse matrix that fails the single-precision test (here an impossible rcond)
+  // is factorised in double instead.
+  multilevel::AmgOptions demanding;
+  demanding.single_min_rcond = 2.0;
+  const multilevel::AggregationAmg amg_fallback(A, f.groups, f.rigid, demanding);
+  CHECK(amg_fallback.coarse_factor_single() == nullptr);
+  CHECK(amg_fallback.coarse_factor().factorized());
+  RowBlock Tf;
+  amg_fallback.apply(XY, Tf);
+  CHECK((dense(Tf) - dense(Td)).norm() <= 1e-5 * dense(Td).norm());
 
   // Preconditioned conjugate gradients on A x = b, against plain CG.
   auto cg = [&](bool precondition) {
