@@ -300,14 +300,19 @@ void CholmodFactor::analyze_grouped(long n) {
   if (!s.L) throw std::runtime_error("CHOLMOD analysis on DOF groups failed (status " + first_failure + ")");
 }
 
-FactorStatus CholmodFactor::factorize(const SparseMatrix& A, double near_singular_rcond) {
-  require_square(A, "CholmodFactor::factorize");
+const SparseMatrix& CholmodFactor::analysed_lower(const SparseMatrix& A, SparseMatrix& storage, const char* who) {
+  require_square(A, who);
   // Borrow A's values when it is already lower triangular and compressed;
   // otherwise build tril(A) once here.
-  const bool borrow = is_lower_compressed(A);
-  const SparseMatrix lower = borrow ? SparseMatrix() : lower_triangle(A);
-  const SparseMatrix& low = borrow ? A : lower;
+  if (!is_lower_compressed(A)) storage = lower_triangle(A);
+  const SparseMatrix& low = is_lower_compressed(A) ? A : storage;
   if (!same_pattern(low)) analyze(low);
+  return low;
+}
+
+FactorStatus CholmodFactor::factorize(const SparseMatrix& A, double near_singular_rcond) {
+  SparseMatrix storage;
+  const SparseMatrix& low = analysed_lower(A, storage, "CholmodFactor::factorize");
   auto& s = *m_state;
   s.A = sparse_header(s.n, s.p, s.i, low.valuePtr());
   FactorStatus st;
@@ -380,11 +385,8 @@ Eigen::MatrixXd CholmodFactor::solve(const Eigen::Ref<const Eigen::MatrixXd>& B)
 }
 
 FactorStatus CholmodFactor::factorize_single(const SparseMatrix& A, SingleSupernodalFactor& out) {
-  require_square(A, "CholmodFactor::factorize_single");
-  const bool borrow = is_lower_compressed(A);
-  const SparseMatrix lower = borrow ? SparseMatrix() : lower_triangle(A);
-  const SparseMatrix& low = borrow ? A : lower;
-  if (!same_pattern(low)) analyze(low);
+  SparseMatrix storage;
+  const SparseMatrix& low = analysed_lower(A, storage, "CholmodFactor::factorize_single");
   auto& s = *m_state;
   m_single_only = true;
   FactorStatus st;

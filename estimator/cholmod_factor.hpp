@@ -148,6 +148,10 @@ class CholmodFactor {
 
  private:
   bool same_pattern(const SparseMatrix& lower) const;
+  /// tril(A) (A itself when already lower and compressed, else built in `storage`),
+  /// analysed when its pattern differs from the last analysis; throws for a
+  /// non-square A (message prefixed with `who`).
+  const SparseMatrix& analysed_lower(const SparseMatrix& A, SparseMatrix& storage, const char* who);
   void wrap(const SparseMatrix& lower);
 
   void analyze_grouped(long n);
