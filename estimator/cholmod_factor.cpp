@@ -300,7 +300,7 @@ void CholmodFactor::analyze_grouped(long n) {
   if (!s.L) throw std::runtime_error("CHOLMOD analysis on DOF groups failed (status " + first_failure + ")");
 }
 
-const SparseMatrix& CholmodFactor::analysed_lower(const SparseMatrix& A, SparseMatrix& storage, const char* who) {
+const CholmodFactor::SparseMatrix& CholmodFactor::analysed_lower(const SparseMatrix& A, SparseMatrix& storage, const char* who) {
   require_square(A, who);
   // Borrow A's values when it is already lower triangular and compressed;
   // otherwise build tril(A) once here.
