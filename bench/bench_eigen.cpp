@@ -10,7 +10,7 @@
 ///
 /// usage: bench_eigen N [--nd ND] [--block B] [--ncv NCV] [--tol TOL] [--sturm] [--method auto|spectra|block]
 ///                      [--dof-ordering] [--export DIR] [--export-only]
-///                      [--method multilevel [--radius R] [--psteps S] [--degree D] [--guard G] [--ml-tol T] [--no-deflate]] [--compare]
+///                      [--method multilevel [--radius R] [--psteps S] [--degree D] [--ratio R] [--guard G] [--ml-tol T] [--no-deflate] [--double-coarse]] [--compare] [--system-malloc]
 ///                      [--factor-only] [--analyze-only]
 ///   N = 12 → 10 368 DOF, 25 → 93 750 DOF, 55 → 998 250 DOF.
 ///   By default the ordering is computed on the grid-point graph (EigenOptions::
@@ -125,6 +125,7 @@ int main(int argc, char** argv) {
     else if (!std::strcmp(argv[i], "--system-malloc")) keep_freed = false;
     else if (!std::strcmp(argv[i], "--double-coarse")) ml.amg.coarse_single_precision = false;
     else if (!std::strcmp(argv[i], "--degree") && i + 1 < argc) ml.amg.smoother_degree = std::stoi(argv[++i]);
+    else if (!std::strcmp(argv[i], "--ratio") && i + 1 < argc) ml.amg.smoother_ratio = std::stod(argv[++i]);
     else if (!std::strcmp(argv[i], "--psteps") && i + 1 < argc) ml.amg.prolongator_steps = std::stoi(argv[++i]);
     else if (!std::strcmp(argv[i], "--ml-tol") && i + 1 < argc) ml.tol = std::stod(argv[++i]);
     else if (!std::strcmp(argv[i], "--guard") && i + 1 < argc) ml.guard = std::stoi(argv[++i]);
