@@ -92,8 +92,13 @@ template <class T>
 
 // One copy of each kernel per instruction set, chosen when the program loads
 // (GCC function multi-versioning): the default build targets plain x86-64 (SSE2),
-// and the tiles' vectors are 2-4x wider with AVX2 or AVX-512.
+// and the tiles' vectors are 2-4x wider with AVX2 or AVX-512. Elsewhere (arm64,
+// or a compiler without multi-versioning) one copy for the build's target.
+#if defined(__x86_64__) && defined(__GNUC__) && !defined(__clang__) && defined(__gnu_linux__)
 #define SSID_KERNEL_CLONES __attribute__((target_clones("arch=x86-64-v4", "arch=x86-64-v3", "default")))
+#else
+#define SSID_KERNEL_CLONES
+#endif
 SSID_KERNEL_CLONES void rows_float(const RowsArgs<float>& a, long begin, long end) { rows_kernel(a, begin, end); }
 SSID_KERNEL_CLONES void rows_double(const RowsArgs<double>& a, long begin, long end) { rows_kernel(a, begin, end); }
 void rows(const RowsArgs<float>& a, long begin, long end) { rows_float(a, begin, end); }
