@@ -444,17 +444,7 @@ FactorStatus CholmodFactor::factorize_single(const SparseMatrix& A, SingleSupern
                  std::to_string(st.column);
     return st;
   }
-  // CHOLMOD's estimate: (min diag L / max diag L)².
-  float dmin = 0.0f, dmax = 0.0f;
-  for (long sn = 0; sn + 1 < static_cast<long>(ns); ++sn) {
-    const long nsrow = f.pi[static_cast<size_t>(sn) + 1] - f.pi[static_cast<size_t>(sn)];
-    for (long c = 0; c < f.super[static_cast<size_t>(sn) + 1] - f.super[static_cast<size_t>(sn)]; ++c) {
-      const float d = f.values[static_cast<size_t>(f.px[static_cast<size_t>(sn)] + c * nsrow + c)];
-      dmin = (sn == 0 && c == 0) ? d : std::min(dmin, d);
-      dmax = std::max(dmax, d);
-    }
-  }
-  st.rcond = dmax > 0.0f ? static_cast<double>(dmin / dmax) * static_cast<double>(dmin / dmax) : 0.0;
+  st.rcond = f.rcond_estimate();  // CHOLMOD's: (min diag L / max diag L)²
   out = std::move(f);
   return st;
 }

@@ -14,6 +14,19 @@ void spotrf_(const char* uplo, const int* n, float* a, const int* lda, int* info
 
 namespace ssid::estimator {
 
+double SingleSupernodalFactor::rcond_estimate() const {
+  float dmin = 0.0f, dmax = 0.0f;
+  for (size_t sn = 0; sn + 1 < super.size(); ++sn) {
+    const long nsrow = pi[sn + 1] - pi[sn];
+    for (long c = 0; c < super[sn + 1] - super[sn]; ++c) {
+      const float d = values[static_cast<size_t>(px[sn] + c * nsrow + c)];
+      dmin = (sn == 0 && c == 0) ? d : std::min(dmin, d);
+      dmax = std::max(dmax, d);
+    }
+  }
+  return dmax > 0.0f ? static_cast<double>(dmin / dmax) * static_cast<double>(dmin / dmax) : 0.0;
+}
+
 void SingleSupernodalFactor::solve(const float* b, float* x, long nrhs, Work& w) const {
   if (empty()) throw std::logic_error("SingleSupernodalFactor::solve on an empty factor");
   if (nrhs <= 0) return;

@@ -30,6 +30,9 @@ struct SingleSupernodalFactor {
   std::vector<float> values;
 
   bool empty() const { return n == 0; }
+  /// CHOLMOD's reciprocal condition estimate of the factored matrix,
+  /// (min diag L / max diag L)²; 0 when empty.
+  double rcond_estimate() const;
 
   /// Workspace of solve (kept by the caller between solves: no allocation per call).
   struct Work {

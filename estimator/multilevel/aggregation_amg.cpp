@@ -335,20 +335,27 @@ void AggregationAmg::cycle(const Level<T>& L, const RowBlockOf<T>& R, RowBlockOf
   chebyshev(L, R, X, false);
 }
 
+Eigen::MatrixXd AggregationAmg::solve_coarse(const Eigen::MatrixXd& X) const {
+  if (m_coarse_single.empty()) return m_coarse.solve(X);
+  RowBlockOf<float> Xf = X.cast<float>(), Yf(X.rows(), X.cols());
+  m_coarse_single.solve(Xf.data(), Yf.data(), X.cols(), m_coarse_work);
+  return Yf.cast<double>();
+}
+
 template <>
 void AggregationAmg::coarse_solve(const RowBlockOf<float>& Ec, RowBlockOf<float>& Y) const {
-  if (!m_coarse_single.empty()) {
+  if (!m_coarse_single.empty()) {  // the cycle's row-major floats are the solve's own layout: no copy
     Y.resize(Ec.rows(), Ec.cols());
     m_coarse_single.solve(Ec.data(), Y.data(), Ec.cols(), m_coarse_work);
     return;
   }
-  // CHOLMOD solves column-major double blocks: the coarse block (small) is copied.
-  Y = m_coarse.solve(Eigen::MatrixXd(Ec.cast<double>())).cast<float>();
+  // The double factor solves column-major double blocks: the coarse block (small) is copied.
+  Y = solve_coarse(Eigen::MatrixXd(Ec.cast<double>())).cast<float>();
 }
 
 template <>
 void AggregationAmg::coarse_solve(const RowBlockOf<double>& Ec, RowBlockOf<double>& Y) const {
-  Y = m_coarse.solve(Eigen::MatrixXd(Ec));
+  Y = solve_coarse(Eigen::MatrixXd(Ec));
 }
 
 void AggregationAmg::prolong(const RowBlock& Y, RowBlock& X) const { multilevel::times(m_Prow, Y, X); }

@@ -56,8 +56,8 @@ struct AmgOptions {
   /// eigen-solver's iterations by a third (94k lattice: 34 -> 23 with radius 1,
   /// 43 -> 27 with radius 2) for a coarse factor about twice as dense.
   int prolongator_steps = 2;
-  /// The cycle (smoothing, restriction, prolongation) in single precision, the
-  /// coarse solve in double. Why: a preconditioner needs a few digits, and its
+  /// The cycle (smoothing, restriction, prolongation) in single precision; the
+  /// coarse factor and solve too unless coarse_single_precision is off. Why: a preconditioner needs a few digits, and its
   /// sparse block products are bound by memory traffic, which floats halve (the 94k
   /// lattice: 14-16 s -> 12-13 s, same iterations). The cycle is then symmetric to about
   /// 1e-8 rather than 1e-15 (relative; the test frame), which LOBPCG, converging
@@ -110,6 +110,9 @@ class AggregationAmg {
   /// when A = K − σM: Pᵀ K P − σ Pᵀ M P): its analysis always, its double
   /// factor only when the coarse factor is not in single precision.
   const CholmodFactor& coarse_factor() const { return m_coarse; }
+  /// Aᶜ⁻¹ X for a column-major block, on whichever coarse factor there is (single
+  /// precision when it is). Not thread-safe (the single factor's workspace is kept).
+  Eigen::MatrixXd solve_coarse(const Eigen::MatrixXd& X) const;
   /// The coarse factor in single precision (AmgOptions::coarse_single_precision); null when there is none.
   const SingleSupernodalFactor* coarse_factor_single() const {
     return m_coarse_single.empty() ? nullptr : &m_coarse_single;

@@ -149,29 +149,19 @@ MultilevelRun multilevel_lowest(const SparseMatrix& K_in, const SparseMatrix& M_
   const SparseMatrix Mc =
       galerkin_lower(M, P, amg.prolongator_rows(), amg.coarse_blocks()).selfadjointView<Eigen::Lower>();
   report(progress, "multilevel: coarse mass matrix in " + std::to_string(seconds_since(t)) + " s", 0.1);
-  const CholmodFactor& Fc = amg.coarse_factor();
   BlockLanczosOptions bo;
   bo.nev = static_cast<int>(std::min<long>(r + b_it, run.coarse_size - 1));
   bo.tol = 1e-5;  // a start for LOBPCG, not an answer
   bo.progress = [&progress](const std::string& msg, double) { report(progress, "coarse modes: " + msg, 0.1); };
   BlockLanczosResult coarse;
   double solve_seconds = 0.0;
-  // The preconditioner's coarse factor, in single precision when it is (the start
-  // needs a few digits: LOBPCG refines it).
-  const SingleSupernodalFactor* Fs = amg.coarse_factor_single();
-  SingleSupernodalFactor::Work work;
   try {
+    // The preconditioner's coarse factor, in single precision when it is (the start
+    // needs a few digits: LOBPCG refines it).
     coarse = block_lanczos(
-        [&Fc, Fs, &work, &solve_seconds](const Eigen::MatrixXd& X) {
+        [&amg, &solve_seconds](const Eigen::MatrixXd& X) {
           const auto ts = Clock::now();
-          Eigen::MatrixXd Y;
-          if (Fs) {
-            RowBlockOf<float> Xf = X.cast<float>(), Yf(X.rows(), X.cols());
-            Fs->solve(Xf.data(), Yf.data(), X.cols(), work);
-            Y = Yf.cast<double>();
-          } else {
-            Y = Fc.solve(X);
-          }
+          Eigen::MatrixXd Y = amg.solve_coarse(X);
           solve_seconds += seconds_since(ts);
           return Y;
         },
