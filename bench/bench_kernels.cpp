@@ -120,10 +120,16 @@ int main(int argc, char** argv) {
   {
     const ml::RowBlock X = random_block<double>(ndof, b), Y = random_block<double>(ndof, b);
     report("gram X^T Y", reps, nb * 16, 2 * nb * b, [&] { const Eigen::MatrixXd G = ml::gram(X, Y); });
-    const ml::RowBlock XWP = random_block<double>(ndof, 3 * b);
-    const Eigen::MatrixXd C = Eigen::MatrixXd::Random(3 * b, b);
+    report("gram X^T Y, symmetric", reps, nb * 16, nb * b, [&] { const Eigen::MatrixXd G = ml::gram_symmetric(X, Y); });
+    const Eigen::MatrixXd Cb = Eigen::MatrixXd::Random(b, b);
     ml::RowBlock Z;
-    report("update [X W P] C", reps, nb * 32, 2 * nb * 3 * b, [&] { ml::times_dense_into(XWP, C, 0.0, Z); });
+    report("update X C", reps, nb * 16, 2 * nb * b, [&] { ml::times_dense_into(X, Cb, 0.0, Z); });
+    const ml::RowBlock W = random_block<double>(ndof, b), P = random_block<double>(ndof, b);
+    const Eigen::MatrixXd C = Eigen::MatrixXd::Random(3 * b, b);
+    report("update [X W P] C (three blocks)", reps, nb * 32, 2 * nb * 3 * b,
+           [&] { ml::times_dense_sum({&X, &W, &P}, C, 0.0, Z); });
+    const ml::RowBlock XWP = random_block<double>(ndof, 3 * b);
+    report("update [X W P] C (one block)", reps, nb * 32, 2 * nb * 3 * b, [&] { ml::times_dense_into(XWP, C, 0.0, Z); });
   }
   std::printf("peak RSS %ld MiB\n", peak_rss_mib());
   return 0;

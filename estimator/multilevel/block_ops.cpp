@@ -7,6 +7,7 @@
 
 #include <algorithm>
 #include <cstdint>
+#include <cstring>
 #include <stdexcept>
 #include <thread>
 #include <vector>
@@ -185,6 +186,144 @@ SSID_KERNEL_CLONES void jacobi_float(const JacobiArgs<float>& a, long begin, lon
 SSID_KERNEL_CLONES void jacobi_double(const JacobiArgs<double>& a, long begin, long end) { jacobi_kernel(a, begin, end); }
 void jacobi(const JacobiArgs<float>& a, long begin, long end) { jacobi_float(a, begin, end); }
 void jacobi(const JacobiArgs<double>& a, long begin, long end) { jacobi_double(a, begin, end); }
+
+/// The arguments of a dense block product Y = β Y + Σ_s B_s C_s (see dense_kernel).
+struct DenseArgs {
+  static constexpr int kMaxSources = 4;
+  const double* src[kMaxSources];  // the row-major blocks B_s, n rows each
+  long cols[kMaxSources];
+  int sources;
+  const double* c;  // the C_s stacked by rows, row-major, q values a row
+  double* y;        // never overlaps a source
+  long q;
+  double beta;
+};
+
+// Rows [i, i + R) of Y: each tile's sums over every row of the stacked C stay in
+// registers, for R rows at once so that a row of C is loaded once for R rows.
+template <int R>
+[[gnu::always_inline]] inline void dense_rows(const DenseArgs& a, long i) {
+  const long q = a.q;
+  tiles::for_tiles<double>(q, [&](auto tag, long c) __attribute__((always_inline)) {
+    tiles::TileFor<double, decltype(tag)> acc[R];
+    for (int r = 0; r < R; ++r) {
+      if (a.beta == 0.0) {
+        acc[r].zero();
+      } else {
+        acc[r].load(a.y + (i + r) * q + c);
+        if (a.beta != 1.0) acc[r].scale(a.beta);
+      }
+    }
+    const double* crow = a.c + c;
+    for (int s = 0; s < a.sources; ++s) {
+      const long k = a.cols[s];
+      const double* x = a.src[s] + i * k;
+      for (long j = 0; j < k; ++j, crow += q)
+        for (int r = 0; r < R; ++r) acc[r].fma(x[r * k + j], crow);
+    }
+    for (int r = 0; r < R; ++r) acc[r].store(a.y + (i + r) * q + c);
+  });
+}
+
+[[gnu::always_inline]] inline void dense_kernel(const DenseArgs& a, long begin, long end) {
+  long i = begin;
+  for (; i + 4 <= end; i += 4) dense_rows<4>(a, i);
+  for (; i < end; ++i) dense_rows<1>(a, i);
+}
+
+SSID_KERNEL_CLONES void dense_double(const DenseArgs& a, long begin, long end) { dense_kernel(a, begin, end); }
+
+/// The arguments of a Gram product G += Xᵀ Y over a range of rows (see gram_kernel).
+struct GramArgs {
+  const double* x;  // n x p, row-major
+  const double* y;  // n x q, row-major
+  long p, q;
+  bool upper;  // only the tiles that reach the upper triangle (j ≥ i); p = q
+};
+
+constexpr long kLanes = 8;  // doubles in a 64-byte vector
+
+/// The Gram kernel's row width for Y (q rounded up to whole vectors) and its chunk
+/// of rows (about 24 KiB of X and Y together, within the first-level cache).
+constexpr long gram_padded(long q) { return (q + kLanes - 1) / kLanes * kLanes; }
+constexpr long gram_chunk(long p, long q8) { return std::clamp<long>(24576 / (8 * (p + q8)), 8, 256); }
+
+// Rows [i0, i0 + R) of G (p x q8, row-major) += Σ over the `rows` rows k of the
+// chunk x_k[i0 ..]ᵀ y_k, y the chunk copied with its rows padded to q8 (a multiple
+// of the 64-byte vector): R x width sums in registers per tile of G, full vectors
+// only. In upper mode the tiles start at the vector holding column i0, so about
+// half of G is computed.
+template <int R>
+[[gnu::always_inline]] inline void gram_rows(const double* x, long p, const double* y, long q8, long rows, long i0,
+                                             bool upper, double* G) {
+  const long c0 = upper ? i0 / kLanes * kLanes : 0;
+  tiles::for_tiles<double>(q8 - c0, [&](auto tag, long c) __attribute__((always_inline)) {
+    c += c0;
+    tiles::TileFor<double, decltype(tag)> acc[R];
+    for (int r = 0; r < R; ++r) acc[r].zero();
+    const double* xk = x + i0;
+    const double* yk = y + c;
+    for (long k = 0; k < rows; ++k, xk += p, yk += q8)
+      for (int r = 0; r < R; ++r) acc[r].fma(xk[r], yk);
+    for (int r = 0; r < R; ++r) acc[r].add_to(G + (i0 + r) * q8 + c);
+  });
+}
+
+// G (p x q8, row-major) += Σ_{k ∈ [begin, end)} x_kᵀ y_k, in chunks of rows small
+// enough to stay in the first-level cache while every tile of G passes over them.
+// Each chunk of Y is first copied with its rows padded by zeros to a whole number
+// of vectors: with q = 45 the tail tiles (8, 4 and 1 values) otherwise cost as
+// much as the 32 before them (a Gram product of width 45 took as long as one of 64).
+// Copies rows [k0, k0 + rows) of a row-major block of width w into `to`, each row
+// padded by zeros to w8 values, in tiles (a memcpy call per row cost a quarter of
+// the Gram product's time).
+[[gnu::always_inline]] inline void copy_rows_padded(const double* from, long w, long k0, long rows, long w8, double* to) {
+  for (long k = 0; k < rows; ++k) {
+    const double* f = from + (k0 + k) * w;
+    double* t = to + k * w8;
+    tiles::for_tiles<double>(w, [&](auto tag, long c) __attribute__((always_inline)) {
+      tiles::TileFor<double, decltype(tag)> v;
+      v.load(f + c);
+      v.store(t + c);
+    });
+    for (long c = w; c < w8; ++c) t[c] = 0.0;
+  }
+}
+
+// G (p x q8, row-major) += Σ_{k ∈ [begin, end)} x_kᵀ y_k, in chunks of rows small
+// enough to stay in the first-level cache while every tile of G passes over them.
+// Each chunk of X and Y is first copied, streaming, into `buf` (gram_chunk(p, q8)
+// x (p + q8) values), Y's rows padded by zeros to a whole number of vectors. Why
+// copy: read in place, X was walked with a stride of p values four columns at a
+// time and the product streamed 4 GB/s a core where a sum streams 30; and with
+// q = 45 the tail tiles (8, 4 and 1 values) cost as much as the 32 before them.
+[[gnu::always_inline]] inline void gram_kernel(const GramArgs& a, long begin, long end, double* G, double* buf) {
+  const long p = a.p, q = a.q, q8 = gram_padded(q), chunk = gram_chunk(p, q8);
+  double* xbuf = buf;
+  double* ybuf = buf + chunk * p;
+  for (long k0 = begin; k0 < end; k0 += chunk) {
+    const long rows = std::min(end, k0 + chunk) - k0;
+    copy_rows_padded(a.x, p, k0, rows, p, xbuf);
+    copy_rows_padded(a.y, q, k0, rows, q8, ybuf);
+    {  // the next chunk towards the second-level cache while this one is multiplied
+      const long next = std::min(end, k0 + rows + chunk);
+      for (const double *f = a.x + (k0 + rows) * p, *e = a.x + next * p; f < e; f += 8) __builtin_prefetch(f, 0, 2);
+      for (const double *f = a.y + (k0 + rows) * q, *e = a.y + next * q; f < e; f += 8) __builtin_prefetch(f, 0, 2);
+    }
+    long i0 = 0;
+    for (; i0 + 4 <= p; i0 += 4) gram_rows<4>(xbuf, p, ybuf, q8, rows, i0, a.upper, G);
+    switch (p - i0) {
+      case 3: gram_rows<3>(xbuf, p, ybuf, q8, rows, i0, a.upper, G); break;
+      case 2: gram_rows<2>(xbuf, p, ybuf, q8, rows, i0, a.upper, G); break;
+      case 1: gram_rows<1>(xbuf, p, ybuf, q8, rows, i0, a.upper, G); break;
+      default: break;
+    }
+  }
+}
+
+SSID_KERNEL_CLONES void gram_double(const GramArgs& a, long begin, long end, double* G, double* buf) {
+  gram_kernel(a, begin, end, G, buf);
+}
 #undef SSID_KERNEL_CLONES
 
 template <class T>
@@ -413,47 +552,83 @@ SparseMatrix galerkin_lower(const SparseMatrix& B, const SparseMatrix& P, const 
   return L;
 }
 
-Eigen::MatrixXd gram(const RowBlock& X, const RowBlock& Y, long rows) {
+namespace {
+
+Eigen::MatrixXd gram_of(const RowBlock& X, const RowBlock& Y, long rows, bool upper) {
   if (X.rows() != Y.rows()) throw std::invalid_argument("gram: blocks of different lengths");
+  if (upper && X.cols() != Y.cols()) throw std::invalid_argument("gram_symmetric: blocks of different widths");
   const long m = rows < 0 ? static_cast<long>(X.rows()) : std::min<long>(rows, X.rows());
-  Eigen::MatrixXd G = Eigen::MatrixXd::Zero(X.cols(), Y.cols());
-  if (m == 0 || X.cols() == 0 || Y.cols() == 0) return G;
-  // Xᵀ Y = (Xc)(Yc)ᵀ; rows [b, e) of a row-major block are its values [b·cols, e·cols).
-  // Split by rows, one serial BLAS call per thread, partial sums added.
-  const long bx = X.cols(), by = Y.cols();
-  auto part = [&](long b, long e, Eigen::MatrixXd& out) {
-    detail::gemm(false, true, 1.0, Eigen::Map<const Eigen::MatrixXd>(X.data() + b * bx, bx, e - b),
-                 Eigen::Map<const Eigen::MatrixXd>(Y.data() + b * by, by, e - b), 0.0, out);
-  };
-  if (m < kSplitRows * worker_threads()) {
-    part(0, m, G);
-    return G;
+  const long p = X.cols(), q = Y.cols();
+  Eigen::MatrixXd G = Eigen::MatrixXd::Zero(p, q);
+  if (m == 0 || p == 0 || q == 0) return G;
+  // Split by rows, a row-major partial G per part, the parts added in order: the
+  // same bits on every run.
+  const GramArgs args{X.data(), Y.data(), p, q, upper};
+  const long q8 = gram_padded(q);
+  std::vector<std::vector<double>> partial(static_cast<size_t>(worker_threads()));
+  const long parts = parallel_parts(
+      m,
+      [&](long t, long begin, long end) {
+        std::vector<double>& g = partial[static_cast<size_t>(t)];
+        g.assign(static_cast<size_t>(p * q8), 0.0);
+        std::vector<double> buf(static_cast<size_t>(gram_chunk(p, q8) * (p + q8)));
+        gram_double(args, begin, end, g.data(), buf.data());
+      },
+      kSplitRows * worker_threads());
+  for (long t = 0; t < parts; ++t) {
+    const std::vector<double>& g = partial[static_cast<size_t>(t)];
+    if (g.empty()) continue;  // a part with no rows
+    for (long i = 0; i < p; ++i)
+      for (long j = upper ? i : 0; j < q; ++j) G(i, j) += g[static_cast<size_t>(i * q8 + j)];
   }
-  const detail::SerialBlas serial;
-  std::vector<Eigen::MatrixXd> partial(static_cast<size_t>(worker_threads()), Eigen::MatrixXd::Zero(bx, by));
-  const long parts = parallel_parts(m, [&](long t, long b, long e) { part(b, e, partial[static_cast<size_t>(t)]); });
-  for (long t = 0; t < parts; ++t) G += partial[static_cast<size_t>(t)];  // in order: the same bits every run
+  if (upper)
+    for (long j = 0; j < q; ++j)
+      for (long i = j + 1; i < p; ++i) G(i, j) = G(j, i);
   return G;
+}
+
+}  // namespace
+
+Eigen::MatrixXd gram(const RowBlock& X, const RowBlock& Y, long rows) { return gram_of(X, Y, rows, false); }
+
+Eigen::MatrixXd gram_symmetric(const RowBlock& X, const RowBlock& Y, long rows) { return gram_of(X, Y, rows, true); }
+
+void times_dense_sum(const std::vector<const RowBlock*>& blocks, const Eigen::Ref<const Eigen::MatrixXd>& C,
+                     double beta, RowBlock& Y) {
+  if (blocks.empty()) throw std::invalid_argument("times_dense_sum: no blocks");
+  const long n = blocks.front()->rows(), q = C.cols();
+  DenseArgs args{};
+  long k = 0;
+  for (const RowBlock* B : blocks) {
+    if (B->rows() != n) throw std::invalid_argument("times_dense_sum: blocks of different lengths");
+    if (B->data() == Y.data() && B->size() > 0) throw std::invalid_argument("times_dense_sum: Y is one of the blocks");
+    k += B->cols();
+    if (B->cols() == 0) continue;
+    if (args.sources == DenseArgs::kMaxSources) throw std::invalid_argument("times_dense_sum: more than four blocks");
+    args.src[args.sources] = B->data();
+    args.cols[args.sources] = B->cols();
+    ++args.sources;
+  }
+  if (k != C.rows()) throw std::invalid_argument("times_dense_sum: shapes do not agree");
+  if (beta == 0.0) resize_block(Y, n, q);
+  else if (Y.rows() != n || Y.cols() != q) throw std::invalid_argument("times_dense_sum: Y's shape");
+  if (Y.size() == 0) return;
+  if (args.sources == 0) {  // an empty sum
+    if (beta == 0.0) Y.setZero();
+    else Y *= beta;
+    return;
+  }
+  const Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, Eigen::RowMajor> Cr = C;
+  args.c = Cr.data();
+  args.y = Y.data();
+  args.q = q;
+  args.beta = beta;
+  parallel_for(n, [&args](long begin, long end) { dense_double(args, begin, end); });
 }
 
 void times_dense_into(const RowBlock& X, const Eigen::Ref<const Eigen::MatrixXd>& C, double beta, RowBlock& Y) {
   if (X.cols() != C.rows()) throw std::invalid_argument("times_dense_into: shapes do not agree");
-  if (beta == 0.0) resize_block(Y, X.rows(), C.cols());
-  else if (Y.rows() != X.rows() || Y.cols() != C.cols()) throw std::invalid_argument("times_dense_into: Y's shape");
-  if (Y.size() == 0) return;
-  // (X C)ᵀ = Cᵀ Xᵀ, column range [b, e) of Yc = rows [b, e) of Y: one serial BLAS call per thread.
-  const long k = X.cols(), c = Y.cols();
-  auto part = [&](long b, long e) {
-    Eigen::Map<Eigen::MatrixXd> Yc(Y.data() + b * c, c, e - b);
-    detail::gemm(true, false, 1.0, C, Eigen::Map<const Eigen::MatrixXd>(X.data() + b * k, k, e - b), beta, Yc);
-  };
-  const long n = X.rows();
-  if (n < kSplitRows * worker_threads()) {
-    part(0, n);
-    return;
-  }
-  const detail::SerialBlas serial;
-  parallel_for(n, part);
+  times_dense_sum({&X}, C, beta, Y);
 }
 
 }  // namespace ssid::estimator::multilevel

@@ -113,11 +113,24 @@ SparseMatrix parallel_product(const SparseMatrix& A, const SparseMatrix& B);
 SparseMatrix galerkin_lower(const SparseMatrix& B, const SparseMatrix& P, const SparseRowMatrix& Prow,
                             const std::vector<long>& starts);
 
-/// Xᵀ Y (b_x x b_y, column-major) over the first `rows` rows (all when negative), by BLAS.
+/// Xᵀ Y (b_x x b_y, column-major) over the first `rows` rows (all when negative).
+/// The dense kernels here are register-tiled like the sparse ones (column_tiles.hpp)
+/// rather than BLAS calls: on these tall-skinny shapes (a million rows, 45 columns)
+/// OpenBLAS packs both operands and ran at 32-37 GFlop/s where it reaches 103 on
+/// square products (bench_kernels, docs/performance.md).
 Eigen::MatrixXd gram(const RowBlock& X, const RowBlock& Y, long rows = -1);
-/// Y = β Y + X C in place (X n x k row-major, C k x c), by BLAS (Y is resized, and its values ignored, when β = 0).
-/// Reusing Y's storage matters: a fresh n x b block of a million-DOF model is
-/// hundreds of megabytes of page faults.
+/// Xᵀ Y for a product symmetric in exact arithmetic (Y = S X with S symmetric):
+/// about half the work, the upper triangle computed and mirrored. X and Y of equal width.
+Eigen::MatrixXd gram_symmetric(const RowBlock& X, const RowBlock& Y, long rows = -1);
+/// Y = β Y + Σ_s B_s C_s, C split by rows along the blocks (a block of no columns
+/// takes no rows), in one pass over the rows: [X W P] C without concatenating.
+/// At most four blocks with columns; Y must not be one of them. Y is resized, and
+/// its values ignored, when β = 0.
+void times_dense_sum(const std::vector<const RowBlock*>& blocks, const Eigen::Ref<const Eigen::MatrixXd>& C,
+                     double beta, RowBlock& Y);
+/// Y = β Y + X C (X n x k row-major, C k x c); Y is not X. Y is resized, and its
+/// values ignored, when β = 0. Reusing Y's storage matters: a fresh n x b block of
+/// a million-DOF model is hundreds of megabytes of page faults.
 void times_dense_into(const RowBlock& X, const Eigen::Ref<const Eigen::MatrixXd>& C, double beta, RowBlock& Y);
 
 }  // namespace ssid::estimator::multilevel

@@ -66,6 +66,10 @@ struct Tile {
       std::memcpy(p + k * lanes, &x, Bytes);
     }
   }
+  /// this *= a
+  [[gnu::always_inline]] void scale(T a) {
+    for (int k = 0; k < K; ++k) v[k] *= a;
+  }
   /// p[0 .. width) += this
   [[gnu::always_inline]] void add_to(T* p) const {
     for (int k = 0; k < K; ++k) {
@@ -86,6 +90,7 @@ struct Tile<T, static_cast<int>(sizeof(T)), 1> {
   [[gnu::always_inline]] void store(T* p) const { *p = v; }
   [[gnu::always_inline]] void fma(T a, const T* p) { v += a * *p; }
   [[gnu::always_inline]] void add_scaled_to(T a, T* p) const { *p += a * v; }
+  [[gnu::always_inline]] void scale(T a) { v *= a; }
   [[gnu::always_inline]] void add_to(T* p) const { *p += v; }
 };
 
@@ -102,6 +107,12 @@ template <class T, class F>
   if (c + L / 2 <= b) f(Tag<32, 1>{}, c), c += L / 2;
   if (c + L / 4 <= b) f(Tag<16, 1>{}, c), c += L / 4;
   for (; c < b; ++c) f(Tag<static_cast<int>(sizeof(T)), 1>{}, c);
+}
+
+/// The number of values a tile of Tag TagT covers.
+template <class T, class TagT>
+constexpr long width() {
+  return TagT::bytes / static_cast<long>(sizeof(T)) * TagT::k;
 }
 
 /// The Tile type a Tag names, for values of type T.

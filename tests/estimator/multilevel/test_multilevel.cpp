@@ -525,3 +525,69 @@ TEST_CASE("multilevel method: a DOF with neither stiffness nor mass is reported,
   CHECK(r.message.find("neither stiffness nor mass") != std::string::npos);
   CHECK(r.size() == 0);
 }
+
+TEST_CASE("dense block kernels (Gram products, block updates) agree with Eigen at every width", "[multilevel]") {
+  // Gram products take rows in chunks, Y padded to whole vectors and rows of G in
+  // groups of four; updates take rows in fours and columns in tiles. Widths that
+  // leave every remainder, on one thread (300 rows, several chunks) and split over
+  // the cores (more than 8192 rows a thread).
+  std::mt19937 rng(5);
+  std::uniform_real_distribution<double> u(-1.0, 1.0);
+  auto random = [&](long n, long b) {
+    RowBlock X(n, b);
+    for (Eigen::Index i = 0; i < X.size(); ++i) X.data()[i] = u(rng);
+    return X;
+  };
+  const long threaded = 2 * 8192 * multilevel::worker_threads() + 5;
+  for (const long n : {300L, threaded}) {
+    for (const long p : {1L, 3L, 4L, 5L, 9L, 45L, 130L}) {
+      for (const long q : {1L, 2L, 7L, 8L, 13L, 45L, 67L}) {
+        if (n == threaded && p * q > 45 * 45) continue;  // the big cases once, on one thread
+        CAPTURE(n, p, q);
+        const RowBlock X = random(n, p), Y = random(n, q);
+        const Eigen::MatrixXd Gd = dense(X).transpose() * dense(Y);
+        CHECK((multilevel::gram(X, Y) - Gd).norm() <= 1e-13 * Gd.norm());
+        const long half = n / 2 + 3;
+        const Eigen::MatrixXd Gh = dense(X).topRows(half).transpose() * dense(Y).topRows(half);
+        CHECK((multilevel::gram(X, Y, half) - Gh).norm() <= 1e-13 * Gh.norm());
+        const Eigen::MatrixXd C = Eigen::MatrixXd::Random(p, q);
+        RowBlock Z;
+        multilevel::times_dense_into(X, C, 0.0, Z);
+        const Eigen::MatrixXd XC = dense(X) * C;
+        CHECK((dense(Z) - XC).norm() <= 1e-13 * XC.norm());
+        multilevel::times_dense_into(X, C, 2.5, Z);  // Z = 2.5 Z + X C
+        CHECK((dense(Z) - 3.5 * XC).norm() <= 1e-13 * XC.norm());
+      }
+      // Symmetric: Xᵀ (D X) with D diagonal, the upper triangle mirrored.
+      CAPTURE(n, p);
+      const RowBlock X = random(n, p);
+      const Eigen::VectorXd d = Eigen::VectorXd::Random(n);
+      const RowBlock DX = d.asDiagonal() * dense(X);
+      const Eigen::MatrixXd S = multilevel::gram_symmetric(X, DX), Sd = dense(X).transpose() * dense(DX);
+      CHECK((S - Sd).norm() <= 1e-13 * Sd.norm());
+      CHECK(S == S.transpose());
+    }
+  }
+  // Y = β Y + Σ_s B_s C_s over blocks of different widths, one of them empty.
+  const long n = 1001;
+  const RowBlock A = random(n, 5), B(n, 0), C3 = random(n, 45), D = random(n, 17);
+  const Eigen::MatrixXd C = Eigen::MatrixXd::Random(5 + 0 + 45 + 17, 23);
+  Eigen::MatrixXd stacked(n, 67);
+  stacked << dense(A), dense(C3), dense(D);
+  const Eigen::MatrixXd ref = stacked * C;
+  RowBlock Z;
+  multilevel::times_dense_sum({&A, &B, &C3, &D}, C, 0.0, Z);
+  CHECK((dense(Z) - ref).norm() <= 1e-13 * ref.norm());
+  multilevel::times_dense_sum({&A, &B, &C3, &D}, C, 1.0, Z);
+  CHECK((dense(Z) - 2.0 * ref).norm() <= 1e-13 * ref.norm());
+  RowBlock E = Eigen::MatrixXd::Ones(n, 23);
+  multilevel::times_dense_sum({&B}, Eigen::MatrixXd(0, 23), 0.0, E);  // an empty sum: zero
+  CHECK(E.isZero(0.0));
+  CHECK_THROWS_WITH(multilevel::times_dense_sum({&A, &C3}, C, 0.0, Z), Catch::Contains("shapes do not agree"));
+  RowBlock F = random(n, 5);
+  CHECK_THROWS_WITH(multilevel::times_dense_sum({&F}, Eigen::MatrixXd::Random(5, 5), 1.0, F),
+                    Catch::Contains("Y is one of the blocks"));
+  CHECK_THROWS_WITH(multilevel::times_dense_sum({&A, &A, &A, &A, &A}, Eigen::MatrixXd::Random(25, 3), 0.0, Z),
+                    Catch::Contains("more than four"));
+  CHECK_THROWS_WITH(multilevel::gram_symmetric(A, C3), Catch::Contains("different widths"));
+}
