@@ -7,6 +7,7 @@
 #include <catch2/catch.hpp>
 
 #include <Eigen/Dense>
+#include <algorithm>
 #include <numeric>
 #include <vector>
 
@@ -40,13 +41,23 @@ void check_single_solves(const SpMat& A, long min_updating_supernodes) {
   CHECK_THROWS_AS(g.solve(Eigen::MatrixXd::Ones(A.rows(), 1)), std::logic_error);
   CHECK(supernodes_with_rows_below(s) >= min_updating_supernodes);
   REQUIRE(s.n == A.rows());
-  const Eigen::MatrixXd Ad = Eigen::MatrixXd(A);
+  // κ(A) by power iterations (A for λ_max, CHOLMOD's double solves for λ_min):
+  // estimates from inside, so the forward-error bound below errs on the strict side.
   const double cond = [&] {
-    Eigen::SelfAdjointEigenSolver<Eigen::MatrixXd> es(Ad);
-    return es.eigenvalues().maxCoeff() / es.eigenvalues().minCoeff();
+    Eigen::VectorXd u = Eigen::VectorXd::Ones(A.rows()), v = u;
+    double lmax = 0.0, inv_lmin = 0.0;
+    for (int it = 0; it < 60; ++it) {
+      u = A * u.normalized();
+      lmax = u.norm();
+      v = f.solve(Eigen::MatrixXd(v.normalized())).col(0);
+      inv_lmin = v.norm();
+    }
+    return lmax * inv_lmin;
   }();
+  const double anorm = Eigen::MatrixXd(A).norm();
   SingleSupernodalFactor::Work work;
-  for (long nrhs : {1L, 3L, 17L}) {
+  // Block widths from one column to more than the multilevel method's 45.
+  for (long nrhs : {1L, 3L, 17L, 45L, 64L, 80L, 100L}) {
     CAPTURE(nrhs);
     const Eigen::MatrixXd B = Eigen::MatrixXd::Random(A.rows(), nrhs);
     const Eigen::MatrixXd Xd = f.solve(B);
@@ -54,7 +65,7 @@ void check_single_solves(const SpMat& A, long min_updating_supernodes) {
     s.solve(Bf.data(), Xf.data(), nrhs, work);
     const Eigen::MatrixXd X = Xf.cast<double>();
     // Backward error of a single-precision solve, and the forward error it implies.
-    const double backward = (Ad * X - Bf.cast<double>()).norm() / (Ad.norm() * X.norm());
+    const double backward = (A * X - Bf.cast<double>()).norm() / (anorm * X.norm());
     CHECK(backward <= 1e-6);
     CHECK((X - Xd).norm() <= 1e-6 * cond * Xd.norm());
     s.solve(Bf.data(), Bf.data(), nrhs, work);  // in place
@@ -77,6 +88,9 @@ TEST_CASE("Single-precision supernodal solves: backward stable, any block width,
   std::reverse(perm.begin(), perm.end());
   const auto [K0, M] = free_lattice_truss(6, perm);
   check_single_solves(K0 + SpMat(M * 0.5), 20);
+  // A larger lattice: supernodes with hundreds of rows below them.
+  const auto [K1, M1] = free_lattice_truss(9);
+  check_single_solves(K1 + SpMat(M1 * 0.5), 50);
 }
 
 TEST_CASE("Single-precision factorisation names a non-positive pivot", "[cholmod]") {
