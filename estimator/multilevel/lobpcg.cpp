@@ -18,12 +18,10 @@ using Eigen::VectorXd;
 
 MatrixXd sym(const MatrixXd& G) { return 0.5 * (G + G.transpose()); }
 
-/// Makes W A-orthonormal (W ← W T, AW ← AW T) through the eigen-decomposition of
-/// its scaled Gram matrix; directions with relative energy below 1e-13 are dropped.
-/// `scratch` is storage to reuse. Returns the number of columns kept.
-long a_orthonormalise(RowBlock& W, RowBlock& AW, RowBlock& scratch) {
-  if (W.cols() == 0) return 0;
-  const MatrixXd G = gram_symmetric(W, AW);
+/// T with Tᵀ G T = I for the Gram matrix G = WᵀAW, through the eigen-decomposition
+/// of G scaled to unit diagonal; directions with relative energy below 1e-13 are
+/// dropped (T has as many columns as are kept, possibly none).
+MatrixXd a_orthonormal_transform(const MatrixXd& G) {
   VectorXd d = G.diagonal();
   for (Eigen::Index i = 0; i < d.size(); ++i) d(i) = d(i) > 0.0 ? 1.0 / std::sqrt(d(i)) : 0.0;
   const MatrixXd Gs = d.asDiagonal() * G * d.asDiagonal();
@@ -33,14 +31,23 @@ long a_orthonormalise(RowBlock& W, RowBlock& AW, RowBlock& scratch) {
   std::vector<Eigen::Index> keep;
   for (Eigen::Index i = 0; i < ev.size(); ++i)
     if (ev(i) > 1e-13 * top && ev(i) > 0.0) keep.push_back(i);
-  MatrixXd T(W.cols(), static_cast<Eigen::Index>(keep.size()));
+  MatrixXd T(G.rows(), static_cast<Eigen::Index>(keep.size()));
   for (size_t j = 0; j < keep.size(); ++j)
     T.col(static_cast<Eigen::Index>(j)) = d.asDiagonal() * es.eigenvectors().col(keep[j]) / std::sqrt(ev(keep[j]));
+  return T;
+}
+
+/// Makes W A-orthonormal in place (W ← W T, AW ← AW T, T from
+/// a_orthonormal_transform). `scratch` is storage to reuse. Returns the number of
+/// columns kept.
+long a_orthonormalise(RowBlock& W, RowBlock& AW, RowBlock& scratch) {
+  if (W.cols() == 0) return 0;
+  const MatrixXd T = a_orthonormal_transform(gram_symmetric(W, AW));
   times_dense_into(W, T, 0.0, scratch);
   W.swap(scratch);
   times_dense_into(AW, T, 0.0, scratch);
   AW.swap(scratch);
-  return static_cast<long>(keep.size());
+  return static_cast<long>(T.cols());
 }
 
 /// V ← V − Z (AZ)ᵀ V: V made A-orthogonal to the deflated vectors.
@@ -82,26 +89,6 @@ VectorXd relative_residuals(const VectorXd& r2, const VectorXd& ax2, const Vecto
     rel(j) = ax > 0.0 && mu(j) > 0.0 ? std::sqrt(r2(j)) / (mu(j) * ax) : undefined;
   }
   return rel;
-}
-
-/// Scales the columns of P (and AP) to unit A-norm, in place.
-void scale_to_unit_energy(RowBlock& P, RowBlock& AP) {
-  const long n = P.rows(), p = P.cols();
-  double* pp = P.data();
-  double* ap = AP.data();
-  std::vector<VectorXd> dp(static_cast<size_t>(worker_threads()), VectorXd::Zero(p));
-  const long parts = parallel_parts(n, [&, pp, ap](long t, long begin, long end) {
-    VectorXd& dt = dp[static_cast<size_t>(t)];
-    for (long i = begin; i < end; ++i)
-      for (long j = 0; j < p; ++j) dt(j) += pp[i * p + j] * ap[i * p + j];
-  });
-  VectorXd d = VectorXd::Zero(p);
-  for (long t = 0; t < parts; ++t) d += dp[static_cast<size_t>(t)];  // in order: the same bits every run
-  for (long j = 0; j < p; ++j) d(j) = d(j) > 0.0 ? 1.0 / std::sqrt(d(j)) : 0.0;
-  parallel_for(n, [=, &d](long begin, long end) {
-    for (long i = begin; i < end; ++i)
-      for (long j = 0; j < p; ++j) pp[i * p + j] *= d(j), ap[i * p + j] *= d(j);
-  });
 }
 
 /// out = the columns `idx` of X.
@@ -196,49 +183,57 @@ LobpcgResult lobpcg_largest(const SparseMatrix& A, const SparseMatrix& M, const 
       res.converged = true;
       break;
     }
-    // Preconditioned directions for the active columns, A-orthogonal to X and
-    // A-orthonormal; the conjugate block scaled.
+    // Preconditioned directions W for the active columns, A-orthogonal to X; the
+    // basis of the Rayleigh–Ritz step is [X, W T, P D]: W T A-orthonormal and P D
+    // (the conjugate block) with unit A-norm columns. T and D stay small: the Gram
+    // matrices are taken with W and P as they are and transformed, and T and D go
+    // into the coefficients of the update (forming W T, A W T and P D cost three
+    // n x b passes an iteration, 6 % of the time at a million DOFs).
     select_columns(R, active, Ra);
     res.preconditioned += static_cast<long>(active.size());
     precondition(Ra, W);
     deflate(deflation, W);
     times_dense_into(X, -gram(AX, W), 1.0, W);
     sym_times(A, W, AW);
-    if (a_orthonormalise(W, AW, S1) == 0) {  // no new direction: stagnation
+    const MatrixXd T = a_orthonormal_transform(gram_symmetric(W, AW));
+    if (T.cols() == 0) {  // no new direction: stagnation
       res.breakdown = "no new search direction (stagnation)";
       break;
     }
     sym_times(M, W, MW);
+    MatrixXd PAP;
+    VectorXd dp;
     if (P.cols() > 0) {
-      // P only scaled to unit A-norm columns (a full A-orthonormalisation cost two
-      // n x p x p products per iteration, 7 % of the time, for nothing the
-      // Rayleigh–Ritz step below needs: it takes PᵀAP as computed).
-      scale_to_unit_energy(P, AP);
+      PAP = gram_symmetric(P, AP);
+      dp = PAP.diagonal();
+      for (Eigen::Index j = 0; j < dp.size(); ++j) dp(j) = dp(j) > 0.0 ? 1.0 / std::sqrt(dp(j)) : 0.0;
       sym_times(M, P, MP);
     }
-    // Rayleigh–Ritz on [X W P]. WᵀAW = I (just made so) and XᵀMX = diag(μ) (the
-    // last Rayleigh–Ritz step) are set; XᵀAX and XᵀAW, which hold only as well as
-    // the last step and one Gram–Schmidt pass, are computed so that their errors
-    // do not accumulate. Without P when the Gram matrix is not definite (P nearly
-    // inside span[X W]).
-    const Eigen::Index nw = W.cols(), np = P.cols(), m = b + nw + np;
+    // Rayleigh–Ritz on [X, W T, P D]. (W T)ᵀA(W T) = I (T makes it so) and XᵀMX =
+    // diag(μ) (the last Rayleigh–Ritz step) are set; XᵀAX and XᵀA(W T), which hold
+    // only as well as the last step and one Gram–Schmidt pass, are computed so that
+    // their errors do not accumulate. Without P when the Gram matrix is not
+    // definite (P nearly inside span[X W]).
+    const Eigen::Index nw = T.cols(), np = P.cols(), m = b + nw + np;
     MatrixXd GA = MatrixXd::Identity(m, m), GM = MatrixXd::Zero(m, m);
     GM.topLeftCorner(b, b) = res.mu.asDiagonal();
     auto put = [](MatrixXd& G, Eigen::Index r, Eigen::Index c, const MatrixXd& g) {
       G.block(r, c, g.rows(), g.cols()) = g;
       G.block(c, r, g.cols(), g.rows()) = g.transpose();
     };
+    const MatrixXd Tt = T.transpose();
     put(GA, 0, 0, gram_symmetric(X, AX));
-    put(GA, 0, b, MatrixXd(gram(W, AX).transpose()));
-    put(GM, 0, b, mgram(X, MW));
-    put(GM, b, b, mgram_sym(W, MW));
+    put(GA, 0, b, gram(AX, W) * T);
+    put(GM, 0, b, mgram(X, MW) * T);
+    put(GM, b, b, sym(Tt * mgram_sym(W, MW) * T));
     if (np > 0) {
-      put(GA, 0, b + nw, gram(AX, P));
-      put(GA, b, b + nw, gram(W, AP));
-      put(GA, b + nw, b + nw, gram_symmetric(P, AP));
-      put(GM, 0, b + nw, mgram(X, MP));
-      put(GM, b, b + nw, mgram(W, MP));
-      put(GM, b + nw, b + nw, mgram_sym(P, MP));
+      const auto D = dp.asDiagonal();
+      put(GA, 0, b + nw, gram(AX, P) * D);
+      put(GA, b, b + nw, Tt * gram(W, AP) * D);
+      put(GA, b + nw, b + nw, D * PAP * D);
+      put(GM, 0, b + nw, mgram(X, MP) * D);
+      put(GM, b, b + nw, Tt * mgram(W, MP) * D);
+      put(GM, b + nw, b + nw, D * mgram_sym(P, MP) * D);
     }
     MatrixXd C;
     VectorXd mu;
@@ -250,12 +245,15 @@ LobpcgResult lobpcg_largest(const SparseMatrix& A, const SparseMatrix& M, const 
         break;
       }
     }
-    // Q = [W P] C_wp, the new conjugate directions P = Q's active columns, X ← X C_x + Q
-    // (Q formed once: forming P and X separately cost the [W P] product twice, 8
-    // of 20 GFlop an iteration at a million DOFs). Their products with A and M are
-    // recomputed rather than combined (cheaper than the dense update for a sparse
-    // A, and exact for the new blocks).
-    times_dense_sum({&W, &P}, C.bottomRows(C.rows() - b), 0.0, S2);
+    // Q = [W P] [T C_w; D C_p], the new conjugate directions P = Q's active
+    // columns, X ← X C_x + Q (Q formed once: forming P and X separately cost the
+    // [W P] product twice). Their products with A and M are recomputed rather than
+    // combined (cheaper than the dense update for a sparse A, and exact for the new
+    // blocks).
+    MatrixXd Cwp(W.cols() + P.cols(), b);
+    Cwp.topRows(W.cols()) = T * C.middleRows(b, nw);
+    if (P.cols() > 0) Cwp.bottomRows(P.cols()) = dp.asDiagonal() * C.bottomRows(P.cols());
+    times_dense_sum({&W, &P}, Cwp, 0.0, S2);
     select_columns(S2, active, S1);
     times_dense_into(X, C.topRows(b), 1.0, S2);
     X.swap(S2);
