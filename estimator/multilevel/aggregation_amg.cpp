@@ -237,10 +237,12 @@ AggregationAmg::AggregationAmg(const SparseMatrix& A, const std::vector<long>& g
     SparseMatrix Dinv(n, n);
     Dinv.setFromTriplets(td.begin(), td.end());
     const double omega = 4.0 / (3.0 * m_rho);
+    // D⁻¹A formed once (A's pattern: its rows come whole by grid point), then
+    // (D⁻¹A) P per step: D⁻¹ (A P) multiplied the grown A P instead, 2.4 s of the
+    // 1M lattice's second step against about 1 s for (D⁻¹A) P.
+    const SparseMatrix DinvA = parallel_product(Dinv, A);
     m_P = P0;
-    for (int step = 0; step < options.prolongator_steps; ++step) {
-      m_P = m_P - omega * parallel_product(Dinv, parallel_product(A, m_P));
-    }
+    for (int step = 0; step < options.prolongator_steps; ++step) m_P = m_P - omega * parallel_product(DinvA, m_P);
   } else {
     m_P = P0;
   }
