@@ -1,11 +1,9 @@
 #include "estimator/dense_blas.hpp"
 
 #include <cblas.h>
-#include <dlfcn.h>
 
 #include <Eigen/Eigenvalues>
 #include <algorithm>
-#include <mutex>
 #include <vector>
 
 extern "C" {
@@ -30,48 +28,7 @@ int to_int(Eigen::Index v) {
   return static_cast<int>(v);
 }
 
-using SetThreads = void (*)(int);
-using GetThreads = int (*)();
-
-/// OpenBLAS's thread-count functions, looked up at run time: libblas.so.3 is
-/// whichever BLAS the system's alternatives name, and only OpenBLAS has them.
-struct OpenBlasThreads {
-  SetThreads set = nullptr;
-  GetThreads get = nullptr;
-  OpenBlasThreads() {
-    set = reinterpret_cast<SetThreads>(dlsym(RTLD_DEFAULT, "openblas_set_num_threads"));
-    get = reinterpret_cast<GetThreads>(dlsym(RTLD_DEFAULT, "openblas_get_num_threads"));
-    if (!set || !get) set = nullptr, get = nullptr;
-  }
-};
-
-const OpenBlasThreads& openblas_threads() {
-  static const OpenBlasThreads f;
-  return f;
-}
-
-std::mutex serial_blas_mutex;
-int serial_blas_guards = 0;     // guards alive, over all threads
-int serial_blas_previous = 0;   // OpenBLAS's thread count before the first of them
-
 }  // namespace
-
-SerialBlas::SerialBlas() {
-  const auto& f = openblas_threads();
-  if (!f.set) return;
-  const std::lock_guard<std::mutex> lock(serial_blas_mutex);
-  if (serial_blas_guards++ == 0) {
-    serial_blas_previous = f.get();
-    if (serial_blas_previous > 1) f.set(1);
-  }
-}
-
-SerialBlas::~SerialBlas() {
-  const auto& f = openblas_threads();
-  if (!f.set) return;
-  const std::lock_guard<std::mutex> lock(serial_blas_mutex);
-  if (--serial_blas_guards == 0 && serial_blas_previous > 1) f.set(serial_blas_previous);
-}
 
 void gemm(bool trans_a, bool trans_b, double alpha, const Eigen::Ref<const Eigen::MatrixXd>& A,
           const Eigen::Ref<const Eigen::MatrixXd>& B, double beta, Eigen::Ref<Eigen::MatrixXd> C) {

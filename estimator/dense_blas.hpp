@@ -24,21 +24,6 @@ void gemm(bool trans_a, bool trans_b, double alpha, const Eigen::Ref<const Eigen
 /// Eigen's SelfAdjointEigenSolver when LAPACK reports a failure.
 void largest_eigenpairs(const Eigen::MatrixXd& T, long count, Eigen::VectorXd& values, Eigen::MatrixXd& vectors);
 
-/// While alive, the system BLAS runs each call on the calling thread only (OpenBLAS:
-/// openblas_set_num_threads(1), the former count restored on destruction; no effect
-/// with a BLAS that has no such function). Why: the multilevel solver splits its
-/// tall-skinny products over the cores itself, and OpenBLAS's own threads, spinning
-/// (sched_yield) for work between calls, took 15-18 % of the CPU from the solver's
-/// threads. Process-wide: the count is restored when the last guard alive, in any
-/// thread, goes.
-class SerialBlas {
- public:
-  SerialBlas();
-  ~SerialBlas();
-  SerialBlas(const SerialBlas&) = delete;
-  SerialBlas& operator=(const SerialBlas&) = delete;
-};
-
 /// Aᵀ B as a new matrix.
 Eigen::MatrixXd at_b(const Eigen::Ref<const Eigen::MatrixXd>& A, const Eigen::Ref<const Eigen::MatrixXd>& B);
 

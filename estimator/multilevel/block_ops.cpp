@@ -1,6 +1,5 @@
 #include "estimator/multilevel/block_ops.hpp"
 
-#include "estimator/dense_blas.hpp"
 #include "estimator/multilevel/column_tiles.hpp"
 
 #include <sys/mman.h>

@@ -1,7 +1,6 @@
 #include "estimator/dense_blas.hpp"
 
 #include <catch2/catch.hpp>
-#include <dlfcn.h>
 
 #include <Eigen/Dense>
 #include <stdexcept>
@@ -53,22 +52,4 @@ TEST_CASE("largest_eigenpairs gives the top of a symmetric spectrum with its vec
   Eigen::VectorXd v;
   Eigen::MatrixXd z;
   CHECK_THROWS_AS(detail::largest_eigenpairs(Eigen::MatrixXd::Identity(3, 3), 4, v, z), std::invalid_argument);
-}
-
-TEST_CASE("SerialBlas makes OpenBLAS single-threaded while a guard lives and restores its count", "[dense_blas]") {
-  // Only OpenBLAS has a thread count; with another BLAS the guard does nothing.
-  using Get = int (*)();
-  const auto get = reinterpret_cast<Get>(dlsym(RTLD_DEFAULT, "openblas_get_num_threads"));
-  const Eigen::MatrixXd A = Eigen::MatrixXd::Random(300, 200), B = Eigen::MatrixXd::Random(200, 100);
-  const int before = get ? get() : 0;
-  {
-    const ssid::estimator::detail::SerialBlas outer;
-    if (get) CHECK(get() == 1);
-    {
-      const ssid::estimator::detail::SerialBlas inner;  // nested: the count stays 1
-    }
-    if (get) CHECK(get() == 1);
-    CHECK((ssid::estimator::detail::a_b(A, B) - A * B).norm() <= 1e-12 * (A * B).norm());
-  }
-  if (get) CHECK(get() == before);
 }
