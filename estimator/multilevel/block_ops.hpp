@@ -7,8 +7,8 @@
 /// (A X with b ≈ 50 columns at a million DOF), threaded by parallel_for. Row by row, each stored entry a_ij
 /// of A is read once and updates b contiguous values of Y's row i from X's row j,
 /// which vectorises; column by column A would be read b times. The dense products
-/// of the Rayleigh–Ritz steps go to the system BLAS by viewing an n x b row-major
-/// block as the b x n column-major matrix it is in memory.
+/// of the Rayleigh–Ritz steps (Gram matrices, block updates) are register-tiled
+/// kernels of their own, below.
 #include <Eigen/Core>
 #include <Eigen/SparseCore>
 #include <cstddef>
