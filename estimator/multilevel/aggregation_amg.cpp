@@ -225,7 +225,7 @@ AggregationAmg::AggregationAmg(const SparseMatrix& A, const std::vector<long>& g
   t = Clock::now();
 
   if (options.prolongator_steps > 0) {
-    // D⁻¹ as a sparse block-diagonal matrix, then P ← P − ω D⁻¹ (A P), s times.
+    // D⁻¹ as a sparse block-diagonal matrix, then P ← P − ω (D⁻¹A) P, s times.
     std::vector<Eigen::Triplet<double>> td;
     td.reserve(m_dinv.size());
     for (long a = 0; a < ng; ++a) {

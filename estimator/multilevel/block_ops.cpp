@@ -6,7 +6,6 @@
 
 #include <algorithm>
 #include <cstdint>
-#include <cstring>
 #include <stdexcept>
 #include <thread>
 #include <vector>
@@ -251,7 +250,8 @@ constexpr long gram_chunk(long p, long q8) { return std::clamp<long>(24576 / (8 
 // chunk x_k[i0 ..]ᵀ y_k, y the chunk copied with its rows padded to q8 (a multiple
 // of the 64-byte vector): R x width sums in registers per tile of G, full vectors
 // only. In upper mode the tiles start at the vector holding column i0, so about
-// half of G is computed.
+// half of G is computed. Sized for AVX-512's 32 registers (R = 4 rows x four
+// 64-byte vectors of sums): the AVX2 and SSE2 clones compute the same, but spill.
 template <int R>
 [[gnu::always_inline]] inline void gram_rows(const double* x, long p, const double* y, long q8, long rows, long i0,
                                              bool upper, double* G) {
@@ -268,11 +268,6 @@ template <int R>
   });
 }
 
-// G (p x q8, row-major) += Σ_{k ∈ [begin, end)} x_kᵀ y_k, in chunks of rows small
-// enough to stay in the first-level cache while every tile of G passes over them.
-// Each chunk of Y is first copied with its rows padded by zeros to a whole number
-// of vectors: with q = 45 the tail tiles (8, 4 and 1 values) otherwise cost as
-// much as the 32 before them (a Gram product of width 45 took as long as one of 64).
 // Copies rows [k0, k0 + rows) of a row-major block of width w into `to`, each row
 // padded by zeros to w8 values, in tiles (a memcpy call per row cost a quarter of
 // the Gram product's time).
@@ -305,9 +300,9 @@ template <int R>
     copy_rows_padded(a.x, p, k0, rows, p, xbuf);
     copy_rows_padded(a.y, q, k0, rows, q8, ybuf);
     {  // the next chunk towards the second-level cache while this one is multiplied
-      const long next = std::min(end, k0 + rows + chunk);
-      for (const double *f = a.x + (k0 + rows) * p, *e = a.x + next * p; f < e; f += 8) __builtin_prefetch(f, 0, 2);
-      for (const double *f = a.y + (k0 + rows) * q, *e = a.y + next * q; f < e; f += 8) __builtin_prefetch(f, 0, 2);
+      const long from = k0 + rows, next = std::min(end, from + chunk);
+      for (long o = from * p; o < next * p; o += 8) __builtin_prefetch(a.x + o, 0, 2);
+      for (long o = from * q; o < next * q; o += 8) __builtin_prefetch(a.y + o, 0, 2);
     }
     long i0 = 0;
     for (; i0 + 4 <= p; i0 += 4) gram_rows<4>(xbuf, p, ybuf, q8, rows, i0, a.upper, G);
@@ -436,7 +431,7 @@ template void convert<float, double>(const RowBlockOf<float>&, RowBlockOf<double
 
 namespace {
 
-/// Rows per thread below which a dense product is left to one BLAS call.
+/// Rows per thread below which a dense product runs on the calling thread alone.
 constexpr long kSplitRows = 8192;
 
 }  // namespace

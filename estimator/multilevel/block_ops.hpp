@@ -40,7 +40,7 @@ void resize_block(RowBlockOf<T>& Y, long rows, long cols);
 
 /// Runs body(begin, end) over [0, n) split into one contiguous range per hardware
 /// thread (serially below `serial_below` items). Plain threads that block when done:
-/// an OpenMP runtime's spinning workers competed with the BLAS threads for the
+/// an OpenMP runtime's spinning workers had competed with the other threads for the
 /// cores (the 64k-DOF lattice solved 27 % faster with passive waiting).
 void parallel_for(long n, const std::function<void(long begin, long end)>& body, long serial_below = 4096);
 /// The number of parts parallel_for and parallel_parts split into (the hardware

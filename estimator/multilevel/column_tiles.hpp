@@ -109,12 +109,6 @@ template <class T, class F>
   for (; c < b; ++c) f(Tag<static_cast<int>(sizeof(T)), 1>{}, c);
 }
 
-/// The number of values a tile of Tag TagT covers.
-template <class T, class TagT>
-constexpr long width() {
-  return TagT::bytes / static_cast<long>(sizeof(T)) * TagT::k;
-}
-
 /// The Tile type a Tag names, for values of type T.
 template <class T, class TagT>
 using TileFor = Tile<T, TagT::bytes, TagT::k>;

@@ -44,7 +44,9 @@ void check_single_solves(const SpMat& A, long min_updating_supernodes) {
   // κ(A) by power iterations (A for λ_max, CHOLMOD's double solves for λ_min):
   // estimates from inside, so the forward-error bound below errs on the strict side.
   const double cond = [&] {
-    Eigen::VectorXd u = Eigen::VectorXd::Ones(A.rows()), v = u;
+    // Random starts: the constant vector is a rigid translation of the lattice, an
+    // eigenvector of A itself (the lowest), from which power iterations would not move.
+    Eigen::VectorXd u = Eigen::VectorXd::Random(A.rows()), v = Eigen::VectorXd::Random(A.rows());
     double lmax = 0.0, inv_lmin = 0.0;
     for (int it = 0; it < 60; ++it) {
       u = A * u.normalized();

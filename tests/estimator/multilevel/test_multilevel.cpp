@@ -541,8 +541,8 @@ TEST_CASE("dense block kernels (Gram products, block updates) agree with Eigen a
   const long threaded = 2 * 8192 * multilevel::worker_threads() + 5;
   for (const long n : {300L, threaded}) {
     for (const long p : {1L, 3L, 4L, 5L, 9L, 45L, 130L}) {
+      if (n == threaded && p > 45) continue;  // the widest on one thread only (memory grows with the cores)
       for (const long q : {1L, 2L, 7L, 8L, 13L, 45L, 67L}) {
-        if (n == threaded && p * q > 45 * 45) continue;  // the big cases once, on one thread
         CAPTURE(n, p, q);
         const RowBlock X = random(n, p), Y = random(n, q);
         const Eigen::MatrixXd Gd = dense(X).transpose() * dense(Y);
@@ -568,18 +568,29 @@ TEST_CASE("dense block kernels (Gram products, block updates) agree with Eigen a
       CHECK(S == S.transpose());
     }
   }
-  // Y = β Y + Σ_s B_s C_s over blocks of different widths, one of them empty.
+  // Y = β Y + Σ_s B_s C_s over blocks of different widths, one of them empty, on one
+  // thread and split over the cores, β = 0, 1 and 2.5.
+  for (const long n : {1001L, threaded}) {
+    CAPTURE(n);
+    const RowBlock A = random(n, 5), B(n, 0), C3 = random(n, 45), D = random(n, 17);
+    const Eigen::MatrixXd C = Eigen::MatrixXd::Random(5 + 0 + 45 + 17, 23);
+    Eigen::MatrixXd stacked(n, 67);
+    stacked << dense(A), dense(C3), dense(D);
+    const Eigen::MatrixXd ref = stacked * C;
+    RowBlock Z;
+    multilevel::times_dense_sum({&A, &B, &C3, &D}, C, 0.0, Z);
+    CHECK((dense(Z) - ref).norm() <= 1e-13 * ref.norm());
+    multilevel::times_dense_sum({&A, &B, &C3, &D}, C, 1.0, Z);
+    CHECK((dense(Z) - 2.0 * ref).norm() <= 1e-13 * ref.norm());
+    multilevel::times_dense_sum({&D, &A}, C.bottomRows(22), 2.5, Z);  // Z = 2.5 Z + [D A] C's last 22 rows
+    const Eigen::MatrixXd ref2 = 5.0 * ref + dense(D) * C.bottomRows(22).topRows(17) + dense(A) * C.bottomRows(5);
+    CHECK((dense(Z) - ref2).norm() <= 1e-13 * ref2.norm());
+  }
+  // Refusals, and the empty sum.
   const long n = 1001;
-  const RowBlock A = random(n, 5), B(n, 0), C3 = random(n, 45), D = random(n, 17);
-  const Eigen::MatrixXd C = Eigen::MatrixXd::Random(5 + 0 + 45 + 17, 23);
-  Eigen::MatrixXd stacked(n, 67);
-  stacked << dense(A), dense(C3), dense(D);
-  const Eigen::MatrixXd ref = stacked * C;
+  const RowBlock A = random(n, 5), B(n, 0), C3 = random(n, 45);
+  const Eigen::MatrixXd C = Eigen::MatrixXd::Random(67, 23);
   RowBlock Z;
-  multilevel::times_dense_sum({&A, &B, &C3, &D}, C, 0.0, Z);
-  CHECK((dense(Z) - ref).norm() <= 1e-13 * ref.norm());
-  multilevel::times_dense_sum({&A, &B, &C3, &D}, C, 1.0, Z);
-  CHECK((dense(Z) - 2.0 * ref).norm() <= 1e-13 * ref.norm());
   RowBlock E = Eigen::MatrixXd::Ones(n, 23);
   multilevel::times_dense_sum({&B}, Eigen::MatrixXd(0, 23), 0.0, E);  // an empty sum: zero
   CHECK(E.isZero(0.0));
