@@ -55,30 +55,44 @@ void deflate(const Deflation& d, RowBlock& V) {
   if (d.Z.cols() > 0 && V.cols() > 0) times_dense_into(d.Z, -gram(d.AZ, V), 1.0, V);
 }
 
-/// R = MX − AX diag(μ), with the squared column norms of R and AX, in one
-/// threaded pass (as block expressions they ran on one thread, 9 % of the time).
-void residuals(const RowBlock& MX, const RowBlock& AX, const VectorXd& mu, RowBlock& R, VectorXd& r2,
-               VectorXd& ax2) {
+/// The squared column norms of R = MX − AX diag(μ) and of AX, in one threaded
+/// pass, R not stored (only its active columns are, by active_residuals).
+void residual_norms(const RowBlock& MX, const RowBlock& AX, const VectorXd& mu, VectorXd& r2, VectorXd& ax2) {
   const long n = AX.rows(), b = AX.cols();
-  resize_block(R, n, b);
   const double* mx = MX.data();
   const double* ax = AX.data();
   const double* m = mu.data();
-  double* rr = R.data();
   // Partial sums by part, added in order: the same bits on every run.
   std::vector<VectorXd> r2p(static_cast<size_t>(worker_threads()), VectorXd::Zero(b)), ax2p = r2p;
-  const long parts = parallel_parts(n, [&, mx, ax, m, rr](long t, long begin, long end) {
+  const long parts = parallel_parts(n, [&, mx, ax, m](long t, long begin, long end) {
     VectorXd &r2t = r2p[static_cast<size_t>(t)], &ax2t = ax2p[static_cast<size_t>(t)];
     for (long i = begin; i < end; ++i)
       for (long j = 0; j < b; ++j) {
         const double a = ax[i * b + j], r = mx[i * b + j] - a * m[j];
-        rr[i * b + j] = r;
         r2t(j) += r * r;
         ax2t(j) += a * a;
       }
   });
   r2 = VectorXd::Zero(b), ax2 = VectorXd::Zero(b);
   for (long t = 0; t < parts; ++t) r2 += r2p[static_cast<size_t>(t)], ax2 += ax2p[static_cast<size_t>(t)];
+}
+
+/// Ra = the columns `active` of MX − AX diag(μ) (the residuals to precondition),
+/// written directly: the whole R block had cost an n x b block and a pass.
+void active_residuals(const RowBlock& MX, const RowBlock& AX, const VectorXd& mu,
+                      const std::vector<Eigen::Index>& active, RowBlock& Ra) {
+  const long n = AX.rows(), b = AX.cols(), k = static_cast<long>(active.size());
+  resize_block(Ra, n, k);
+  const double* mx = MX.data();
+  const double* ax = AX.data();
+  double* ra = Ra.data();
+  parallel_for(n, [=, &active, &mu](long begin, long end) {
+    for (long i = begin; i < end; ++i)
+      for (long c = 0; c < k; ++c) {
+        const long j = active[static_cast<size_t>(c)];
+        ra[i * k + c] = mx[i * b + j] - ax[i * b + j] * mu(j);
+      }
+  });
 }
 
 /// ‖r_j‖ / (μ_j ‖A x_j‖) from the squared norms; `undefined` where A x_j = 0 or μ_j ≤ 0.
@@ -142,7 +156,7 @@ LobpcgResult lobpcg_largest(const SparseMatrix& A, const SparseMatrix& M, const 
   LobpcgResult res;
   // Every n-row block lives for the whole iteration and is written in place; the
   // scratch blocks take the products before a swap.
-  RowBlock X, AX, MX, P, AP, MP, W, AW, MW, R, Ra, S1, S2;
+  RowBlock X, AX, MX, P, AP, MP, W, AW, MW, Ra, S1, S2;
   resize_block(X, n, X0.cols());
   X = X0;
   deflate(deflation, X);
@@ -166,7 +180,7 @@ LobpcgResult lobpcg_largest(const SparseMatrix& A, const SparseMatrix& M, const 
   for (res.iterations = 0; res.iterations < o.maxit; ++res.iterations) {
     // Residuals and the active set.
     VectorXd r2, ax2;
-    residuals(MX, AX, res.mu, R, r2, ax2);
+    residual_norms(MX, AX, res.mu, r2, ax2);
     rel = relative_residuals(r2, ax2, res.mu, 0.0);
     std::vector<Eigen::Index> active;
     int wanted_done = 0;
@@ -189,7 +203,7 @@ LobpcgResult lobpcg_largest(const SparseMatrix& A, const SparseMatrix& M, const 
     // matrices are taken with W and P as they are and transformed, and T and D go
     // into the coefficients of the update (forming W T, A W T and P D cost three
     // n x b passes an iteration, 6 % of the time at a million DOFs).
-    select_columns(R, active, Ra);
+    active_residuals(MX, AX, res.mu, active, Ra);
     res.preconditioned += static_cast<long>(active.size());
     precondition(Ra, W);
     deflate(deflation, W);
@@ -266,7 +280,7 @@ LobpcgResult lobpcg_largest(const SparseMatrix& A, const SparseMatrix& M, const 
   if (!res.converged && res.breakdown.empty()) {
     // Out of iterations: the residuals of the X returned, not of the one before.
     VectorXd r2, ax2;
-    residuals(MX, AX, res.mu, R, r2, ax2);
+    residual_norms(MX, AX, res.mu, r2, ax2);
     rel = relative_residuals(r2, ax2, res.mu, std::numeric_limits<double>::infinity());
   }
   res.residuals = rel;
