@@ -26,6 +26,7 @@
 #include <Eigen/Dense>
 #include <chrono>
 #include <cstdio>
+#include <cstdlib>
 #include <cstring>
 #include <stdexcept>
 #include <utility>
@@ -93,6 +94,10 @@ void print_checks(const ssid::estimator::EigenResult& r, int rigid) {
 
 int main(int argc, char** argv) {
   using namespace ssid::estimator;
+  // As ssid does (allocation_policy.hpp), unless --system-malloc: glibc's defaults.
+  bool system_malloc = false;
+  for (int i = 1; i < argc; ++i) system_malloc = system_malloc || !std::strcmp(argv[i], "--system-malloc");
+  if (!system_malloc) restart_with_huge_page_heap(argv);
   if (argc < 2) {
     std::fprintf(stderr,
                  "usage: bench_eigen N [--nd ND] [--block B] [--ncv NCV] [--tol TOL] [--sturm] [--dof-ordering]\n"
@@ -144,8 +149,10 @@ int main(int argc, char** argv) {
     std::fprintf(stderr, "bench_eigen: --export-only needs --export DIR\n");
     return 2;
   }
-  // As ssid does (allocation_policy.hpp); --system-malloc leaves glibc's defaults.
   if (keep_freed) ssid::estimator::keep_freed_memory();
+  const char* tunables = std::getenv("GLIBC_TUNABLES");
+  std::printf("malloc: %s, GLIBC_TUNABLES %s\n", keep_freed ? "freed memory kept (keep_freed_memory)" : "glibc defaults",
+              tunables ? tunables : "unset");
   const Section sec;
   double t = now_s();
   const Model m = lattice(n, sec);

@@ -46,7 +46,8 @@ ml::RowBlockOf<T> random_block(long n, long b) {
 }  // namespace
 
 int main(int argc, char** argv) {
-  ssid::estimator::keep_freed_memory();  // as ssid does (allocation_policy.hpp)
+  ssid::estimator::restart_with_huge_page_heap(argv);  // as ssid does (allocation_policy.hpp)
+  ssid::estimator::keep_freed_memory();
   if (argc < 2) {
     std::fprintf(stderr, "usage: bench_kernels N [--cols B] [--reps R]\n");
     return 2;

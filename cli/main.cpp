@@ -43,6 +43,9 @@ void print_usage(std::ostream& o) {
 }  // namespace
 
 int main(int argc, char** argv) {
+  // Large models: glibc's heap in transparent huge pages (allocation_policy.hpp);
+  // re-executes ssid once with the tunable set, or does nothing.
+  ssid::estimator::restart_with_huge_page_heap(argv);
   if (argc < 2) {
     print_usage(std::cerr);
     return 2;

@@ -1,8 +1,13 @@
 #include "estimator/allocation_policy.hpp"
 
 #include <climits>
+#include <cstdlib>
+#include <cstring>
 #if defined(__GLIBC__)
 #include <malloc.h>
+#endif
+#if defined(__linux__) && defined(__GLIBC__)
+#include <unistd.h>
 #endif
 
 namespace ssid::estimator {
@@ -13,6 +18,20 @@ bool keep_freed_memory() {
 #else
   return false;
 #endif
+}
+
+bool restart_with_huge_page_heap(char** argv) {
+#if defined(__linux__) && defined(__GLIBC__)
+  if (argv == nullptr || argv[0] == nullptr || std::getenv("GLIBC_TUNABLES") != nullptr) return false;
+  const char* opt = std::getenv("SSID_HUGE_PAGE_HEAP");
+  if (opt != nullptr && std::strcmp(opt, "0") == 0) return false;
+  if (setenv("GLIBC_TUNABLES", "glibc.malloc.hugetlb=1", 1) != 0) return false;
+  execv("/proc/self/exe", argv);  // returns only if it failed: carry on as we are
+  unsetenv("GLIBC_TUNABLES");
+#else
+  (void)argv;
+#endif
+  return false;
 }
 
 }  // namespace ssid::estimator

@@ -23,4 +23,22 @@ namespace ssid::estimator {
 /// the C library has no such setting (nothing changed).
 bool keep_freed_memory();
 
+/// Runs the program again, at once, with glibc's malloc asked to advise
+/// transparent huge pages for all its memory (GLIBC_TUNABLES=glibc.malloc.hugetlb=1,
+/// a setting glibc reads only when a process starts, hence the re-execution of
+/// /proc/self/exe with the same arguments). Does nothing and returns false when
+/// GLIBC_TUNABLES is already set (the caller's own tunables win, and the re-executed
+/// program finds it set), when SSID_HUGE_PAGE_HEAP=0, outside Linux with glibc, or
+/// when the re-execution fails; otherwise it does not return. Call it first thing
+/// in main, before any thread or output.
+///
+/// Why: on the virtual machines measured, a page fault costs far more than the
+/// arithmetic around it, and only blocks of 64 MiB and more get huge pages
+/// otherwise (resize_block); the setup's sparse products, the factors and the
+/// smaller blocks were faulted in 4 KiB pages. The 1M-DOF lattice: 111.7 and 115.8 s
+/// without, 105.7 and 109.4 s with (alternated runs; the prolongator smoothing 4.4 →
+/// 2.7 s), the same peak memory (docs/performance.md). glibc before 2.35 ignores
+/// the tunable.
+bool restart_with_huge_page_heap(char** argv);
+
 }  // namespace ssid::estimator

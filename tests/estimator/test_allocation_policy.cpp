@@ -8,6 +8,7 @@
 
 #include <cstdlib>
 #include <cstring>
+#include <string>
 #if defined(__GLIBC__)
 #include <malloc.h>
 #endif
@@ -32,4 +33,25 @@ TEST_CASE("keep_freed_memory serves large blocks from the heap", "[alloc]") {
 #else
   CHECK_FALSE(ssid::estimator::keep_freed_memory());
 #endif
+}
+
+TEST_CASE("restart_with_huge_page_heap leaves the process alone when told to", "[alloc]") {
+  // Were it to re-execute here, the test binary would restart with an option Catch
+  // refuses, and the run would fail.
+  char name[] = "test_estimator", bad[] = "--no-such-option-from-a-re-execution";
+  char* args[] = {name, bad, nullptr};
+  const char* had = std::getenv("GLIBC_TUNABLES");
+  const std::string saved = had ? had : "";
+  // Opted out.
+  unsetenv("GLIBC_TUNABLES");
+  setenv("SSID_HUGE_PAGE_HEAP", "0", 1);
+  CHECK_FALSE(ssid::estimator::restart_with_huge_page_heap(args));
+  CHECK(std::getenv("GLIBC_TUNABLES") == nullptr);
+  unsetenv("SSID_HUGE_PAGE_HEAP");
+  // The caller's own tunables win (and are what the re-executed program sees).
+  setenv("GLIBC_TUNABLES", "glibc.malloc.check=0", 1);
+  CHECK_FALSE(ssid::estimator::restart_with_huge_page_heap(args));
+  CHECK(std::string(std::getenv("GLIBC_TUNABLES")) == "glibc.malloc.check=0");
+  if (had) setenv("GLIBC_TUNABLES", saved.c_str(), 1);
+  else unsetenv("GLIBC_TUNABLES");
 }
