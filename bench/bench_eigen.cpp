@@ -28,6 +28,7 @@
 #include <cstdio>
 #include <cstdlib>
 #include <cstring>
+#include <filesystem>
 #include <stdexcept>
 #include <utility>
 #include <fstream>
@@ -56,6 +57,7 @@ void write_mtx(const std::string& path, const SpMat& A) {
 }
 
 void export_mtx(const std::string& dir, const Model& m, double shift, const Eigen::VectorXd* eigenvalues) {
+  std::filesystem::create_directories(dir);  // throws, with the path, when it cannot
   write_mtx(dir + "/K.mtx", m.K);
   write_mtx(dir + "/M.mtx", m.M);
   std::FILE* f = std::fopen((dir + "/shift.txt").c_str(), "w");
