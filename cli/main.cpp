@@ -39,6 +39,10 @@ void print_usage(std::ostream& o) {
     std::string n = c.name;
     o << "  " << n << std::string(n.size() < 14 ? 14 - n.size() : 1, ' ') << c.summary << "\n";
   }
+  o << "\nenvironment:\n"
+       "  SSID_HUGE_PAGE_HEAP=0  do not restart ssid with glibc's heap in transparent huge pages\n"
+       "                         (it restarts once, with GLIBC_TUNABLES=glibc.malloc.hugetlb=1, unless\n"
+       "                         GLIBC_TUNABLES is already set: faster page faults on large models)\n";
 }
 }  // namespace
 
