@@ -28,6 +28,10 @@ struct MultilevelOptions {
   int maxit = 300;    ///< LOBPCG iterations
   int guard = 0;      ///< extra block columns beyond ND; 0: max(8, ND/4)
   bool deflate = true;  ///< the exact zero-energy modes of B taken out first (zero_energy_modes.hpp)
+  /// Damped-Jacobi steps on the interpolated start block (0: none): the coarse
+  /// modes, interpolated, are rough at the scale of one element (1M lattice: 27 →
+  /// 23 iterations with 10 steps, docs/performance.md).
+  int start_smoothing = 10;
 };
 
 struct MultilevelRun {
