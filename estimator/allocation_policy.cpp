@@ -7,6 +7,8 @@
 #include <malloc.h>
 #endif
 #if defined(__linux__) && defined(__GLIBC__)
+#include <limits.h>
+#include <sys/auxv.h>
 #include <unistd.h>
 #endif
 
@@ -25,8 +27,19 @@ bool restart_with_huge_page_heap(char** argv) {
   if (argv == nullptr || argv[0] == nullptr || std::getenv("GLIBC_TUNABLES") != nullptr) return false;
   const char* opt = std::getenv("SSID_HUGE_PAGE_HEAP");
   if (opt != nullptr && std::strcmp(opt, "0") == 0) return false;
+  // Not when started through the dynamic loader by hand (no interpreter then:
+  // /proc/self/exe is the loader, which would take argv[1] for the program), nor
+  // for a secure-execution program (glibc drops GLIBC_TUNABLES there: the restart
+  // would never see it set, and restart again).
+  if (getauxval(AT_BASE) == 0 || getauxval(AT_SECURE) != 0) return false;
+  // The resolved path, not /proc/self/exe itself: a process is named after the
+  // file it was started from ("exe" otherwise, for ps, top and pgrep).
+  char path[PATH_MAX];
+  const ssize_t len = readlink("/proc/self/exe", path, sizeof(path) - 1);
+  if (len <= 0) return false;
+  path[len] = '\0';
   if (setenv("GLIBC_TUNABLES", "glibc.malloc.hugetlb=1", 1) != 0) return false;
-  execv("/proc/self/exe", argv);  // returns only if it failed: carry on as we are
+  execv(path, argv);  // returns only if it failed: carry on as we are
   unsetenv("GLIBC_TUNABLES");
 #else
   (void)argv;

@@ -28,9 +28,12 @@ bool keep_freed_memory();
 /// a setting glibc reads only when a process starts, hence the re-execution of
 /// /proc/self/exe with the same arguments). Does nothing and returns false when
 /// GLIBC_TUNABLES is already set (the caller's own tunables win, and the re-executed
-/// program finds it set), when SSID_HUGE_PAGE_HEAP=0, outside Linux with glibc, or
-/// when the re-execution fails; otherwise it does not return. Call it first thing
-/// in main, before any thread or output.
+/// program finds it set), when SSID_HUGE_PAGE_HEAP=0, outside Linux with glibc,
+/// when the program was started through the dynamic loader by hand or runs in
+/// secure-execution mode (setuid, capabilities), or when the re-execution fails;
+/// otherwise it does not return. Call it first thing in main, before any thread or
+/// output. Under valgrind or a debugger, set SSID_HUGE_PAGE_HEAP=0: the tool would
+/// otherwise follow (or not) an exec it did not expect.
 ///
 /// Why: on the virtual machines measured, a page fault costs far more than the
 /// arithmetic around it, and only blocks of 64 MiB and more get huge pages

@@ -42,6 +42,8 @@ TEST_CASE("restart_with_huge_page_heap leaves the process alone when told to", "
   char* args[] = {name, bad, nullptr};
   const char* had = std::getenv("GLIBC_TUNABLES");
   const std::string saved = had ? had : "";
+  const char* had_opt = std::getenv("SSID_HUGE_PAGE_HEAP");
+  const std::string saved_opt = had_opt ? had_opt : "";
   // Opted out.
   unsetenv("GLIBC_TUNABLES");
   setenv("SSID_HUGE_PAGE_HEAP", "0", 1);
@@ -54,4 +56,5 @@ TEST_CASE("restart_with_huge_page_heap leaves the process alone when told to", "
   CHECK(std::string(std::getenv("GLIBC_TUNABLES")) == "glibc.malloc.check=0");
   if (had) setenv("GLIBC_TUNABLES", saved.c_str(), 1);
   else unsetenv("GLIBC_TUNABLES");
+  if (had_opt) setenv("SSID_HUGE_PAGE_HEAP", saved_opt.c_str(), 1);
 }
