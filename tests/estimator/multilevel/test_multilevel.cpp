@@ -8,6 +8,7 @@
 #include <cmath>
 #include <random>
 #include <sstream>
+#include <utility>
 
 #include "estimator/eigen_solver.hpp"
 #include "estimator/multilevel/aggregation_amg.hpp"
@@ -419,12 +420,14 @@ TEST_CASE("multilevel eigen-solver agrees with the direct solver on an irregular
   REQUIRE(direct.ok());
   o.method = EigenMethod::Multilevel;
   o.near_null_space = f.rigid;
-  // With the rigid-body modes taken out first (the default) and kept in the iteration.
-  for (const bool deflate : {true, false}) {
+  // With the rigid-body modes taken out first (the default) and kept in the
+  // iteration; with the start smoothed (the default) and as interpolated.
+  for (const auto& [deflate, smoothing] : {std::pair{true, 10}, std::pair{false, 10}, std::pair{true, 0}}) {
     o.multilevel.deflate = deflate;
+    o.multilevel.start_smoothing = smoothing;
     const EigenResult ml = solve_modes(f.op.K, f.op.M, o);
-    INFO((deflate ? "deflated: " : "not deflated: ") << ml.message << "; iterations " << ml.iterations
-                                                   << ", coarse " << ml.coarse_size);
+    INFO((deflate ? "deflated: " : "not deflated: ") << "start smoothing " << smoothing << ": " << ml.message
+                                                   << "; iterations " << ml.iterations << ", coarse " << ml.coarse_size);
     REQUIRE(ml.ok());
     CHECK(ml.method == "Multilevel");
     CHECK(ml.deflated == (deflate ? 6 : 0));
@@ -449,6 +452,7 @@ TEST_CASE("multilevel eigen-solver agrees with the direct solver on an irregular
   }
   // Fewer modes than rigid-body ones: all from the near-null space, no iteration.
   o.multilevel.deflate = true;
+  o.multilevel.start_smoothing = 10;
   o.nd = 4;
   const EigenResult rigid_only = solve_modes(f.op.K, f.op.M, o);
   REQUIRE(rigid_only.ok());
