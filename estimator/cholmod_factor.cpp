@@ -304,8 +304,9 @@ const CholmodFactor::SparseMatrix& CholmodFactor::analysed_lower(const SparseMat
   require_square(A, who);
   // Borrow A's values when it is already lower triangular and compressed;
   // otherwise build tril(A) once here.
-  if (!is_lower_compressed(A)) storage = lower_triangle(A);
-  const SparseMatrix& low = is_lower_compressed(A) ? A : storage;
+  const bool borrow = is_lower_compressed(A);
+  if (!borrow) storage = lower_triangle(A);
+  const SparseMatrix& low = borrow ? A : storage;
   if (!same_pattern(low)) analyze(low);
   return low;
 }

@@ -44,12 +44,21 @@ void SingleSupernodalFactor::solve(const float* b, float* x, long nrhs, Work& w)
   w.t.resize(static_cast<size_t>(max_off * nrhs));
   float* t = w.t.data();
   const int m = static_cast<int>(nrhs);
+  // Supernode s: its first column, columns, rows, rows below its columns, values
+  // (column-major, nsrow x nscol) and its rows of Yᵀ.
+  struct Node {
+    long k1, nscol, p0, nsrow, noff;
+    const float* Ls;
+    float* Xs;
+  };
+  auto node = [&](long s) {
+    const long k1 = super[static_cast<size_t>(s)], nscol = super[static_cast<size_t>(s) + 1] - k1;
+    const long p0 = pi[static_cast<size_t>(s)], nsrow = pi[static_cast<size_t>(s) + 1] - p0;
+    return Node{k1, nscol, p0, nsrow, nsrow - nscol, values.data() + px[static_cast<size_t>(s)], y + k1 * nrhs};
+  };
   // Forward: L z = y, i.e. Zᵀ Lᵀ = Yᵀ, supernode by supernode.
   for (long s = 0; s < nsuper; ++s) {
-    const long k1 = super[static_cast<size_t>(s)], nscol = super[static_cast<size_t>(s) + 1] - k1;
-    const long p0 = pi[static_cast<size_t>(s)], nsrow = pi[static_cast<size_t>(s) + 1] - p0, noff = nsrow - nscol;
-    const float* Ls = values.data() + px[static_cast<size_t>(s)];
-    float* Xs = y + k1 * nrhs;
+    const auto [k1, nscol, p0, nsrow, noff, Ls, Xs] = node(s);
     cblas_strsm(CblasColMajor, CblasRight, CblasLower, CblasTrans, CblasNonUnit, m, static_cast<int>(nscol), 1.0f,
                 Ls, static_cast<int>(nsrow), Xs, m);
     if (noff == 0) continue;
@@ -64,10 +73,7 @@ void SingleSupernodalFactor::solve(const float* b, float* x, long nrhs, Work& w)
   }
   // Backward: Lᵀ x = z, i.e. Xᵀ L = Zᵀ, supernodes in reverse.
   for (long s = nsuper - 1; s >= 0; --s) {
-    const long k1 = super[static_cast<size_t>(s)], nscol = super[static_cast<size_t>(s) + 1] - k1;
-    const long p0 = pi[static_cast<size_t>(s)], nsrow = pi[static_cast<size_t>(s) + 1] - p0, noff = nsrow - nscol;
-    const float* Ls = values.data() + px[static_cast<size_t>(s)];
-    float* Xs = y + k1 * nrhs;
+    const auto [k1, nscol, p0, nsrow, noff, Ls, Xs] = node(s);
     if (noff > 0) {
       const long* r = rows.data() + p0 + nscol;
       for (long q = 0; q < noff; ++q) std::memcpy(t + q * nrhs, y + r[q] * nrhs, sizeof(float) * static_cast<size_t>(nrhs));

@@ -18,12 +18,19 @@ using Eigen::VectorXd;
 
 MatrixXd sym(const MatrixXd& G) { return 0.5 * (G + G.transpose()); }
 
+/// 1/√g_jj for each diagonal entry of a Gram matrix, 0 where it is not positive:
+/// the scaling to unit A-norm columns.
+VectorXd unit_scaling(const MatrixXd& G) {
+  VectorXd d = G.diagonal();
+  for (Eigen::Index i = 0; i < d.size(); ++i) d(i) = d(i) > 0.0 ? 1.0 / std::sqrt(d(i)) : 0.0;
+  return d;
+}
+
 /// T with Tᵀ G T = I for the Gram matrix G = WᵀAW, through the eigen-decomposition
 /// of G scaled to unit diagonal; directions with relative energy below 1e-13 are
 /// dropped (T has as many columns as are kept, possibly none).
 MatrixXd a_orthonormal_transform(const MatrixXd& G) {
-  VectorXd d = G.diagonal();
-  for (Eigen::Index i = 0; i < d.size(); ++i) d(i) = d(i) > 0.0 ? 1.0 / std::sqrt(d(i)) : 0.0;
+  const VectorXd d = unit_scaling(G);
   const MatrixXd Gs = d.asDiagonal() * G * d.asDiagonal();
   Eigen::SelfAdjointEigenSolver<MatrixXd> es(Gs);
   const VectorXd& ev = es.eigenvalues();
@@ -219,8 +226,7 @@ LobpcgResult lobpcg_largest(const SparseMatrix& A, const SparseMatrix& M, const 
     VectorXd dp;
     if (P.cols() > 0) {
       PAP = gram_symmetric(P, AP);
-      dp = PAP.diagonal();
-      for (Eigen::Index j = 0; j < dp.size(); ++j) dp(j) = dp(j) > 0.0 ? 1.0 / std::sqrt(dp(j)) : 0.0;
+      dp = unit_scaling(PAP);
       sym_times(M, P, MP);
     }
     // Rayleigh–Ritz on [X, W T, P D]. (W T)ᵀA(W T) = I (T makes it so) and XᵀMX =
