@@ -1,6 +1,7 @@
 #include "estimator/dense_blas.hpp"
 
 #include <cblas.h>
+#include <dlfcn.h>
 
 #include <Eigen/Eigenvalues>
 #include <algorithm>
@@ -50,6 +51,41 @@ void gemm(bool trans_a, bool trans_b, double alpha, const Eigen::Ref<const Eigen
               to_int(n), to_int(k), alpha, A.data(), to_int(std::max<Eigen::Index>(A.outerStride(), 1)), B.data(),
               to_int(std::max<Eigen::Index>(B.outerStride(), 1)), beta, C.data(),
               to_int(std::max<Eigen::Index>(C.outerStride(), 1)));
+}
+
+namespace {
+
+// OpenBLAS's thread controls, when the BLAS loaded is OpenBLAS (null otherwise).
+struct OpenBlasThreads {
+  using Get = int (*)();
+  using Set = void (*)(int);
+  Get get = nullptr;
+  Set set = nullptr;
+  OpenBlasThreads() {
+    get = reinterpret_cast<Get>(dlsym(RTLD_DEFAULT, "openblas_get_num_threads"));
+    set = reinterpret_cast<Set>(dlsym(RTLD_DEFAULT, "openblas_set_num_threads"));
+    if (!get || !set) get = nullptr, set = nullptr;
+  }
+};
+
+const OpenBlasThreads& openblas_threads() {
+  static const OpenBlasThreads t;
+  return t;
+}
+
+}  // namespace
+
+BlasThreadLimit::BlasThreadLimit() {
+  const OpenBlasThreads& t = openblas_threads();
+  if (!t.get) return;
+  const int threads = t.get();
+  if (threads <= 1) return;
+  t.set(1);
+  m_restore = threads;
+}
+
+BlasThreadLimit::~BlasThreadLimit() {
+  if (m_restore > 0) openblas_threads().set(m_restore);
 }
 
 void largest_eigenpairs(const Eigen::MatrixXd& T, long count, Eigen::VectorXd& values, Eigen::MatrixXd& vectors) {

@@ -24,6 +24,24 @@ void gemm(bool trans_a, bool trans_b, double alpha, const Eigen::Ref<const Eigen
 /// Eigen's SelfAdjointEigenSolver when LAPACK reports a failure.
 void largest_eigenpairs(const Eigen::MatrixXd& T, long count, Eigen::VectorXd& values, Eigen::MatrixXd& vectors);
 
+/// Holds the system BLAS to one thread while it lives, when that BLAS is OpenBLAS
+/// (found at run time: openblas_set_num_threads; any other BLAS is left as it is),
+/// and restores the thread count it found. Why: callers that split their own work
+/// over the cores (several single-threaded BLAS calls at once) would otherwise
+/// have each call hand work to OpenBLAS's threads, and those threads spin, yielding,
+/// for a while after each call, competing for the cores they run on. Not for
+/// nesting across threads: the thread count is the process's.
+class BlasThreadLimit {
+ public:
+  BlasThreadLimit();
+  ~BlasThreadLimit();
+  BlasThreadLimit(const BlasThreadLimit&) = delete;
+  BlasThreadLimit& operator=(const BlasThreadLimit&) = delete;
+
+ private:
+  int m_restore = 0;  // the thread count to restore; 0: nothing was changed
+};
+
 /// Aᵀ B as a new matrix.
 Eigen::MatrixXd at_b(const Eigen::Ref<const Eigen::MatrixXd>& A, const Eigen::Ref<const Eigen::MatrixXd>& B);
 

@@ -27,15 +27,18 @@ double SingleSupernodalFactor::rcond_estimate() const {
   return dmax > 0.0f ? static_cast<double>(dmin / dmax) * static_cast<double>(dmin / dmax) : 0.0;
 }
 
-void SingleSupernodalFactor::solve(const float* b, float* x, long nrhs, Work& w) const {
+void SingleSupernodalFactor::solve_columns(const float* b, float* x, long ld, long c0, long c1, Work& w) const {
   if (empty()) throw std::logic_error("SingleSupernodalFactor::solve on an empty factor");
-  if (nrhs <= 0) return;
+  if (c0 < 0 || c1 > ld || c0 > c1) throw std::invalid_argument("SingleSupernodalFactor::solve_columns: bad column range");
+  const long nrhs = c1 - c0;
+  if (nrhs == 0) return;
+  const size_t bytes = sizeof(float) * static_cast<size_t>(nrhs);
   // The right-hand sides in L's order, row-major: row k (nrhs values) is also
   // column k of the nrhs x n column-major matrix Yᵀ the BLAS calls below work on,
   // so a supernode's rows are one contiguous nrhs x nscol block of Yᵀ.
   w.y.resize(static_cast<size_t>(n * nrhs));
   float* y = w.y.data();
-  for (long k = 0; k < n; ++k) std::memcpy(y + k * nrhs, b + perm[static_cast<size_t>(k)] * nrhs, sizeof(float) * static_cast<size_t>(nrhs));
+  for (long k = 0; k < n; ++k) std::memcpy(y + k * nrhs, b + perm[static_cast<size_t>(k)] * ld + c0, bytes);
   const long nsuper = static_cast<long>(super.size()) - 1;
   long max_off = 0;
   for (long s = 0; s < nsuper; ++s)
@@ -83,7 +86,7 @@ void SingleSupernodalFactor::solve(const float* b, float* x, long nrhs, Work& w)
     cblas_strsm(CblasColMajor, CblasRight, CblasLower, CblasNoTrans, CblasNonUnit, m, static_cast<int>(nscol), 1.0f,
                 Ls, static_cast<int>(nsrow), Xs, m);
   }
-  for (long k = 0; k < n; ++k) std::memcpy(x + perm[static_cast<size_t>(k)] * nrhs, y + k * nrhs, sizeof(float) * static_cast<size_t>(nrhs));
+  for (long k = 0; k < n; ++k) std::memcpy(x + perm[static_cast<size_t>(k)] * ld + c0, y + k * nrhs, bytes);
 }
 
 long factorize_supernodal_single(const std::vector<long>& Cp, const std::vector<long>& Ci,

@@ -40,7 +40,15 @@ struct SingleSupernodalFactor {
   };
   /// X = A⁻¹ B for n x nrhs row-major blocks (the nrhs values of one row side by
   /// side); b and x may be the same. Throws std::logic_error when empty.
-  void solve(const float* b, float* x, long nrhs, Work& work) const;
+  void solve(const float* b, float* x, long nrhs, Work& work) const { solve_columns(b, x, nrhs, 0, nrhs, work); }
+  /// The same for columns [c0, c1) only of n x ld row-major blocks: the other
+  /// columns are neither read nor written, so callers on different threads, each
+  /// with its own Work, may solve disjoint column ranges of one block at once (the
+  /// BLAS held to one thread: see detail::BlasThreadLimit). Why: OpenBLAS's own
+  /// threads, on the small supernodes of a coarse model, cost more in hand-overs
+  /// and in spinning while idle than they gained (multilevel_eigen.hpp). Throws
+  /// std::invalid_argument for a range outside [0, ld].
+  void solve_columns(const float* b, float* x, long ld, long c0, long c1, Work& work) const;
 };
 
 /// Numeric Cholesky factorisation in single precision on a supernodal symbolic

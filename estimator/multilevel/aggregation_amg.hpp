@@ -163,7 +163,10 @@ class AggregationAmg {
   std::vector<long> m_coarse_blocks;
   CholmodFactor m_coarse;
   SingleSupernodalFactor m_coarse_single;  // empty unless the coarse factor is in single precision
-  mutable SingleSupernodalFactor::Work m_coarse_work;
+  mutable std::vector<SingleSupernodalFactor::Work> m_coarse_work;  // one per part of a split solve
+  /// Y = Aᶜ⁻¹ B on the single-precision factor, n x nrhs row-major: the columns split
+  /// over the cores, each part on a single-threaded BLAS.
+  void solve_coarse_single(const float* b, float* y, long nrhs) const;
   Times m_times;
   Level<double> m_double;
   Level<float> m_single;

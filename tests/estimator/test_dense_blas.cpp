@@ -1,6 +1,7 @@
 #include "estimator/dense_blas.hpp"
 
 #include <catch2/catch.hpp>
+#include <dlfcn.h>
 
 #include <Eigen/Dense>
 #include <stdexcept>
@@ -52,4 +53,39 @@ TEST_CASE("largest_eigenpairs gives the top of a symmetric spectrum with its vec
   Eigen::VectorXd v;
   Eigen::MatrixXd z;
   CHECK_THROWS_AS(detail::largest_eigenpairs(Eigen::MatrixXd::Identity(3, 3), 4, v, z), std::invalid_argument);
+}
+
+TEST_CASE("BlasThreadLimit holds OpenBLAS to one thread while it lives and restores the count", "[blas]") {
+  using Get = int (*)();
+  using Set = void (*)(int);
+  const auto get = reinterpret_cast<Get>(dlsym(RTLD_DEFAULT, "openblas_get_num_threads"));
+  const auto set = reinterpret_cast<Set>(dlsym(RTLD_DEFAULT, "openblas_set_num_threads"));
+  const Eigen::MatrixXd A = Eigen::MatrixXd::Random(300, 200), B = Eigen::MatrixXd::Random(200, 150);
+  const Eigen::MatrixXd expected = A * B;
+  auto product_ok = [&] {
+    Eigen::MatrixXd C(300, 150);
+    detail::gemm(false, false, 1.0, A, B, 0.0, C);
+    return (C - expected).norm() <= 1e-12 * expected.norm();
+  };
+  if (!get || !set) {  // another BLAS: the limit is a no-op, products unchanged
+    const detail::BlasThreadLimit limit;
+    CHECK(product_ok());
+    return;
+  }
+  const int before = get();
+  set(2);  // a count the limit must change and restore, on any machine
+  {
+    const detail::BlasThreadLimit limit;
+    CHECK(get() == 1);
+    CHECK(product_ok());
+  }
+  CHECK(get() == 2);
+  set(1);  // already one: left alone
+  {
+    const detail::BlasThreadLimit limit;
+    CHECK(get() == 1);
+  }
+  CHECK(get() == 1);
+  set(before);
+  CHECK(product_ok());
 }
