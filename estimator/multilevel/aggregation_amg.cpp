@@ -331,7 +331,9 @@ void AggregationAmg::chebyshev(const Level<T>& L, const RowBlockOf<T>& R, RowBlo
 template <class T>
 void AggregationAmg::cycle(const Level<T>& L, const RowBlockOf<T>& R, RowBlockOf<T>& X) const {
   chebyshev(L, R, X, true);
-  RowBlockOf<T> &E = L.E, &Ec = L.Ec, &Y = L.Y;
+  // The residual restricted is kept in the smoother's res (the second smoothing
+  // recomputes its own): a block less of fresh memory.
+  RowBlockOf<T> &E = L.res, &Ec = L.Ec, &Y = L.Y;
   sym_residual(*L.A, X, R, E);
   transpose_times(*L.Prow, E, Ec);  // Pᵀ E, coarse x b
   coarse_solve(Ec, Y);

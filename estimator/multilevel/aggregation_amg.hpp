@@ -134,7 +134,7 @@ class AggregationAmg {
     const SparseOf<T>* A = nullptr;
     const SparseRowOf<T>* Prow = nullptr;
     const T* dinv = nullptr;
-    mutable RowBlockOf<T> res, d, E, Ec, Y, R, X;
+    mutable RowBlockOf<T> res, d, Ec, Y, R, X;
   };
 
   /// One fused smoothing pass: z = β D⁻¹ res, d = α d + z (d = z when α = 0), then

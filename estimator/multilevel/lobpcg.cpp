@@ -161,14 +161,16 @@ LobpcgResult lobpcg_largest(const SparseMatrix& A, const SparseMatrix& M, const 
   auto mgram = [mrows](const RowBlock& X, const RowBlock& MY) { return gram(X, MY, mrows); };
   auto mgram_sym = [mrows](const RowBlock& X, const RowBlock& MX) { return gram_symmetric(X, MX, mrows); };
   LobpcgResult res;
-  // Every n-row block lives for the whole iteration and is written in place; the
-  // scratch blocks take the products before a swap.
-  RowBlock X, AX, MX, P, AP, MP, W, AW, MW, Ra, S1, S2;
+  // Every n-row block lives for the whole iteration and is written in place. Ra,
+  // the residuals to precondition, is dead once W is computed: it then takes the
+  // block products before a swap (a scratch block of its own, and another for P,
+  // had cost two n x b blocks of fresh memory: 700 MB at a million DOFs).
+  RowBlock X, AX, MX, P, AP, MP, W, AW, MW, Ra;
   resize_block(X, n, X0.cols());
   X = X0;
   deflate(deflation, X);
   sym_times(A, X, AX);
-  if (a_orthonormalise(X, AX, S1) < o.nev) throw std::invalid_argument("lobpcg: the start block is rank deficient");
+  if (a_orthonormalise(X, AX, Ra) < o.nev) throw std::invalid_argument("lobpcg: the start block is rank deficient");
   sym_times(M, X, MX);
   const Eigen::Index b = X.cols();
   {
@@ -176,9 +178,9 @@ LobpcgResult lobpcg_largest(const SparseMatrix& A, const SparseMatrix& M, const 
     VectorXd mu;
     if (!rayleigh_ritz(gram_symmetric(X, AX), mgram_sym(X, MX), b, mu, C))
       throw std::runtime_error("lobpcg: the first Rayleigh-Ritz step failed");
-    times_dense_into(X, C, 0.0, S1), X.swap(S1);
-    times_dense_into(AX, C, 0.0, S1), AX.swap(S1);
-    times_dense_into(MX, C, 0.0, S1), MX.swap(S1);
+    times_dense_into(X, C, 0.0, Ra), X.swap(Ra);
+    times_dense_into(AX, C, 0.0, Ra), AX.swap(Ra);
+    times_dense_into(MX, C, 0.0, Ra), MX.swap(Ra);
     res.mu = mu;
   }
   // Invariants at the top of each iteration: X is A-orthonormal with XᵀMX = diag(μ)
@@ -267,17 +269,17 @@ LobpcgResult lobpcg_largest(const SparseMatrix& A, const SparseMatrix& M, const 
     }
     // Q = [W P] [T C_w; D C_p], the new conjugate directions P = Q's active
     // columns, X ← X C_x + Q (Q formed once: forming P and X separately cost the
-    // [W P] product twice). Their products with A and M are recomputed rather than
-    // combined (cheaper than the dense update for a sparse A, and exact for the new
-    // blocks).
+    // [W P] product twice). Q goes into Ra's storage; P, read by then, takes its
+    // active columns; X's old storage becomes the next Ra. Their products with A
+    // and M are recomputed rather than combined (cheaper than the dense update for
+    // a sparse A, and exact for the new blocks).
     MatrixXd Cwp(W.cols() + P.cols(), b);
     Cwp.topRows(W.cols()) = T * C.middleRows(b, nw);
     if (P.cols() > 0) Cwp.bottomRows(P.cols()) = dp.asDiagonal() * C.bottomRows(P.cols());
-    times_dense_sum({&W, &P}, Cwp, 0.0, S2);
-    select_columns(S2, active, S1);
-    times_dense_into(X, C.topRows(b), 1.0, S2);
-    X.swap(S2);
-    P.swap(S1);
+    times_dense_sum({&W, &P}, Cwp, 0.0, Ra);
+    select_columns(Ra, active, P);
+    times_dense_into(X, C.topRows(b), 1.0, Ra);
+    X.swap(Ra);
     sym_times(A, X, AX);
     sym_times(A, P, AP);
     sym_times(M, X, MX);
