@@ -225,6 +225,7 @@ MultilevelRun multilevel_lowest(const SparseMatrix& K_in, const SparseMatrix& M_
   lo.tol = o.tol;
   lo.maxit = o.maxit;
   lo.mass_rows = mass_rows;
+  lo.derived_gram_bound = o.derived_gram_bound;
   lo.progress = progress;
   LobpcgResult lr;
   try {

@@ -32,6 +32,8 @@ struct MultilevelOptions {
   /// modes, interpolated, are rough at the scale of one element (1M lattice: 27 →
   /// 23 iterations with 10 steps, docs/performance.md).
   int start_smoothing = 10;
+  /// LobpcgOptions::derived_gram_bound (0: every Gram block computed from the blocks).
+  double derived_gram_bound = 10.0;
 };
 
 struct MultilevelRun {

@@ -6,6 +6,7 @@
 #include <Eigen/Dense>
 #include <catch2/catch.hpp>
 #include <cmath>
+#include <limits>
 #include <random>
 #include <sstream>
 #include <utility>
@@ -379,14 +380,21 @@ TEST_CASE("LOBPCG finds the largest eigenvalues of a pencil, against a dense sol
   std::uniform_real_distribution<double> u(-1.0, 1.0);
   RowBlock X0(120, 9);
   for (Eigen::Index i = 0; i < X0.size(); ++i) X0.data()[i] = u(rng);
-  for (const auto* T : {&exact, &jacobi}) {
+  // The Gram blocks of X and P derived from the last step's small matrices (the
+  // default bound), always derived (no bound), and always computed from the blocks.
+  for (const auto* T : {&exact, &jacobi})
+  for (const double bound : {10.0, std::numeric_limits<double>::infinity(), 0.0}) {
     multilevel::LobpcgOptions o;
     o.nev = 5;
     o.tol = 1e-9;
     o.maxit = 1000;
+    o.derived_gram_bound = bound;
     const multilevel::LobpcgResult r = multilevel::lobpcg_largest(K, M, *T, X0, o);
-    INFO((T == &exact ? "exact" : "inexact") << " preconditioner, iterations " << r.iterations);
+    INFO((T == &exact ? "exact" : "inexact") << " preconditioner, derived Gram bound " << bound << ", iterations "
+                                             << r.iterations << ", derived " << r.derived_grams);
     REQUIRE(r.converged);
+    if (bound == 0.0) CHECK(r.derived_grams == 0);
+    else if (r.iterations > 2) CHECK(r.derived_grams > 0);
     for (int j = 0; j < o.nev; ++j) {
       INFO("relative difference " << (1.0 / r.mu(j) - ges.eigenvalues()(j)) / ges.eigenvalues()(j) << ", residual " << r.residuals(j));
       CHECK(1.0 / r.mu(j) == Approx(ges.eigenvalues()(j)).epsilon(1e-10));
@@ -422,11 +430,20 @@ TEST_CASE("multilevel eigen-solver agrees with the direct solver on an irregular
   o.near_null_space = f.rigid;
   // With the rigid-body modes taken out first (the default) and kept in the
   // iteration; with the start smoothed (the default) and as interpolated.
-  for (const auto& [deflate, smoothing] : {std::pair{true, 10}, std::pair{false, 10}, std::pair{true, 0}}) {
+  // And with every Gram block of LOBPCG computed from the blocks (none derived).
+  struct Variant {
+    bool deflate;
+    int smoothing;
+    double derived_gram_bound;
+  };
+  for (const auto& [deflate, smoothing, bound] :
+       {Variant{true, 10, 10.0}, Variant{false, 10, 10.0}, Variant{true, 0, 10.0}, Variant{true, 10, 0.0}}) {
     o.multilevel.deflate = deflate;
     o.multilevel.start_smoothing = smoothing;
+    o.multilevel.derived_gram_bound = bound;
     const EigenResult ml = solve_modes(f.op.K, f.op.M, o);
-    INFO((deflate ? "deflated: " : "not deflated: ") << "start smoothing " << smoothing << ": " << ml.message
+    INFO((deflate ? "deflated: " : "not deflated: ") << "start smoothing " << smoothing << ", derived Gram bound "
+                                                     << bound << ": " << ml.message
                                                    << "; iterations " << ml.iterations << ", coarse " << ml.coarse_size);
     REQUIRE(ml.ok());
     CHECK(ml.method == "Multilevel");
@@ -451,6 +468,7 @@ TEST_CASE("multilevel eigen-solver agrees with the direct solver on an irregular
     CHECK(ml.backward_errors.maxCoeff() < 1e-8);
   }
   // Fewer modes than rigid-body ones: all from the near-null space, no iteration.
+  o.multilevel.derived_gram_bound = 10.0;
   o.multilevel.deflate = true;
   o.multilevel.start_smoothing = 10;
   o.nd = 4;
