@@ -234,6 +234,7 @@ SSID_KERNEL_CLONES void dense_double(const DenseArgs& a, long begin, long end) {
 /// The arguments of a Gram product G += Xᵀ Y over a range of rows (see gram_kernel).
 struct GramArgs {
   const double* x;  // n x p, row-major
+  const double* wx; // weights of X's rows (X's copy scaled row by row), or null
   const double* y;  // n x q, row-major
   long p, q;
   bool upper;  // only the tiles that reach the upper triangle (j ≥ i); p = q
@@ -271,13 +272,17 @@ template <int R>
 // Copies rows [k0, k0 + rows) of a row-major block of width w into `to`, each row
 // padded by zeros to w8 values, in tiles (a memcpy call per row cost a quarter of
 // the Gram product's time).
-[[gnu::always_inline]] inline void copy_rows_padded(const double* from, long w, long k0, long rows, long w8, double* to) {
+// With `weights`, row k is scaled by weights[k0 + k] on the way.
+[[gnu::always_inline]] inline void copy_rows_padded(const double* from, long w, long k0, long rows, long w8, double* to,
+                                                    const double* weights = nullptr) {
   for (long k = 0; k < rows; ++k) {
     const double* f = from + (k0 + k) * w;
     double* t = to + k * w8;
+    const double s = weights ? weights[k0 + k] : 1.0;
     tiles::for_tiles<double>(w, [&](auto tag, long c) __attribute__((always_inline)) {
       tiles::TileFor<double, decltype(tag)> v;
       v.load(f + c);
+      if (weights) v.scale(s);
       v.store(t + c);
     });
     for (long c = w; c < w8; ++c) t[c] = 0.0;
@@ -297,7 +302,7 @@ template <int R>
   double* ybuf = buf + chunk * p;
   for (long k0 = begin; k0 < end; k0 += chunk) {
     const long rows = std::min(end, k0 + chunk) - k0;
-    copy_rows_padded(a.x, p, k0, rows, p, xbuf);
+    copy_rows_padded(a.x, p, k0, rows, p, xbuf, a.wx);
     copy_rows_padded(a.y, q, k0, rows, q8, ybuf);
     {  // the next chunk towards the second-level cache while this one is multiplied
       const long from = k0 + rows, next = std::min(end, from + chunk);
@@ -548,8 +553,10 @@ SparseMatrix galerkin_lower(const SparseMatrix& B, const SparseMatrix& P, const 
 
 namespace {
 
-Eigen::MatrixXd gram_of(const RowBlock& X, const RowBlock& Y, long rows, bool upper) {
+Eigen::MatrixXd gram_of(const RowBlock& X, const RowBlock& Y, long rows, bool upper, const Eigen::VectorXd* weights) {
   if (X.rows() != Y.rows()) throw std::invalid_argument("gram: blocks of different lengths");
+  if (weights && weights->size() < std::min<long>(rows < 0 ? X.rows() : rows, X.rows()))
+    throw std::invalid_argument("gram: fewer weights than rows");
   if (upper && X.cols() != Y.cols()) throw std::invalid_argument("gram_symmetric: blocks of different widths");
   const long m = rows < 0 ? static_cast<long>(X.rows()) : std::min<long>(rows, X.rows());
   const long p = X.cols(), q = Y.cols();
@@ -557,7 +564,7 @@ Eigen::MatrixXd gram_of(const RowBlock& X, const RowBlock& Y, long rows, bool up
   if (m == 0 || p == 0 || q == 0) return G;
   // Split by rows, a row-major partial G per part, the parts added in order: the
   // same bits on every run.
-  const GramArgs args{X.data(), Y.data(), p, q, upper};
+  const GramArgs args{X.data(), weights ? weights->data() : nullptr, Y.data(), p, q, upper};
   const long q8 = gram_padded(q);
   std::vector<std::vector<double>> partial(static_cast<size_t>(worker_threads()));
   const long parts = parallel_parts(
@@ -583,9 +590,19 @@ Eigen::MatrixXd gram_of(const RowBlock& X, const RowBlock& Y, long rows, bool up
 
 }  // namespace
 
-Eigen::MatrixXd gram(const RowBlock& X, const RowBlock& Y, long rows) { return gram_of(X, Y, rows, false); }
+Eigen::MatrixXd gram(const RowBlock& X, const RowBlock& Y, long rows) { return gram_of(X, Y, rows, false, nullptr); }
 
-Eigen::MatrixXd gram_symmetric(const RowBlock& X, const RowBlock& Y, long rows) { return gram_of(X, Y, rows, true); }
+Eigen::MatrixXd gram_symmetric(const RowBlock& X, const RowBlock& Y, long rows) {
+  return gram_of(X, Y, rows, true, nullptr);
+}
+
+Eigen::MatrixXd gram_weighted(const RowBlock& X, const Eigen::VectorXd& d, const RowBlock& Y, long rows) {
+  return gram_of(X, Y, rows, false, &d);
+}
+
+Eigen::MatrixXd gram_weighted_symmetric(const RowBlock& X, const Eigen::VectorXd& d, long rows) {
+  return gram_of(X, X, rows, true, &d);
+}
 
 void times_dense_sum(const std::vector<const RowBlock*>& blocks, const Eigen::Ref<const Eigen::MatrixXd>& C,
                      double beta, RowBlock& Y) {

@@ -122,6 +122,14 @@ Eigen::MatrixXd gram(const RowBlock& X, const RowBlock& Y, long rows = -1);
 /// Xᵀ Y for a product symmetric in exact arithmetic (Y = S X with S symmetric):
 /// about half the work, the upper triangle computed and mirrored. X and Y of equal width.
 Eigen::MatrixXd gram_symmetric(const RowBlock& X, const RowBlock& Y, long rows = -1);
+/// Xᵀ diag(d) Y over the first `rows` rows (all when negative; d has at least that
+/// many values), and Xᵀ diag(d) X (its upper triangle computed and mirrored): the
+/// Gram matrices with a diagonal (lumped) mass matrix without forming M Y, X's
+/// rows scaled as they are copied into the kernel's buffer. Why: M X, M W and M P
+/// were three n x b blocks (a gigabyte of fresh memory at a million DOFs) and
+/// three passes an iteration.
+Eigen::MatrixXd gram_weighted(const RowBlock& X, const Eigen::VectorXd& d, const RowBlock& Y, long rows = -1);
+Eigen::MatrixXd gram_weighted_symmetric(const RowBlock& X, const Eigen::VectorXd& d, long rows = -1);
 /// Y = β Y + Σ_s B_s C_s, C split by rows along the blocks (a block of no columns
 /// takes no rows), in one pass over the rows: [X W P] C without concatenating.
 /// At most four blocks with columns; Y must not be one of them. Y is resized, and

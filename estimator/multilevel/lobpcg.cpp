@@ -62,20 +62,62 @@ void deflate(const Deflation& d, RowBlock& V) {
   if (d.Z.cols() > 0 && V.cols() > 0) times_dense_into(d.Z, -gram(d.AZ, V), 1.0, V);
 }
 
+/// M as the iteration applies it. A diagonal M (a lumped mass matrix) is kept as
+/// its diagonal and M Y is never formed: the Gram matrices scale rows as they read
+/// them (gram_weighted) and the residuals multiply as they go. Why: M X, M W and
+/// M P were three n x b blocks of fresh memory (a gigabyte at a million DOFs) and
+/// three passes an iteration. Any other M is applied and its products stored.
+struct Mass {
+  const SparseMatrix* M = nullptr;
+  bool diagonal = false;
+  VectorXd d;     // the diagonal, when diagonal
+  long rows = 0;  // M's rows are zero from this one on (LobpcgOptions::mass_rows)
+
+  Mass(const SparseMatrix& m, long mass_rows) : M(&m), rows(mass_rows) {
+    diagonal = true;
+    for (Eigen::Index c = 0; c < m.outerSize() && diagonal; ++c)
+      for (SparseMatrix::InnerIterator it(m, c); it; ++it)
+        if (it.row() != c && it.value() != 0.0) diagonal = false;
+    if (diagonal) d = m.diagonal();
+  }
+  /// MY = M Y, or nothing (MY emptied) when M is diagonal.
+  void times(const RowBlock& Y, RowBlock& MY) const {
+    if (diagonal) MY.resize(Y.rows(), 0);
+    else sym_times(*M, Y, MY);
+  }
+  /// Xᵀ M Y, MY = M Y (unused when M is diagonal).
+  MatrixXd gram(const RowBlock& X, const RowBlock& Y, const RowBlock& MY) const {
+    return diagonal ? gram_weighted(X, d, Y, rows) : multilevel::gram(X, MY, rows);
+  }
+  /// Xᵀ M X, MX = M X (unused when M is diagonal).
+  MatrixXd gram_symmetric(const RowBlock& X, const RowBlock& MX) const {
+    return diagonal ? gram_weighted_symmetric(X, d, rows) : multilevel::gram_symmetric(X, MX, rows);
+  }
+  /// Where the value (i, j) of M X comes from: MX's storage, or d_i x_ij.
+  struct Values {
+    const double* mx;
+    const double* x;
+    const double* d;
+    double operator()(long i, long j, long b) const { return d ? d[i] * x[i * b + j] : mx[i * b + j]; }
+  };
+  Values values(const RowBlock& X, const RowBlock& MX) const {
+    return diagonal ? Values{nullptr, X.data(), d.data()} : Values{MX.data(), nullptr, nullptr};
+  }
+};
+
 /// The squared column norms of R = MX − AX diag(μ) and of AX, in one threaded
 /// pass, R not stored (only its active columns are, by active_residuals).
-void residual_norms(const RowBlock& MX, const RowBlock& AX, const VectorXd& mu, VectorXd& r2, VectorXd& ax2) {
+void residual_norms(const Mass::Values& mx, const RowBlock& AX, const VectorXd& mu, VectorXd& r2, VectorXd& ax2) {
   const long n = AX.rows(), b = AX.cols();
-  const double* mx = MX.data();
   const double* ax = AX.data();
   const double* m = mu.data();
   // Partial sums by part, added in order: the same bits on every run.
   std::vector<VectorXd> r2p(static_cast<size_t>(worker_threads()), VectorXd::Zero(b)), ax2p = r2p;
-  const long parts = parallel_parts(n, [&, mx, ax, m](long t, long begin, long end) {
+  const long parts = parallel_parts(n, [&, ax, m](long t, long begin, long end) {
     VectorXd &r2t = r2p[static_cast<size_t>(t)], &ax2t = ax2p[static_cast<size_t>(t)];
     for (long i = begin; i < end; ++i)
       for (long j = 0; j < b; ++j) {
-        const double a = ax[i * b + j], r = mx[i * b + j] - a * m[j];
+        const double a = ax[i * b + j], r = mx(i, j, b) - a * m[j];
         r2t(j) += r * r;
         ax2t(j) += a * a;
       }
@@ -86,18 +128,17 @@ void residual_norms(const RowBlock& MX, const RowBlock& AX, const VectorXd& mu, 
 
 /// Ra = the columns `active` of MX − AX diag(μ) (the residuals to precondition),
 /// written directly: the whole R block had cost an n x b block and a pass.
-void active_residuals(const RowBlock& MX, const RowBlock& AX, const VectorXd& mu,
+void active_residuals(const Mass::Values& mx, const RowBlock& AX, const VectorXd& mu,
                       const std::vector<Eigen::Index>& active, RowBlock& Ra) {
   const long n = AX.rows(), b = AX.cols(), k = static_cast<long>(active.size());
   resize_block(Ra, n, k);
-  const double* mx = MX.data();
   const double* ax = AX.data();
   double* ra = Ra.data();
   parallel_for(n, [=, &active, &mu](long begin, long end) {
     for (long i = begin; i < end; ++i)
       for (long c = 0; c < k; ++c) {
         const long j = active[static_cast<size_t>(c)];
-        ra[i * k + c] = mx[i * b + j] - ax[i * b + j] * mu(j);
+        ra[i * k + c] = mx(i, j, b) - ax[i * b + j] * mu(j);
       }
   });
 }
@@ -158,8 +199,7 @@ LobpcgResult lobpcg_largest(const SparseMatrix& A, const SparseMatrix& M, const 
     throw std::invalid_argument("lobpcg: the deflated blocks Z and AZ must be n x r");
   const long mrows = o.mass_rows < 0 ? n : std::min<long>(o.mass_rows, n);
   // Gram matrices with M over the rows that carry mass (MY is zero below them).
-  auto mgram = [mrows](const RowBlock& X, const RowBlock& MY) { return gram(X, MY, mrows); };
-  auto mgram_sym = [mrows](const RowBlock& X, const RowBlock& MX) { return gram_symmetric(X, MX, mrows); };
+  const Mass mass(M, mrows);
   LobpcgResult res;
   // Every n-row block lives for the whole iteration and is written in place. Ra,
   // the residuals to precondition, is dead once W is computed: it then takes the
@@ -171,16 +211,16 @@ LobpcgResult lobpcg_largest(const SparseMatrix& A, const SparseMatrix& M, const 
   deflate(deflation, X);
   sym_times(A, X, AX);
   if (a_orthonormalise(X, AX, Ra) < o.nev) throw std::invalid_argument("lobpcg: the start block is rank deficient");
-  sym_times(M, X, MX);
+  mass.times(X, MX);
   const Eigen::Index b = X.cols();
   {
     MatrixXd C;
     VectorXd mu;
-    if (!rayleigh_ritz(gram_symmetric(X, AX), mgram_sym(X, MX), b, mu, C))
+    if (!rayleigh_ritz(gram_symmetric(X, AX), mass.gram_symmetric(X, MX), b, mu, C))
       throw std::runtime_error("lobpcg: the first Rayleigh-Ritz step failed");
     times_dense_into(X, C, 0.0, Ra), X.swap(Ra);
     times_dense_into(AX, C, 0.0, Ra), AX.swap(Ra);
-    times_dense_into(MX, C, 0.0, Ra), MX.swap(Ra);
+    if (!mass.diagonal) times_dense_into(MX, C, 0.0, Ra), MX.swap(Ra);
     res.mu = mu;
   }
   // Invariants at the top of each iteration: X is A-orthonormal with XᵀMX = diag(μ)
@@ -194,7 +234,7 @@ LobpcgResult lobpcg_largest(const SparseMatrix& A, const SparseMatrix& M, const 
   for (res.iterations = 0; res.iterations < o.maxit; ++res.iterations) {
     // Residuals and the active set.
     VectorXd r2, ax2;
-    residual_norms(MX, AX, res.mu, r2, ax2);
+    residual_norms(mass.values(X, MX), AX, res.mu, r2, ax2);
     rel = relative_residuals(r2, ax2, res.mu, 0.0);
     std::vector<Eigen::Index> active;
     int wanted_done = 0;
@@ -217,7 +257,7 @@ LobpcgResult lobpcg_largest(const SparseMatrix& A, const SparseMatrix& M, const 
     // matrices are taken with W and P as they are and transformed, and T and D go
     // into the coefficients of the update (forming W T, A W T and P D cost three
     // n x b passes an iteration, 6 % of the time at a million DOFs).
-    active_residuals(MX, AX, res.mu, active, Ra);
+    active_residuals(mass.values(X, MX), AX, res.mu, active, Ra);
     res.preconditioned += static_cast<long>(active.size());
     precondition(Ra, W);
     deflate(deflation, W);
@@ -228,7 +268,7 @@ LobpcgResult lobpcg_largest(const SparseMatrix& A, const SparseMatrix& M, const 
       res.breakdown = "no new search direction (stagnation)";
       break;
     }
-    sym_times(M, W, MW);
+    mass.times(W, MW);
     // The Gram blocks of X and P among themselves: X = S Cx and P = S Cp in the
     // last step's basis S, so XᵀAP = Cxᵀ GA Cp, PᵀAP = Cpᵀ GA Cp (and with GM for
     // M), and XᵀAX = Cxᵀ GA Cx = I: small products instead of passes over n x b
@@ -250,8 +290,8 @@ LobpcgResult lobpcg_largest(const SparseMatrix& A, const SparseMatrix& M, const 
         PAP = gram_symmetric(P, AP);
       }
       dp = unit_scaling(PAP);
-      sym_times(M, P, MP);
-      if (!derived) XAP = gram(AX, P), XMP = mgram(X, MP), PMP = mgram_sym(P, MP);
+      mass.times(P, MP);
+      if (!derived) XAP = gram(AX, P), XMP = mass.gram(X, P, MP), PMP = mass.gram_symmetric(P, MP);
     }
     // Rayleigh–Ritz on [X, W T, P D]. (W T)ᵀA(W T) = I (T makes it so) and XᵀMX =
     // diag(μ) (the last Rayleigh–Ritz step) are set; XᵀA(W T), which holds only as
@@ -268,15 +308,15 @@ LobpcgResult lobpcg_largest(const SparseMatrix& A, const SparseMatrix& M, const 
     const MatrixXd Tt = T.transpose();
     if (!derived) put(GA, 0, 0, gram_symmetric(X, AX));
     put(GA, 0, b, gram(AX, W) * T);
-    put(GM, 0, b, mgram(X, MW) * T);
-    put(GM, b, b, sym(Tt * mgram_sym(W, MW) * T));
+    put(GM, 0, b, mass.gram(X, W, MW) * T);
+    put(GM, b, b, sym(Tt * mass.gram_symmetric(W, MW) * T));
     if (np > 0) {
       const auto D = dp.asDiagonal();
       put(GA, 0, b + nw, XAP * D);
       put(GA, b, b + nw, Tt * gram(W, AP) * D);
       put(GA, b + nw, b + nw, D * PAP * D);
       put(GM, 0, b + nw, XMP * D);
-      put(GM, b, b + nw, Tt * mgram(W, MP) * D);
+      put(GM, b, b + nw, Tt * mass.gram(W, P, MP) * D);
       put(GM, b + nw, b + nw, D * PMP * D);
     }
     MatrixXd C;
@@ -315,13 +355,13 @@ LobpcgResult lobpcg_largest(const SparseMatrix& A, const SparseMatrix& M, const 
     X.swap(Ra);
     sym_times(A, X, AX);
     sym_times(A, P, AP);
-    sym_times(M, X, MX);
+    mass.times(X, MX);
     res.mu = mu;
   }
   if (!res.converged && res.breakdown.empty()) {
     // Out of iterations: the residuals of the X returned, not of the one before.
     VectorXd r2, ax2;
-    residual_norms(MX, AX, res.mu, r2, ax2);
+    residual_norms(mass.values(X, MX), AX, res.mu, r2, ax2);
     rel = relative_residuals(r2, ax2, res.mu, std::numeric_limits<double>::infinity());
   }
   res.residuals = rel;

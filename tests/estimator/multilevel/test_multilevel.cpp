@@ -403,6 +403,37 @@ TEST_CASE("LOBPCG finds the largest eigenvalues of a pencil, against a dense sol
     const Eigen::MatrixXd X = dense(r.X);
     CHECK((X.transpose() * Kd * X - Eigen::MatrixXd::Identity(9, 9)).norm() <= 1e-10);
   }
+  // A lumped (diagonal) M, some DOFs massless: LOBPCG keeps M as its diagonal and
+  // never forms M X (the path the models take), against the dense solve of the same
+  // pencil; the coupled M above takes the stored products.
+  {
+    Eigen::VectorXd md = Eigen::VectorXd::Ones(120) + 0.5 * Eigen::VectorXd::Random(120);
+    for (int i = 0; i < 120; i += 3) md(i) = 0.0;  // a third massless
+    test::SpMat Ml(120, 120);
+    Ml = md.asDiagonal();
+    Ml.makeCompressed();
+    // Largest μ = 1/λ of M x = μ K x with a singular M: the dense solve of M x = μ K x.
+    Eigen::GeneralizedSelfAdjointEigenSolver<Eigen::MatrixXd> gm(Eigen::MatrixXd(Ml), Kd);
+    const Eigen::VectorXd top = gm.eigenvalues().reverse().head(5);
+    for (const auto* T : {&exact, &jacobi}) {
+      multilevel::LobpcgOptions o;
+      o.nev = 5;
+      o.tol = 1e-9;
+      o.maxit = 1000;
+      const multilevel::LobpcgResult r = multilevel::lobpcg_largest(K, Ml, *T, X0, o);
+      INFO((T == &exact ? "exact" : "inexact") << " preconditioner, lumped M, iterations " << r.iterations);
+      REQUIRE(r.converged);
+      for (int j = 0; j < o.nev; ++j) CHECK(r.mu(j) == Approx(top(j)).epsilon(1e-10));
+      const Eigen::MatrixXd X = dense(r.X);
+      CHECK((X.transpose() * Kd * X - Eigen::MatrixXd::Identity(9, 9)).norm() <= 1e-10);
+      // The residuals reported are those of the vectors returned.
+      for (int j = 0; j < o.nev; ++j) {
+        const Eigen::VectorXd x = X.col(j);
+        const double rel = (Eigen::MatrixXd(Ml) * x - r.mu(j) * (Kd * x)).norm() / (r.mu(j) * (Kd * x).norm());
+        CHECK(r.residuals(j) == Approx(rel).epsilon(1e-6).margin(1e-14));
+      }
+    }
+  }
   // With the two lowest modes deflated (given, K-normalised), the next five are found
   // and the vectors stay K-orthogonal to the deflated ones.
   multilevel::Deflation d;
@@ -572,6 +603,13 @@ TEST_CASE("dense block kernels (Gram products, block updates) agree with Eigen a
         const long half = n / 2 + 3;
         const Eigen::MatrixXd Gh = dense(X).topRows(half).transpose() * dense(Y).topRows(half);
         CHECK((multilevel::gram(X, Y, half) - Gh).norm() <= 1e-13 * Gh.norm());
+        // Weighted (a lumped M): Xᵀ diag(w) Y, all rows and the first `half`.
+        const Eigen::VectorXd w = Eigen::VectorXd::Random(n);
+        const Eigen::MatrixXd Gw = dense(X).transpose() * w.asDiagonal() * dense(Y);
+        CHECK((multilevel::gram_weighted(X, w, Y) - Gw).norm() <= 1e-13 * Gw.norm());
+        const Eigen::MatrixXd Gwh =
+            dense(X).topRows(half).transpose() * w.head(half).asDiagonal() * dense(Y).topRows(half);
+        CHECK((multilevel::gram_weighted(X, w, Y, half) - Gwh).norm() <= 1e-13 * Gwh.norm());
         const Eigen::MatrixXd C = Eigen::MatrixXd::Random(p, q);
         RowBlock Z;
         multilevel::times_dense_into(X, C, 0.0, Z);
@@ -588,6 +626,12 @@ TEST_CASE("dense block kernels (Gram products, block updates) agree with Eigen a
       const Eigen::MatrixXd S = multilevel::gram_symmetric(X, DX), Sd = dense(X).transpose() * dense(DX);
       CHECK((S - Sd).norm() <= 1e-13 * Sd.norm());
       CHECK(S == S.transpose());
+      const Eigen::MatrixXd Sw = multilevel::gram_weighted_symmetric(X, d);
+      CHECK((Sw - Sd).norm() <= 1e-13 * Sd.norm());
+      CHECK(Sw == Sw.transpose());
+      const long third = n / 3 + 1;
+      const Eigen::MatrixXd St = dense(X).topRows(third).transpose() * dense(DX).topRows(third);
+      CHECK((multilevel::gram_weighted_symmetric(X, d, third) - St).norm() <= 1e-13 * St.norm());
     }
   }
   // Y = β Y + Σ_s B_s C_s over blocks of different widths, one of them empty, on one
@@ -623,4 +667,6 @@ TEST_CASE("dense block kernels (Gram products, block updates) agree with Eigen a
   CHECK_THROWS_WITH(multilevel::times_dense_sum({&A, &A, &A, &A, &A}, Eigen::MatrixXd::Random(25, 3), 0.0, Z),
                     Catch::Contains("more than four"));
   CHECK_THROWS_WITH(multilevel::gram_symmetric(A, C3), Catch::Contains("different widths"));
+  CHECK_THROWS_WITH(multilevel::gram_weighted(A, Eigen::VectorXd::Ones(n - 1), A), Catch::Contains("fewer weights"));
+  CHECK_NOTHROW(multilevel::gram_weighted(A, Eigen::VectorXd::Ones(n - 1), A, n - 1));
 }
