@@ -13,14 +13,21 @@
 /// to 158 s (docs/performance.md). The price: the process gives little memory back
 /// to the system before it exits (only a free top of the heap above 2 GiB, the
 /// largest trim threshold glibc takes; peak RSS 11.6 -> 12.2 GiB there), which
-/// suits a one-job command. Allocations in threads other than the main one may
-/// still be mapped on their own (glibc's secondary arenas); the solver allocates its
-/// blocks in the calling thread.
+/// suits a one-job command.
+///
+/// One arena for every thread (M_ARENA_MAX = 1): memory freed by one thread is then
+/// reused by the next allocation of any other. Why: with glibc's secondary arenas,
+/// the threaded setup's products (the prolongator) lived in arenas the solver's
+/// own thread never allocates from, so memory handed back before LOBPCG was not
+/// reused and its blocks touched fresh pages; the 94k lattice, alternated: peak RSS
+/// 726 -> 705 MiB and 6.2-6.4 -> 5.4 s (docs/performance.md). The threads allocate
+/// little inside their loops, so the one lock is not contended.
 namespace ssid::estimator {
 
-/// Serve large allocations from the heap and keep freed memory there (glibc:
-/// mallopt M_MMAP_MAX = 0 and the largest M_TRIM_THRESHOLD). Returns false where
-/// the C library has no such setting (nothing changed).
+/// Serve large allocations from the heap, keep freed memory there and share one
+/// heap among threads (glibc: mallopt M_MMAP_MAX = 0, the largest
+/// M_TRIM_THRESHOLD, M_ARENA_MAX = 1). Returns false where the C library has no
+/// such setting (nothing changed).
 bool keep_freed_memory();
 
 /// Runs the program again, at once, with glibc's malloc asked to advise

@@ -387,7 +387,25 @@ void AggregationAmg::coarse_solve(const RowBlockOf<double>& Ec, RowBlockOf<doubl
   Y = solve_coarse(Eigen::MatrixXd(Ec));
 }
 
-void AggregationAmg::prolong(const RowBlock& Y, RowBlock& X) const { multilevel::times(m_Prow, Y, X); }
+void AggregationAmg::prolong(const RowBlock& Y, RowBlock& X) const { multilevel::times(prolongator_rows(), Y, X); }
+
+const SparseMatrix& AggregationAmg::prolongator() const {
+  if (m_released) throw std::logic_error("AggregationAmg: the double-precision prolongator was released");
+  return m_P;
+}
+
+const SparseRowMatrix& AggregationAmg::prolongator_rows() const {
+  if (m_released) throw std::logic_error("AggregationAmg: the double-precision prolongator was released");
+  return m_Prow;
+}
+
+void AggregationAmg::release_double_prolongator() {
+  if (!m_options.single_precision || m_released) return;  // the double cycle runs on m_Prow
+  SparseMatrix().swap(m_P);  // assigning an empty matrix would keep the storage
+  SparseRowMatrix().swap(m_Prow);
+  m_double.Prow = nullptr;
+  m_released = true;
+}
 
 void AggregationAmg::apply(const RowBlock& R, RowBlock& X) const {
   if (!m_options.single_precision) {

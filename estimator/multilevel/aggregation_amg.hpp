@@ -97,8 +97,18 @@ class AggregationAmg {
   /// blocks are kept between calls (a fresh n x b block costs its page faults).
   void apply(const RowBlock& R, RowBlock& X) const;
 
-  const SparseMatrix& prolongator() const { return m_P; }  ///< n x coarse, column-major
-  const SparseRowMatrix& prolongator_rows() const { return m_Prow; }  ///< the same, row-major
+  /// n x coarse, column-major. Throws std::logic_error once released.
+  const SparseMatrix& prolongator() const;
+  /// The same, row-major. Throws std::logic_error once released.
+  const SparseRowMatrix& prolongator_rows() const;
+  /// Frees the double-precision prolongator (prolongator(), prolongator_rows(),
+  /// prolong() then throw) when the cycle runs in single precision on its own
+  /// copy; nothing otherwise. Why: a caller done with the coarse model gives back
+  /// two copies of P before allocating its iteration's blocks, which then reuse
+  /// that memory instead of touching fresh pages (94k lattice: 86 MB, 1M: about a
+  /// gigabyte; a first touch costs 0.4-2 s a gigabyte on a virtual machine).
+  void release_double_prolongator();
+  bool double_prolongator_released() const { return m_released; }
   /// Column blocks of P, one per aggregate: [coarse_blocks()[k], coarse_blocks()[k+1]).
   const std::vector<long>& coarse_blocks() const { return m_coarse_blocks; }
   /// X = P Y: coarse blocks interpolated to the model.
@@ -157,6 +167,7 @@ class AggregationAmg {
   std::vector<long> m_start, m_dofs, m_dinv_start;
   std::vector<double> m_dinv;
   double m_rho = 0.0;
+  bool m_released = false;
   long m_aggregates = 0;
   SparseMatrix m_P;
   SparseRowMatrix m_Prow;

@@ -70,7 +70,8 @@ MultilevelRun multilevel_lowest(const SparseMatrix& K_in, const SparseMatrix& M_
     for (long i = 0; i < n; ++i)
       if (!massive[static_cast<size_t>(i)]) perm.indices()(i) = static_cast<int>(next++);
   }
-  const SparseMatrix K = perm * K_in * perm.transpose(), M = perm * M_in * perm.transpose();
+  SparseMatrix K = perm * K_in * perm.transpose();  // released before LOBPCG, which needs only A and M
+  const SparseMatrix M = perm * M_in * perm.transpose();
   std::vector<long> groups(static_cast<size_t>(n));
   Eigen::MatrixXd B(n, B_in.cols());
   for (long i = 0; i < n; ++i) {
@@ -214,6 +215,11 @@ MultilevelRun multilevel_lowest(const SparseMatrix& K_in, const SparseMatrix& M_
   RowBlock X0;
   amg.prolong(coarse.vectors.rightCols(coarse.vectors.cols() - r), X0);
   smooth_start(A, o.start_smoothing, X0);
+  // Done with the coarse model and with K: their memory goes back to the heap
+  // before LOBPCG allocates its blocks, which reuse it rather than touch fresh
+  // pages (AggregationAmg::release_double_prolongator).
+  amg_ptr->release_double_prolongator();
+  SparseMatrix().swap(K);  // assigning an empty matrix would keep the storage
   run.coarse_modes_seconds = seconds_since(t);
 
   report(progress, "multilevel: coarse modes in " + std::to_string(run.coarse_modes_seconds) + " s (" +

@@ -329,6 +329,26 @@ TEST_CASE("aggregation preconditioner: symmetric, positive definite, and conjuga
   RowBlock Tf;
   amg_fallback.apply(XY, Tf);
   CHECK((dense(Tf) - dense(Td)).norm() <= 1e-5 * dense(Td).norm());
+  // The double-precision prolongator released (as the eigen-solver does before
+  // LOBPCG): the single-precision cycle gives the same bits; P is no longer
+  // there to ask for. A cycle in double keeps it.
+  {
+    multilevel::AggregationAmg released(A, f.groups, f.rigid);
+    CHECK(released.prolongator().nonZeros() == amg.prolongator().nonZeros());
+    released.release_double_prolongator();
+    CHECK(released.double_prolongator_released());
+    RowBlock Tr;
+    released.apply(XY, Tr);
+    CHECK((dense(Tr) - dense(Ts)).norm() == 0.0);
+    CHECK_THROWS_AS(released.prolongator(), std::logic_error);
+    CHECK_THROWS_AS(released.prolongator_rows(), std::logic_error);
+    RowBlock Xc;
+    CHECK_THROWS_AS(released.prolong(RowBlock::Ones(amg.coarse_size(), 2), Xc), std::logic_error);
+    multilevel::AggregationAmg kept(A, f.groups, f.rigid, in_double);
+    kept.release_double_prolongator();
+    CHECK_FALSE(kept.double_prolongator_released());
+    CHECK(kept.prolongator().nonZeros() == amg_double.prolongator().nonZeros());
+  }
 
   // Preconditioned conjugate gradients on A x = b, against plain CG.
   auto cg = [&](bool precondition) {
