@@ -269,34 +269,41 @@ LobpcgResult lobpcg_largest(const SparseMatrix& A, const SparseMatrix& M, const 
       break;
     }
     mass.times(W, MW);
-    // The Gram blocks of X and P among themselves: X = S Cx and P = S Cp in the
-    // last step's basis S, so XᵀAP = Cxᵀ GA Cp, PᵀAP = Cpᵀ GA Cp (and with GM for
-    // M), and XᵀAX = Cxᵀ GA Cx = I: small products instead of passes over n x b
-    // blocks (2.75 of the iteration's 7.5 Gram products' worth; 94k lattice: 1.2 ->
-    // 0.75 s). Their rounding is that of the small products, a few ε ‖Cx‖ ‖Cp‖,
-    // and derive is set only while the coefficients stay below
-    // derived_gram_bound; otherwise (and on the first step) they are computed from
-    // the blocks, which also resets any drift of X's A-orthonormality.
-    const bool derived = derive && P.cols() > 0;
-    res.derived_grams += derived;
+    // The Gram blocks of X and P: X = S Cx and P = S Cp in the last step's basis S
+    // (of unit A-norm columns), so XᵀAP = Cxᵀ GA Cp, XᵀMP = Cxᵀ GM Cp and PᵀMP =
+    // Cpᵀ GM Cp: small products instead of passes over n x b blocks (1.75 of the
+    // iteration's 7.5 Gram products' worth). Their rounding is a few ε times
+    // ‖Cx‖ ‖Cp_j‖ / ‖P_j‖_A: derived only while the last step's coefficients and
+    // that amplification (‖Cp_j‖ over P_j's A-norm, large when P_j is a small
+    // difference of large terms) stay below derived_gram_bound, computed from the
+    // blocks otherwise. XᵀAX and PᵀAP are always computed: derived, XᵀAX = I let X's
+    // loss of A-orthonormality accumulate (94k lattice: 1e-14 → 9e-13 over 24
+    // iterations, at the eigenvalues' accuracy), and PᵀAP gives that A-norm.
     MatrixXd PAP, XAP, XMP, PMP;
     VectorXd dp;
+    bool derived = false;
     if (P.cols() > 0) {
-      if (derived) {
-        const MatrixXd GACp = last_GA * last_Cp, GMCp = last_GM * last_Cp;
-        PAP = sym(last_Cp.transpose() * GACp), XAP = last_Cx.transpose() * GACp;
-        PMP = sym(last_Cp.transpose() * GMCp), XMP = last_Cx.transpose() * GMCp;
-      } else {
-        PAP = gram_symmetric(P, AP);
-      }
+      PAP = gram_symmetric(P, AP);
       dp = unit_scaling(PAP);
       mass.times(P, MP);
-      if (!derived) XAP = gram(AX, P), XMP = mass.gram(X, P, MP), PMP = mass.gram_symmetric(P, MP);
+      double amplification = 0.0;
+      if (derive && last_Cp.cols() == P.cols())
+        for (Eigen::Index j = 0; j < P.cols(); ++j)
+          amplification = std::max(amplification, last_Cp.col(j).norm() * dp(j));
+      derived = derive && last_Cp.cols() == P.cols() && amplification <= o.derived_gram_bound;
+      if (derived) {
+        const MatrixXd GMCp = last_GM * last_Cp;
+        XAP = last_Cx.transpose() * (last_GA * last_Cp), XMP = last_Cx.transpose() * GMCp;
+        PMP = sym(last_Cp.transpose() * GMCp);
+      } else {
+        XAP = gram(AX, P), XMP = mass.gram(X, P, MP), PMP = mass.gram_symmetric(P, MP);
+      }
     }
+    res.derived_grams += derived;
     // Rayleigh–Ritz on [X, W T, P D]. (W T)ᵀA(W T) = I (T makes it so) and XᵀMX =
-    // diag(μ) (the last Rayleigh–Ritz step) are set; XᵀA(W T), which holds only as
-    // well as one Gram–Schmidt pass, is computed, and XᵀAX too unless derived, so
-    // that their errors do not accumulate. Without P when the Gram matrix is not
+    // diag(μ) (the last Rayleigh–Ritz step) are set; XᵀAX and XᵀA(W T), which hold
+    // only as well as the last step and one Gram–Schmidt pass, are computed so that
+    // their errors do not accumulate. Without P when the Gram matrix is not
     // definite (P nearly inside span[X W]).
     const Eigen::Index nw = T.cols(), np = P.cols(), m = b + nw + np;
     MatrixXd GA = MatrixXd::Identity(m, m), GM = MatrixXd::Zero(m, m);
@@ -306,7 +313,7 @@ LobpcgResult lobpcg_largest(const SparseMatrix& A, const SparseMatrix& M, const 
       G.block(c, r, g.cols(), g.rows()) = g.transpose();
     };
     const MatrixXd Tt = T.transpose();
-    if (!derived) put(GA, 0, 0, gram_symmetric(X, AX));
+    put(GA, 0, 0, gram_symmetric(X, AX));
     put(GA, 0, b, gram(AX, W) * T);
     put(GM, 0, b, mass.gram(X, W, MW) * T);
     put(GM, b, b, sym(Tt * mass.gram_symmetric(W, MW) * T));

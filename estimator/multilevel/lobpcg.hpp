@@ -30,12 +30,12 @@ struct LobpcgOptions {
   /// taken over the rows before (a model ordered with its massless DOFs last, as
   /// the multilevel solver orders it, halves their cost). Negative: all rows.
   long mass_rows = -1;
-  /// The Gram blocks of X and P among themselves (XᵀAX, XᵀAP, PᵀAP and with M)
-  /// are derived from the last Rayleigh–Ritz step's small matrices rather than
-  /// computed from the n x b blocks while the largest column norm of its
-  /// coefficients (in a basis of unit A-norm) is at most this: their rounding then
-  /// stays a few ε times it. Why: they were over a third of the Gram products (94k
-  /// lattice: 1.2 -> 0.75 s, docs/performance.md). 0: always computed.
+  /// The Gram blocks XᵀAP, XᵀMP and PᵀMP are derived from the last Rayleigh–Ritz
+  /// step's small matrices rather than computed from the n x b blocks while the
+  /// largest column norm of its coefficients, and the largest ratio of a column's
+  /// coefficients to the A-norm of the P column they make (cancellation), are at
+  /// most this: their rounding then stays a few ε times it. Why: 1.75 of the 7.5
+  /// Gram products' worth an iteration (docs/performance.md). 0: always computed.
   double derived_gram_bound = 10.0;
   Progress progress;
 };
