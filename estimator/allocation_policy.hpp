@@ -27,7 +27,7 @@ namespace ssid::estimator {
 /// Serve large allocations from the heap, keep freed memory there and share one
 /// heap among threads (glibc: mallopt M_MMAP_MAX = 0, the largest
 /// M_TRIM_THRESHOLD, M_ARENA_MAX = 1). Returns false where the C library has no
-/// such setting (nothing changed).
+/// such setting (nothing changed) or one of them failed (those before it stay).
 bool keep_freed_memory();
 
 /// Runs the program again, at once, with glibc's malloc asked to advise

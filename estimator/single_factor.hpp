@@ -46,8 +46,9 @@ struct SingleSupernodalFactor {
   /// with its own Work, may solve disjoint column ranges of one block at once (the
   /// BLAS held to one thread: see detail::BlasThreadLimit). Why: OpenBLAS's own
   /// threads, on the small supernodes of a coarse model, cost more in hand-overs
-  /// and in spinning while idle than they gained (multilevel_eigen.hpp). Throws
-  /// std::invalid_argument for a range outside [0, ld].
+  /// and in spinning while idle than they gained
+  /// (AggregationAmg::solve_coarse_single). Throws std::invalid_argument for a
+  /// range outside [0, ld].
   void solve_columns(const float* b, float* x, long ld, long c0, long c1, Work& work) const;
 };
 

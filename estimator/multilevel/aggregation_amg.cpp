@@ -355,13 +355,17 @@ void AggregationAmg::solve_coarse_single(const float* b, float* y, long nrhs) co
     m_coarse_single.solve_columns(b, y, nrhs, 0, nrhs, m_coarse_work[0]);
     return;
   }
+  // `parts` pieces of at least kMinColumnsPerPart columns (parallel_parts would cut
+  // nrhs into one piece per hardware thread, however thin), one per thread.
   const detail::BlasThreadLimit one_thread;
   parallel_parts(
-      nrhs,
-      [&](long part, long begin, long end) {
-        m_coarse_single.solve_columns(b, y, nrhs, begin, end, m_coarse_work[static_cast<size_t>(part)]);
+      parts,
+      [&](long, long first, long last) {
+        for (long t = first; t < last; ++t)
+          m_coarse_single.solve_columns(b, y, nrhs, t * nrhs / parts, (t + 1) * nrhs / parts,
+                                        m_coarse_work[static_cast<size_t>(t)]);
       },
-      parts * kMinColumnsPerPart);
+      2);
 }
 
 Eigen::MatrixXd AggregationAmg::solve_coarse(const Eigen::MatrixXd& X) const {

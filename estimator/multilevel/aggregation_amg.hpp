@@ -113,7 +113,7 @@ class AggregationAmg {
   const std::vector<long>& coarse_blocks() const { return m_coarse_blocks; }
   /// X = P Y: coarse blocks interpolated to the model.
   void prolong(const RowBlock& Y, RowBlock& X) const;
-  long coarse_size() const { return m_P.cols(); }
+  long coarse_size() const { return m_coarse_blocks.empty() ? 0 : m_coarse_blocks.back(); }  ///< also once P is released
   long aggregates() const { return m_aggregates; }
   double spectral_radius() const { return m_rho; }  ///< estimate of ρ(D⁻¹A) used by the smoothers
   /// The factor of Aᶜ = Pᵀ A P (also the shift-invert operator of the coarse model

@@ -204,7 +204,9 @@ LobpcgResult lobpcg_largest(const SparseMatrix& A, const SparseMatrix& M, const 
   // Every n-row block lives for the whole iteration and is written in place. Ra,
   // the residuals to precondition, is dead once W is computed: it then takes the
   // block products before a swap (a scratch block of its own, and another for P,
-  // had cost two n x b blocks of fresh memory: 700 MB at a million DOFs).
+  // had cost two n x b blocks of fresh memory: 700 MB at a million DOFs). Its width
+  // changes with the active set (Eigen then reallocates): cheap where freed memory
+  // stays in the heap (keep_freed_memory), fresh pages each time where it does not.
   RowBlock X, AX, MX, P, AP, MP, W, AW, MW, Ra;
   resize_block(X, n, X0.cols());
   X = X0;
@@ -231,6 +233,11 @@ LobpcgResult lobpcg_largest(const SparseMatrix& A, const SparseMatrix& M, const 
   // the Gram matrices of the next step may be derived from them (derived_gram_bound).
   MatrixXd last_GA, last_GM, last_Cx, last_Cp;
   bool derive = false;
+  // Derived blocks come from Gram matrices whose own X-P blocks may have been
+  // derived: every kMaxDerivedInARow-th step computes them afresh, so that their
+  // rounding cannot compound without limit.
+  constexpr int kMaxDerivedInARow = 8;
+  int derived_in_a_row = 0;
   for (res.iterations = 0; res.iterations < o.maxit; ++res.iterations) {
     // Residuals and the active set.
     VectorXd r2, ax2;
@@ -290,7 +297,8 @@ LobpcgResult lobpcg_largest(const SparseMatrix& A, const SparseMatrix& M, const 
       if (derive && last_Cp.cols() == P.cols())
         for (Eigen::Index j = 0; j < P.cols(); ++j)
           amplification = std::max(amplification, last_Cp.col(j).norm() * dp(j));
-      derived = derive && last_Cp.cols() == P.cols() && amplification <= o.derived_gram_bound;
+      derived = derive && last_Cp.cols() == P.cols() && amplification <= o.derived_gram_bound &&
+                derived_in_a_row < kMaxDerivedInARow;
       if (derived) {
         const MatrixXd GMCp = last_GM * last_Cp;
         XAP = last_Cx.transpose() * (last_GA * last_Cp), XMP = last_Cx.transpose() * GMCp;
@@ -300,6 +308,7 @@ LobpcgResult lobpcg_largest(const SparseMatrix& A, const SparseMatrix& M, const 
       }
     }
     res.derived_grams += derived;
+    derived_in_a_row = derived ? derived_in_a_row + 1 : 0;
     // Rayleigh–Ritz on [X, W T, P D]. (W T)ᵀA(W T) = I (T makes it so) and XᵀMX =
     // diag(μ) (the last Rayleigh–Ritz step) are set; XᵀAX and XᵀA(W T), which hold
     // only as well as the last step and one Gram–Schmidt pass, are computed so that

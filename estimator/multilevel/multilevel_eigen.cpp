@@ -173,11 +173,10 @@ MultilevelRun multilevel_lowest(const SparseMatrix& K_in, const SparseMatrix& M_
   }
   t = Clock::now();
   report(progress, "multilevel: coarse modes (" + std::to_string(run.coarse_size) + " DOFs)", 0.1);
-  const SparseMatrix& P = amg.prolongator();
   // The coarse model (Pᵀ K P, Pᵀ M P) shifted by σ is the AMG's coarse matrix,
   // already factorised: its lowest b modes come from block Lanczos on that factor.
   const SparseMatrix Mc =
-      galerkin_lower(M, P, amg.prolongator_rows(), amg.coarse_blocks()).selfadjointView<Eigen::Lower>();
+      galerkin_lower(M, amg.prolongator(), amg.prolongator_rows(), amg.coarse_blocks()).selfadjointView<Eigen::Lower>();
   report(progress, "multilevel: coarse mass matrix in " + std::to_string(seconds_since(t)) + " s", 0.1);
   BlockLanczosOptions bo;
   bo.nev = static_cast<int>(std::min<long>(r + b_it, run.coarse_size - 1));

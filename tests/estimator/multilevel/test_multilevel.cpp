@@ -335,11 +335,27 @@ TEST_CASE("aggregation preconditioner: symmetric, positive definite, and conjuga
   {
     multilevel::AggregationAmg released(A, f.groups, f.rigid);
     CHECK(released.prolongator().nonZeros() == amg.prolongator().nonZeros());
+    // The split coarse solve against the column-by-column one (each column alone
+    // on the single-precision factor): the same solution to rounding.
+    {
+      const Eigen::MatrixXd B = Eigen::MatrixXd::Random(amg.coarse_size(), 45);
+      const Eigen::MatrixXd Ysplit = amg.solve_coarse(B);
+      Eigen::MatrixXd Ycols(B.rows(), B.cols());
+      for (Eigen::Index j = 0; j < B.cols(); ++j) Ycols.col(j) = amg.solve_coarse(B.col(j));
+      CHECK((Ysplit - Ycols).norm() <= 1e-4 * Ycols.norm());
+    }
     released.release_double_prolongator();
     CHECK(released.double_prolongator_released());
     RowBlock Tr;
     released.apply(XY, Tr);
     CHECK((dense(Tr) - dense(Ts)).norm() == 0.0);
+    // 45 columns: the coarse solve split over the cores (2 columns are solved whole).
+    const RowBlock Y45 = Eigen::MatrixXd::Random(n, 45);
+    RowBlock Tw, Trw;
+    amg.apply(Y45, Tw);
+    released.apply(Y45, Trw);
+    CHECK((dense(Trw) - dense(Tw)).norm() == 0.0);
+    CHECK(released.coarse_size() == amg.coarse_size());
     CHECK_THROWS_AS(released.prolongator(), std::logic_error);
     CHECK_THROWS_AS(released.prolongator_rows(), std::logic_error);
     RowBlock Xc;
