@@ -190,7 +190,7 @@ bool rayleigh_ritz(const MatrixXd& GA, const MatrixXd& GM, Eigen::Index b, Vecto
 }  // namespace
 
 LobpcgResult lobpcg_largest(const SparseMatrix& A, const SparseMatrix& M, const BlockOperator& precondition,
-                            const RowBlock& X0, const LobpcgOptions& o, const Deflation& deflation) {
+                            RowBlock X0, const LobpcgOptions& o, const Deflation& deflation) {
   const long n = A.rows();
   if (X0.rows() != n || X0.cols() < o.nev || o.nev < 1)
     throw std::invalid_argument("lobpcg: the start block must have n rows and at least nev >= 1 columns");
@@ -208,8 +208,7 @@ LobpcgResult lobpcg_largest(const SparseMatrix& A, const SparseMatrix& M, const 
   // changes with the active set (Eigen then reallocates): cheap where freed memory
   // stays in the heap (keep_freed_memory), fresh pages each time where it does not.
   RowBlock X, AX, MX, P, AP, MP, W, AW, MW, Ra;
-  resize_block(X, n, X0.cols());
-  X = X0;
+  X.swap(X0);  // X0 is this function's own (moved in by a caller done with it: a block less)
   deflate(deflation, X);
   sym_times(A, X, AX);
   if (a_orthonormalise(X, AX, Ra) < o.nev) throw std::invalid_argument("lobpcg: the start block is rank deficient");

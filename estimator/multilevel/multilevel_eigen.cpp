@@ -8,8 +8,8 @@
 #include <algorithm>
 #include <chrono>
 #include <memory>
-#include <utility>
 #include <stdexcept>
+#include <utility>
 
 namespace ssid::estimator::multilevel {
 
@@ -234,7 +234,8 @@ MultilevelRun multilevel_lowest(const SparseMatrix& K_in, const SparseMatrix& M_
   lo.progress = progress;
   LobpcgResult lr;
   try {
-    lr = lobpcg_largest(A, M, [&amg](const RowBlock& R, RowBlock& W) { amg.apply(R, W); }, X0, lo, deflation);
+    lr = lobpcg_largest(A, M, [&amg](const RowBlock& R, RowBlock& W) { amg.apply(R, W); }, std::move(X0), lo,
+                        deflation);
   } catch (const std::exception& e) {  // rank-deficient start, failed first Rayleigh–Ritz step
     run.failure = MultilevelRun::Failure::Breakdown;
     run.message = e.what();
