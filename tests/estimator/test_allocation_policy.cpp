@@ -6,9 +6,11 @@
 
 #include <catch2/catch.hpp>
 
+#include <cstdio>
 #include <cstdlib>
 #include <cstring>
 #include <string>
+#include <thread>
 #if defined(__GLIBC__)
 #include <malloc.h>
 #endif
@@ -32,6 +34,32 @@ TEST_CASE("keep_freed_memory serves large blocks from the heap", "[alloc]") {
   std::free(q);
 #else
   CHECK_FALSE(ssid::estimator::keep_freed_memory());
+#endif
+}
+
+TEST_CASE("keep_freed_memory shares one heap among threads", "[alloc]") {
+#if defined(__GLIBC__)
+  REQUIRE(ssid::estimator::keep_freed_memory());
+  // Another thread's allocations come from the one heap (glibc's malloc_info lists
+  // each arena as a <heap>): with a heap per thread, memory a worker freed would
+  // not be reused by the main thread's next allocation.
+  std::thread worker([] {
+    char* p = static_cast<char*>(std::malloc(16u << 20));
+    if (p != nullptr) std::memset(p, 1, 16u << 20);
+    std::free(p);
+  });
+  worker.join();
+  char* buf = nullptr;
+  size_t len = 0;
+  FILE* f = open_memstream(&buf, &len);
+  REQUIRE(f != nullptr);
+  REQUIRE(malloc_info(0, f) == 0);
+  std::fclose(f);
+  const std::string xml(buf, len);
+  std::free(buf);
+  size_t heaps = 0;
+  for (size_t at = xml.find("<heap nr="); at != std::string::npos; at = xml.find("<heap nr=", at + 1)) ++heaps;
+  CHECK(heaps == 1);
 #endif
 }
 
