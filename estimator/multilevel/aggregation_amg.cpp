@@ -166,6 +166,18 @@ AggregationAmg::AggregationAmg(const SparseMatrix& A, const std::vector<long>& g
         m_dinv.data() + m_dinv_start[static_cast<size_t>(a)], k, k) = Di;
   }
 
+  // Single precision holds magnitudes up to 3.4e38 only: a model whose A or D⁻¹
+  // has entries beyond kSingleRange (a margin of 1e8 for the vectors they multiply,
+  // and for the coarse matrix PᵀAP) runs its cycle, and its coarse factor, in
+  // double instead of overflowing to infinities (single_precision() says which).
+  if (m_options.single_precision) {
+    constexpr double kSingleRange = 1e30;
+    double largest = 0.0;
+    for (long k = 0; k < A.nonZeros(); ++k) largest = std::max(largest, std::abs(A.valuePtr()[k]));
+    for (const double v : m_dinv) largest = std::max(largest, std::abs(v));
+    if (!(largest <= kSingleRange)) m_options.single_precision = false, m_options.coarse_single_precision = false;
+  }
+
   // ρ(D⁻¹A) by power iteration (D⁻¹A is similar to the symmetric D^{-½}AD^{-½}:
   // its eigenvalues are real and positive; 30 steps from a random start come within
   // a few per cent from below, hence the 10 % margin).

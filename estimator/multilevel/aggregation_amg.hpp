@@ -61,7 +61,8 @@ struct AmgOptions {
   /// sparse block products are bound by memory traffic, which floats halve (the 94k
   /// lattice: 14-16 s -> 12-13 s, same iterations). The cycle is then symmetric to about
   /// 1e-8 rather than 1e-15 (relative; the test frame), which LOBPCG, converging
-  /// to 1e-6, does not see.
+  /// to 1e-6, does not see. Off by itself for a model with entries of A or D⁻¹
+  /// beyond 1e30 (AggregationAmg::single_precision()).
   bool single_precision = true;
   /// With single_precision: the coarse matrix is factorised in single precision
   /// too (CholmodFactor::factorize_single), and CHOLMOD's double factor is not
@@ -116,6 +117,9 @@ class AggregationAmg {
   long coarse_size() const { return m_coarse_blocks.empty() ? 0 : m_coarse_blocks.back(); }  ///< also once P is released
   long aggregates() const { return m_aggregates; }
   double spectral_radius() const { return m_rho; }  ///< estimate of ρ(D⁻¹A) used by the smoothers
+  /// Whether the cycle runs in single precision: AmgOptions::single_precision,
+  /// unless A or D⁻¹ has entries beyond 1e30 (single precision would overflow).
+  bool single_precision() const { return m_options.single_precision; }
   /// The factor of Aᶜ = Pᵀ A P (also the shift-invert operator of the coarse model
   /// when A = K − σM: Pᵀ K P − σ Pᵀ M P): its analysis always, its double
   /// factor only when the coarse factor is not in single precision.

@@ -329,6 +329,20 @@ TEST_CASE("aggregation preconditioner: symmetric, positive definite, and conjuga
   RowBlock Tf;
   amg_fallback.apply(XY, Tf);
   CHECK((dense(Tf) - dense(Td)).norm() <= 1e-5 * dense(Td).norm());
+  // A model scaled beyond single precision's range (entries of 1e35 and more: a
+  // float would be infinite) runs its cycle in double: the double cycle's answer,
+  // scaled, where the float cycle would have returned infinities.
+  {
+    CHECK(amg.single_precision());
+    const Eigen::SparseMatrix<double> Abig = 1e32 * A;
+    const multilevel::AggregationAmg huge(Abig, f.groups, f.rigid);
+    CHECK_FALSE(huge.single_precision());
+    CHECK(huge.coarse_factor_single() == nullptr);
+    RowBlock Th;
+    huge.apply(XY, Th);
+    REQUIRE(dense(Th).allFinite());
+    CHECK((1e32 * dense(Th) - dense(Td)).norm() <= 1e-8 * dense(Td).norm());
+  }
   // The double-precision prolongator released (as the eigen-solver does before
   // LOBPCG): the single-precision cycle gives the same bits; P is no longer
   // there to ask for. A cycle in double keeps it.
