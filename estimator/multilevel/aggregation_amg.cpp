@@ -359,9 +359,10 @@ void AggregationAmg::cycle(const Level<T>& L, const RowBlockOf<T>& R, RowBlockOf
 // competing with the cycle's own threads for the cores (94k: 2 s of 12.5 s of CPU).
 // Each part reads all of L: with 45 columns, 22 flops or more per value read.
 void AggregationAmg::solve_coarse_single(const float* b, float* y, long nrhs) const {
-  // Below, a part's BLAS calls are too thin to pay: the 1M start's 16-column block
-  // solves took 7.1 s split in two and 5.9 s on OpenBLAS's threads (each part reads
-  // all of L, hundreds of megabytes there); LOBPCG's 45 columns split as fast or faster.
+  // Narrower parts gain nothing: the 1M start's 16-column block solves cost the same
+  // split in two or on OpenBLAS's threads (15 solves: 7.1 s against 7.3 s, means of
+  // 5 and 7 runs; each part reads all of L, hundreds of megabytes there), so they
+  // stay whole; LOBPCG's 45 columns split.
   constexpr long kMinColumnsPerPart = 16;
   const long parts = std::min(worker_threads(), std::max<long>(1, nrhs / kMinColumnsPerPart));
   if (m_coarse_work.size() < static_cast<size_t>(worker_threads()))
