@@ -555,10 +555,9 @@ namespace {
 
 Eigen::MatrixXd gram_of(const RowBlock& X, const RowBlock& Y, long rows, bool upper, const Eigen::VectorXd* weights) {
   if (X.rows() != Y.rows()) throw std::invalid_argument("gram: blocks of different lengths");
-  if (weights && weights->size() < std::min<long>(rows < 0 ? X.rows() : rows, X.rows()))
-    throw std::invalid_argument("gram: fewer weights than rows");
   if (upper && X.cols() != Y.cols()) throw std::invalid_argument("gram_symmetric: blocks of different widths");
   const long m = rows < 0 ? static_cast<long>(X.rows()) : std::min<long>(rows, X.rows());
+  if (weights && weights->size() < m) throw std::invalid_argument("gram: fewer weights than rows");
   const long p = X.cols(), q = Y.cols();
   Eigen::MatrixXd G = Eigen::MatrixXd::Zero(p, q);
   if (m == 0 || p == 0 || q == 0) return G;

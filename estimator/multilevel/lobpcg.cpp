@@ -292,12 +292,12 @@ LobpcgResult lobpcg_largest(const SparseMatrix& A, const SparseMatrix& M, const 
       PAP = gram_symmetric(P, AP);
       dp = unit_scaling(PAP);
       mass.times(P, MP);
+      // P's columns are those of last_Cp (both the last step's active set).
       double amplification = 0.0;
-      if (derive && last_Cp.cols() == P.cols())
+      if (derive)
         for (Eigen::Index j = 0; j < P.cols(); ++j)
           amplification = std::max(amplification, last_Cp.col(j).norm() * dp(j));
-      derived = derive && last_Cp.cols() == P.cols() && amplification <= o.derived_gram_bound &&
-                derived_in_a_row < kMaxDerivedInARow;
+      derived = derive && amplification <= o.derived_gram_bound && derived_in_a_row < kMaxDerivedInARow;
       if (derived) {
         const MatrixXd GMCp = last_GM * last_Cp;
         XAP = last_Cx.transpose() * (last_GA * last_Cp), XMP = last_Cx.transpose() * GMCp;
