@@ -9,8 +9,8 @@
 #include <Eigen/Dense>
 #include <algorithm>
 #include <limits>
-#include <thread>
 #include <numeric>
+#include <thread>
 #include <vector>
 
 #include "estimator/cholmod_factor.hpp"
