@@ -51,6 +51,13 @@ class TimedModel : public estimator::ModalModel {
     m_t.sensitivity += now_s() - t0;
     return s;
   }
+  std::vector<estimator::ModeSensitivity> sensitivities(const std::vector<int>& modes,
+                                                        const std::vector<bool>& shapes) override {
+    const double t0 = now_s();
+    auto s = m_model->sensitivities(modes, shapes);
+    m_t.sensitivity += now_s() - t0;
+    return s;
+  }
 
  private:
   std::shared_ptr<estimator::ModalModel> m_model;

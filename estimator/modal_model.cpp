@@ -1,7 +1,10 @@
 #include "estimator/modal_model.hpp"
 
+#include <algorithm>
+#include <exception>
 #include <stdexcept>
 #include <string>
+#include <thread>
 
 #include "estimator/sensitivity.hpp"
 
@@ -31,7 +34,7 @@ ModalSolution OperatorModel::solve(const Eigen::VectorXd& r) {
   auto [lambda, phi] = m_eigensolve(m_ops.K, m_ops.M, m_nmodes);
   m_lambda = std::move(lambda);
   m_phi = std::move(phi);
-  m_nelson.reset();
+  m_nelson.clear();
   ModalSolution s;
   s.eigenvalues = m_lambda;
   s.sensor_shapes = m_sensors * m_phi;
@@ -39,7 +42,53 @@ ModalSolution OperatorModel::solve(const Eigen::VectorXd& r) {
   return s;
 }
 
-ModeSensitivity OperatorModel::sensitivity(int i, bool shapes) {
+std::vector<ModeSensitivity> ModalModel::sensitivities(const std::vector<int>& modes, const std::vector<bool>& shapes) {
+  if (shapes.size() != modes.size()) throw std::invalid_argument("sensitivities: one shapes flag per mode expected");
+  std::vector<ModeSensitivity> out;
+  out.reserve(modes.size());
+  for (std::size_t k = 0; k < modes.size(); ++k) out.push_back(sensitivity(modes[k], shapes[k]));
+  return out;
+}
+
+ModeSensitivity OperatorModel::sensitivity(int i, bool shapes) { return sensitivity_with(i, shapes, 0); }
+
+std::vector<ModeSensitivity> OperatorModel::sensitivities(const std::vector<int>& modes,
+                                                          const std::vector<bool>& shapes) {
+  if (shapes.size() != modes.size()) throw std::invalid_argument("sensitivities: one shapes flag per mode expected");
+  for (int i : modes)
+    if (i < 0 || i >= m_lambda.size()) throw std::out_of_range("OperatorModel: no mode " + std::to_string(i + 1));
+  std::vector<ModeSensitivity> out(modes.size());
+  // Only the shape derivatives cost (a factorisation each); the rest is a few
+  // sparse products a mode. Modes are dealt round-robin (neighbouring modes cost
+  // alike), each thread on its own solver, so the values do not depend on the split.
+  const auto shaped = static_cast<std::size_t>(std::count(shapes.begin(), shapes.end(), true));
+  const std::size_t threads =
+      std::min<std::size_t>(std::max(1u, std::thread::hardware_concurrency()), std::max<std::size_t>(1, shaped));
+  if (threads <= 1 || m_shape_derivative != ShapeDerivative::Nelson) {
+    for (std::size_t k = 0; k < modes.size(); ++k) out[k] = sensitivity_with(modes[k], shapes[k], 0);
+    return out;
+  }
+  if (m_nelson.size() < threads) m_nelson.resize(threads);
+  for (auto& solver : m_nelson)  // created here, not in the threads: the vector is not theirs to grow
+    if (!solver) solver = std::make_shared<NelsonSolver>(m_ops.K, m_ops.M);
+  std::vector<std::exception_ptr> errors(threads);
+  auto work = [&](std::size_t t) {
+    try {
+      for (std::size_t k = t; k < modes.size(); k += threads) out[k] = sensitivity_with(modes[k], shapes[k], t);
+    } catch (...) {
+      errors[t] = std::current_exception();
+    }
+  };
+  std::vector<std::thread> pool;
+  for (std::size_t t = 1; t < threads; ++t) pool.emplace_back(work, t);
+  work(0);
+  for (auto& th : pool) th.join();
+  for (const auto& e : errors)
+    if (e) std::rethrow_exception(e);
+  return out;
+}
+
+ModeSensitivity OperatorModel::sensitivity_with(int i, bool shapes, std::size_t solver) {
   if (i < 0 || i >= m_lambda.size()) throw std::out_of_range("OperatorModel: no mode " + std::to_string(i + 1));
   const Eigen::VectorXd phi = m_phi.col(i);
   const std::size_t p = m_ops.dK.size();
@@ -50,8 +99,10 @@ ModeSensitivity OperatorModel::sensitivity(int i, bool shapes) {
   if (!shapes) return s;
   Eigen::MatrixXd dphi;
   if (m_shape_derivative == ShapeDerivative::Nelson) {
-    if (!m_nelson) m_nelson = std::make_shared<NelsonSolver>(m_ops.K, m_ops.M);
-    dphi = m_nelson->derivatives(m_lambda(i), phi, m_ops.dK, m_ops.dM);
+    if (m_nelson.size() <= solver) m_nelson.resize(solver + 1);
+    auto& nelson = m_nelson[solver];
+    if (!nelson) nelson = std::make_shared<NelsonSolver>(m_ops.K, m_ops.M);
+    dphi = nelson->derivatives(m_lambda(i), phi, m_ops.dK, m_ops.dM);
   } else {
     dphi.resize(phi.size(), static_cast<Eigen::Index>(p));
     for (std::size_t j = 0; j < p; ++j)

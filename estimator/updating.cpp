@@ -75,12 +75,31 @@ Residuals residuals(ModalModel& model, const std::vector<MeasuredMode>& test, co
   const int p = model.parameter_count();
   std::vector<double> z, u, sigma;
   std::vector<Eigen::VectorXd> rows;
-  for (const auto& pair : pairs) {
+  auto uses = [&](const UpdatePair& pair) {
     const auto& t = test[static_cast<std::size_t>(pair.test)];
     const bool use_f = t.use_frequency && t.frequency_std_hz > 0;
     const bool use_s = options.shape_derivatives && t.use_shape && t.shape.size() > 0 && t.shape_std > 0;
+    return std::pair{use_f, use_s};
+  };
+  // The sensitivities of every used pair at once (the model may compute them concurrently).
+  std::vector<ModeSensitivity> sens;
+  if (with_T) {
+    std::vector<int> modes;
+    std::vector<bool> shapes;
+    for (const auto& pair : pairs) {
+      const auto [use_f, use_s] = uses(pair);
+      if (!use_f && !use_s) continue;
+      modes.push_back(pair.fem);
+      shapes.push_back(use_s);
+    }
+    sens = model.sensitivities(modes, shapes);
+  }
+  std::size_t used = 0;
+  for (const auto& pair : pairs) {
+    const auto& t = test[static_cast<std::size_t>(pair.test)];
+    const auto [use_f, use_s] = uses(pair);
     if (!use_f && !use_s) continue;
-    const ModeSensitivity s = with_T ? model.sensitivity(pair.fem, use_s) : ModeSensitivity{Eigen::VectorXd::Zero(p), Eigen::MatrixXd()};
+    const ModeSensitivity s = with_T ? std::move(sens[used++]) : ModeSensitivity{Eigen::VectorXd::Zero(p), Eigen::MatrixXd()};
     if (use_f) {
       const double f = hz(fem.eigenvalues(pair.fem));
       if (f <= 0) throw std::runtime_error("test mode " + std::to_string(t.id) + " is paired with a zero-frequency analysis mode");

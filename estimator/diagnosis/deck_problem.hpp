@@ -68,6 +68,9 @@ class SensorTracked : public ModalModel {
     return s;
   }
   ModeSensitivity sensitivity(int i, bool shapes) override { return m_inner.sensitivity(i, shapes); }
+  std::vector<ModeSensitivity> sensitivities(const std::vector<int>& modes, const std::vector<bool>& shapes) override {
+    return m_inner.sensitivities(modes, shapes);
+  }
 
  private:
   OperatorModel& m_inner;

@@ -221,7 +221,19 @@ Screen prepare_screen(DeckProblem& pb, const Eigen::VectorXd& r, const std::vect
     row.use_s = opt.update.shape_derivatives && t.use_shape && t.shape.size() && t.shape_std > 0;
     row.sigma_f = t.frequency_std_hz;
     row.sigma_s = t.shape_std;
-    const ModeSensitivity s = pb.model->sensitivity(p.fem, row.use_s);
+    sc.rows.push_back(row);
+  }
+  // Every row's sensitivities at once (the model computes them concurrently).
+  std::vector<int> modes;
+  std::vector<bool> shapes;
+  for (const auto& row : sc.rows) modes.push_back(row.fem), shapes.push_back(row.use_s);
+  const std::vector<ModeSensitivity> sens = pb.model->sensitivities(modes, shapes);
+  std::size_t next = 0;
+  for (const auto& p : all_pairs) {
+    if (p.config != 0) continue;
+    const auto& t = pb.test[static_cast<std::size_t>(p.test)];
+    const Screen::Row& row = sc.rows[next];
+    const ModeSensitivity& s = sens[next++];
     if (row.use_f) {
       e.push_back((t.frequency_hz - row.f) / row.sigma_f);
       w.push_back((s.d_eigenvalue / (8 * M_PI * M_PI * row.f)).cwiseProduct(d) / row.sigma_f);
@@ -235,7 +247,6 @@ Screen prepare_screen(DeckProblem& pb, const Eigen::VectorXd& r, const std::vect
         w.push_back(du.row(k).transpose().cwiseProduct(d) / row.sigma_s);
       }
     }
-    sc.rows.push_back(row);
   }
   const auto m = static_cast<Eigen::Index>(e.size());
   sc.e = Eigen::Map<Eigen::VectorXd>(e.data(), m);
