@@ -58,19 +58,21 @@ std::vector<ModeSensitivity> OperatorModel::sensitivities(const std::vector<int>
   for (int i : modes)
     if (i < 0 || i >= m_lambda.size()) throw std::out_of_range("OperatorModel: no mode " + std::to_string(i + 1));
   std::vector<ModeSensitivity> out(modes.size());
-  // Only the shape derivatives cost (a factorisation each); the rest is a few
-  // sparse products a mode. Modes are dealt round-robin (neighbouring modes cost
+  // Only the shape derivatives cost (a factorisation each with Nelson's method, a
+  // pass over the modes with modal summation); the rest is a few sparse products. Modes are dealt round-robin (neighbouring modes cost
   // alike), each thread on its own solver, so the values do not depend on the split.
   const auto shaped = static_cast<std::size_t>(std::count(shapes.begin(), shapes.end(), true));
   const std::size_t threads =
       std::min<std::size_t>(std::max(1u, std::thread::hardware_concurrency()), std::max<std::size_t>(1, shaped));
-  if (threads <= 1 || m_shape_derivative != ShapeDerivative::Nelson) {
+  if (threads <= 1) {
     for (std::size_t k = 0; k < modes.size(); ++k) out[k] = sensitivity_with(modes[k], shapes[k], 0);
     return out;
   }
-  if (m_nelson.size() < threads) m_nelson.resize(threads);
-  for (auto& solver : m_nelson)  // created here, not in the threads: the vector is not theirs to grow
-    if (!solver) solver = std::make_shared<NelsonSolver>(m_ops.K, m_ops.M);
+  if (m_shape_derivative == ShapeDerivative::Nelson) {
+    if (m_nelson.size() < threads) m_nelson.resize(threads);
+    for (auto& solver : m_nelson)  // created here, not in the threads: the vector is not theirs to grow
+      if (!solver) solver = std::make_shared<NelsonSolver>(m_ops.K, m_ops.M);
+  }
   std::vector<std::exception_ptr> errors(threads);
   auto work = [&](std::size_t t) {
     try {

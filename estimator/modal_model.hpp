@@ -75,6 +75,7 @@ class OperatorModel : public ModalModel {
   /// On up to one thread per core, each with its own Nelson solver (a mode's
   /// ∂φ needs a factorisation of K − λM of its own: 35 modes of the 8.5k-DOF
   /// beam deck took 0.17 s on one core). The same values as one by one.
+  /// Not to be called concurrently on one model.
   std::vector<ModeSensitivity> sensitivities(const std::vector<int>& modes, const std::vector<bool>& shapes) override;
 
   const Operators& operators() const { return m_ops; }
