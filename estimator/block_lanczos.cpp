@@ -36,13 +36,18 @@ BlockLanczosResult block_lanczos(const std::function<MatrixXd(const MatrixXd&)>&
   cap = std::max(std::min(cap, n), b);
   BlockLanczosResult res;
   std::mt19937 rng(o.seed);
-  auto S = [&](const MatrixXd& X) {
+  // S X, from M X when it is known.
+  auto S_of_mass = [&](const MatrixXd& MX) {
     ++res.block_solves;
-    return shift_invert(mass(X));
+    return shift_invert(MX);
   };
+  auto S = [&](const MatrixXd& X) { return S_of_mass(mass(X)); };
 
   MatrixXd V(n, std::min<long>(cap, 2L * o.nev + 4L * b));
   MatrixXd H = MatrixXd::Zero(V.cols(), V.cols());
+  // M V beside V (BlockLanczosOptions::keep_mass_basis), else no columns.
+  const bool keep_mv = o.keep_mass_basis;
+  MatrixXd MV(n, keep_mv ? V.cols() : 0);
   long m = 0;  // columns in the basis
 
   // M-orthonormalises W against V[:, 0:m] (classical Gram–Schmidt twice) and
@@ -50,8 +55,8 @@ BlockLanczosResult block_lanczos(const std::function<MatrixXd(const MatrixXd&)>&
   // the block shrinks (deflation) where the Krylov space stops growing, which is
   // how an exhausted space (small n, or M of low rank) ends the iteration.
   // Returns R (kept x W.cols()) with W_in = V C + W_out R; C goes into H's
-  // columns [col0, col0 + W.cols()) when col0 >= 0.
-  auto orthonormalise = [&](MatrixXd& W, long col0) -> MatrixXd {
+  // columns [col0, col0 + W.cols()) when col0 >= 0. MW: M W_out on return.
+  auto orthonormalise = [&](MatrixXd& W, MatrixXd& MW, long col0) -> MatrixXd {
     const long act = m;
     // Against the basis: first the newest two blocks, which hold the large
     // components (the block tridiagonal part of T); then one full classical
@@ -69,16 +74,43 @@ BlockLanczosResult block_lanczos(const std::function<MatrixXd(const MatrixXd&)>&
         if (before(c) - C.col(c).squaredNorm() < 0.5 * before(c)) return true;
       return false;
     };
+    // With M V kept, C = (M V)ᵀ W needs no product with M, and M W is carried
+    // through the full passes (M W − M V C); it is recomputed after the local
+    // pass, which removes the recurrence's large components by design (carried
+    // through that cancellation, M W would keep its round-off relative to the
+    // larger W), and after a full pass that cancelled (the DGKS case). One
+    // product with M a block instead of four or five.
+    auto project_kept = [&](long lo, long hi, bool carry) -> bool {
+      const MatrixXd C = detail::at_b(MV.middleCols(lo, hi - lo), W);
+      VectorXd before;
+      if (carry) before = W.cwiseProduct(MW).colwise().sum().transpose();
+      detail::gemm(false, false, -1.0, V.middleCols(lo, hi - lo), C, 1.0, W);
+      if (carry) detail::gemm(false, false, -1.0, MV.middleCols(lo, hi - lo), C, 1.0, MW);
+      if (col0 >= 0) H.block(lo, col0, hi - lo, W.cols()) += C;
+      if (carry)
+        for (long c = 0; c < W.cols(); ++c)
+          if (before(c) - C.col(c).squaredNorm() < 0.5 * before(c)) return true;
+      return false;
+    };
     if (act > 0) {
       const long lo = std::max<long>(0, act - 2L * b);
-      project(lo, act);
-      if (project(0, act)) project(0, act);
+      if (keep_mv) {
+        project_kept(lo, act, false);
+        MW = mass(W);
+        if (project_kept(0, act, true)) {
+          MW = mass(W);
+          project_kept(0, act, true);
+        }
+      } else {
+        project(lo, act);
+        if (project(0, act)) project(0, act);
+      }
     }
     // M w is carried along (M w − M W_kept r) rather than recomputed: one product
     // with M per block, not three per column (a consistent coarse mass matrix, as
     // the multilevel solver's, made those single-column products 80 % of its start).
     MatrixXd R = MatrixXd::Zero(W.cols(), W.cols());
-    MatrixXd MW = mass(W);
+    if (!(keep_mv && act > 0)) MW = mass(W);
     long kept = 0;
     for (long c = 0; c < W.cols(); ++c) {
       VectorXd w = W.col(c), mw = MW.col(c);
@@ -109,21 +141,23 @@ BlockLanczosResult block_lanczos(const std::function<MatrixXd(const MatrixXd&)>&
       }
     }
     W.conservativeResize(Eigen::NoChange, kept);
+    MW.conservativeResize(Eigen::NoChange, kept);
     return R.topRows(kept);
   };
 
   // Start block inside range(S).
   {
-    MatrixXd W = S(random_block(n, static_cast<int>(b), rng));
-    orthonormalise(W, -1);
+    MatrixXd W = S(random_block(n, static_cast<int>(b), rng)), MW;
+    orthonormalise(W, MW, -1);
     if (W.cols() == 0) throw std::invalid_argument("block_lanczos: M is zero");
     V.leftCols(W.cols()) = W;
+    if (keep_mv) MV.leftCols(W.cols()) = MW;
     m = W.cols();
   }
   long j0 = 0, bj = m;  // the newest block: columns [j0, j0 + bj)
   for (;;) {
-    MatrixXd W = S(V.middleCols(j0, bj));
-    const MatrixXd R = orthonormalise(W, j0);  // H columns of block j are now complete
+    MatrixXd W = keep_mv ? S_of_mass(MV.middleCols(j0, bj)) : S(V.middleCols(j0, bj)), MW;
+    const MatrixXd R = orthonormalise(W, MW, j0);  // H columns of block j are now complete
     const long kept = W.cols();
     const bool room = m + kept <= cap;
     if (room && kept > 0) {
@@ -131,11 +165,13 @@ BlockLanczosResult block_lanczos(const std::function<MatrixXd(const MatrixXd&)>&
         const long old = V.cols();
         const long nc = std::min(cap, std::max(old + old / 2, m + kept));
         V.conservativeResize(Eigen::NoChange, nc);
+        if (keep_mv) MV.conservativeResize(Eigen::NoChange, nc);
         H.conservativeResize(nc, nc);
         H.rightCols(nc - old).setZero();
         H.bottomRows(nc - old).setZero();
       }
       V.middleCols(m, kept) = W;
+      if (keep_mv) MV.middleCols(m, kept) = MW;
       H.block(m, j0, kept, bj) = R;
     }
 
