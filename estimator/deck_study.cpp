@@ -11,6 +11,7 @@
 #include <stdexcept>
 
 #include "estimator/correlation.hpp"
+#include "estimator/deck_loading.hpp"
 #include "estimator/eigen_solver.hpp"
 #include "formats/bulk_model.hpp"
 #include "formats/uff.hpp"
@@ -123,18 +124,7 @@ struct LoadedDeck {
 LoadedDeck load_deck(const std::string& path) {
   LoadedDeck l;
   l.deck = std::make_shared<formats::Deck>(formats::read_deck(path));
-  formats::BulkModel bulk = formats::parse_bulk(*l.deck);
-  formats::resolve(*l.deck, bulk);
-  std::string errors;
-  std::size_t count = 0;
-  for (const auto& p : bulk.problems)
-    if (p.severity == formats::Problem::Severity::Error) {
-      if (++count <= 5) errors += "\n  " + p.str();
-    }
-  if (count)
-    throw std::invalid_argument(path + ": " + std::to_string(count) + " problem(s) in the deck; fix them first:" + errors +
-                                (count > 5 ? "\n  ..." : ""));
-  l.fe = std::make_shared<translators::FeModel>(*l.deck, std::move(bulk));
+  l.fe = std::make_shared<translators::FeModel>(*l.deck, resolved_bulk(*l.deck, path));
   return l;
 }
 

@@ -5,6 +5,7 @@
 #include <set>
 #include <stdexcept>
 
+#include "estimator/deck_loading.hpp"
 #include "estimator/eigen_solver.hpp"
 #include "formats/bulk_model.hpp"
 #include "translators/test_mapping.hpp"
@@ -28,26 +29,13 @@ std::vector<MeasuredMode> measured_modes(const translators::ModeSet& set, const 
   return out;
 }
 
-formats::BulkModel load_bulk(const formats::Deck& deck) {
-  formats::BulkModel model = formats::parse_bulk(deck);
-  formats::resolve(deck, model);
-  std::string errors;
-  int n = 0;
-  for (const auto& p : deck.problems)
-    if (p.severity == formats::Problem::Severity::Error && n++ < 5) errors += "\n  " + p.str();
-  for (const auto& p : model.problems)
-    if (p.severity == formats::Problem::Severity::Error && n++ < 5) errors += "\n  " + p.str();
-  if (n) throw std::runtime_error(std::to_string(n) + " error(s) in the deck:" + errors);
-  return model;
-}
-
 DeckProblem make_deck_problem(const std::string& deck_text, const std::string& name,
                               const translators::ModeSet& measured, const DeckProblemOptions& options,
                               const std::map<std::string, PriorOverride>& priors) {
   DeckProblem pb;
   pb.name = name;
   pb.deck = std::make_unique<formats::Deck>(formats::read_deck_text(deck_text, name));
-  pb.fe = std::make_unique<translators::FeModel>(*pb.deck, load_bulk(*pb.deck));
+  pb.fe = std::make_unique<translators::FeModel>(*pb.deck, resolved_bulk(*pb.deck, name));
   const translators::FeModel& fe = *pb.fe;
 
   // Test DOFs onto the model: grids by id.

@@ -103,9 +103,6 @@ DeckProblem make_deck_problem(const std::string& deck_text, const std::string& n
                               const translators::ModeSet& measured, const DeckProblemOptions& options,
                               const std::map<std::string, PriorOverride>& priors = {});
 
-/// Reads a deck into its typed, resolved model; throws std::runtime_error with
-/// the first problems when the deck has errors.
-formats::BulkModel load_bulk(const formats::Deck& deck);
 
 /// Estimates the parameters of one problem (or several configurations sharing
 /// their parameters: each problem's prior must list the same parameters).

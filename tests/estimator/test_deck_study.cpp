@@ -471,6 +471,20 @@ TEST_CASE("garbage and mismatched inputs give clear errors", "[estimator][deck_s
                                         "   0.0000000000000000D+00   0.0000000000000000D+00   0.0000000000000000D+00\n    -1\n";
   }
   CHECK_THAT(error_of(none, nominal, dir / "nodes.unv"), Catch::Contains("no real normal modes"));
+  // A deck with a reading error (a continuation line that no card owns: its data
+  // reached no card) is refused with the line, as `ssid modes` refuses it, rather
+  // than estimated from.
+  {
+    std::ifstream in(nominal);
+    std::string text((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+    const auto at = text.find('\n', text.find("BEGIN BULK")) + 1;
+    REQUIRE(at > 0);
+    text.insert(at, "+       1.0     2.0\n");
+    std::ofstream(dir / "orphan.bdf") << text;
+  }
+  CHECK_THAT(error_of(none, dir / "orphan.bdf", uff),
+             Catch::Contains("orphan.bdf") && Catch::Contains("1 error(s) in the deck") &&
+                 Catch::Contains("continuation line with no card before it"));
   // Test nodes that are no grids of the deck.
   {
     auto file = formats::uff::read_uff(uff.string());

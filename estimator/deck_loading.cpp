@@ -1,0 +1,23 @@
+#include "estimator/deck_loading.hpp"
+
+#include <stdexcept>
+
+namespace ssid::estimator {
+
+formats::BulkModel resolved_bulk(const formats::Deck& deck, const std::string& who) {
+  formats::BulkModel model = formats::parse_bulk(deck);
+  formats::resolve(deck, model);
+  constexpr std::size_t kShown = 5;
+  std::string errors;
+  std::size_t count = 0;
+  const std::vector<formats::Problem>* lists[] = {&deck.problems, &model.problems};
+  for (const auto* list : lists)
+    for (const auto& p : *list)
+      if (p.severity == formats::Problem::Severity::Error && ++count <= kShown) errors += "\n  " + p.str();
+  if (count)
+    throw std::invalid_argument((who.empty() ? "" : who + ": ") + std::to_string(count) +
+                                " error(s) in the deck; fix them first:" + errors + (count > kShown ? "\n  ..." : ""));
+  return model;
+}
+
+}  // namespace ssid::estimator
