@@ -10,6 +10,7 @@
 #include <limits>
 #include <stdexcept>
 
+#include "estimator/deck_loading.hpp"
 #include "estimator/dense_eigen.hpp"
 #include "formats/bulk_model.hpp"
 
@@ -19,24 +20,7 @@ LoadedModel load_model(const std::string& path, const translators::AssemblyOptio
   LoadedModel l;
   l.path = path;
   l.deck = formats::read_deck(path);
-  formats::BulkModel bulk = formats::parse_bulk(l.deck);
-  formats::resolve(l.deck, bulk);
-  std::vector<formats::Problem> problems = l.deck.problems;
-  problems.insert(problems.end(), bulk.problems.begin(), bulk.problems.end());
-  std::string errors;
-  std::size_t n_errors = 0;
-  for (const auto& p : problems) {
-    if (p.severity == formats::Problem::Severity::Warning) {
-      l.warnings.push_back(p.str());
-      continue;
-    }
-    if (++n_errors <= 20) errors += "\n  " + p.str();
-  }
-  if (n_errors) {
-    if (n_errors > 20) errors += "\n  ... and " + std::to_string(n_errors - 20) + " more";
-    throw std::runtime_error(path + ": " + std::to_string(n_errors) + " error(s) in the deck; nothing assembled:" +
-                             errors);
-  }
+  formats::BulkModel bulk = estimator::resolved_bulk(l.deck, path, &l.warnings);
   try {
     l.model = std::make_unique<translators::FeModel>(l.deck, std::move(bulk), options);
   } catch (const translators::ModelError& e) {
