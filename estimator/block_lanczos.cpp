@@ -43,10 +43,13 @@ BlockLanczosResult block_lanczos(const std::function<MatrixXd(const MatrixXd&)>&
   };
   auto S = [&](const MatrixXd& X) { return S_of_mass(mass(X)); };
 
-  // The basis at its cap from the start: untouched columns cost address space, not
-  // memory, where growing it had copied it (10k lattice: peak 88 -> 83 MiB).
-  MatrixXd V(n, cap);
-  MatrixXd H = MatrixXd::Zero(cap, cap);
+  // The basis sized for what a run usually reaches (about 7 nev columns on the
+  // lattices) and grown only beyond: growing copies it into fresh memory (the 10k
+  // lattice, first sized 2 nev + 4 b: two copies, peak 88 against 83 MiB). Not the
+  // cap itself: H would be cap² values, and V at 20 nev columns a large address
+  // space for a large nev.
+  MatrixXd V(n, std::min<long>(cap, 8L * o.nev + 4L * b));
+  MatrixXd H = MatrixXd::Zero(V.cols(), V.cols());
   // M V beside V (BlockLanczosOptions::keep_mass_basis), else no columns.
   const bool keep_mv = o.keep_mass_basis;
   MatrixXd MV(n, keep_mv ? V.cols() : 0);
@@ -163,6 +166,15 @@ BlockLanczosResult block_lanczos(const std::function<MatrixXd(const MatrixXd&)>&
     const long kept = W.cols();
     const bool room = m + kept <= cap;
     if (room && kept > 0) {
+      if (m + kept > V.cols()) {  // grow the storage
+        const long old = V.cols();
+        const long nc = std::min(cap, std::max(old + old / 2, m + kept));
+        V.conservativeResize(Eigen::NoChange, nc);
+        if (keep_mv) MV.conservativeResize(Eigen::NoChange, nc);
+        H.conservativeResize(nc, nc);
+        H.rightCols(nc - old).setZero();
+        H.bottomRows(nc - old).setZero();
+      }
       V.middleCols(m, kept) = W;
       if (keep_mv) MV.middleCols(m, kept) = MW;
       H.block(m, j0, kept, bj) = R;

@@ -1,9 +1,11 @@
 #include "estimator/modal_model.hpp"
 
 #include <algorithm>
+#include <atomic>
 #include <exception>
 #include <stdexcept>
 #include <string>
+#include <system_error>
 #include <thread>
 
 #include "estimator/sensitivity.hpp"
@@ -59,34 +61,57 @@ std::vector<ModeSensitivity> OperatorModel::sensitivities(const std::vector<int>
     if (i < 0 || i >= m_lambda.size()) throw std::out_of_range("OperatorModel: no mode " + std::to_string(i + 1));
   std::vector<ModeSensitivity> out(modes.size());
   // Only the shape derivatives cost (a factorisation each with Nelson's method, a
-  // pass over the modes with modal summation); the rest is a few sparse products. Modes are dealt round-robin (neighbouring modes cost
-  // alike), each thread on its own solver, so the values do not depend on the split.
+  // pass over the modes with modal summation); the rest is a few sparse products.
+  // So the modes with shapes are dealt round-robin (neighbouring modes cost alike),
+  // the others go to the first thread; each thread has its own solver, so the
+  // values do not depend on the split.
   const auto shaped = static_cast<std::size_t>(std::count(shapes.begin(), shapes.end(), true));
-  const std::size_t threads =
-      std::min<std::size_t>(std::max(1u, std::thread::hardware_concurrency()), std::max<std::size_t>(1, shaped));
+  const std::size_t wanted = m_threads > 0 ? static_cast<std::size_t>(m_threads)
+                                           : std::min<std::size_t>(std::max(1u, std::thread::hardware_concurrency()),
+                                                                   kMaxSensitivityThreads);
+  const std::size_t threads = std::min(wanted, std::max<std::size_t>(1, shaped));
   if (threads <= 1) {
     for (std::size_t k = 0; k < modes.size(); ++k) out[k] = sensitivity_with(modes[k], shapes[k], 0);
     return out;
   }
+  std::vector<std::vector<std::size_t>> share(threads);
+  for (std::size_t k = 0, next = 0; k < modes.size(); ++k) share[shapes[k] ? next++ % threads : 0].push_back(k);
   if (m_shape_derivative == ShapeDerivative::Nelson) {
     if (m_nelson.size() < threads) m_nelson.resize(threads);
     for (auto& solver : m_nelson)  // created here, not in the threads: the vector is not theirs to grow
       if (!solver) solver = std::make_shared<NelsonSolver>(m_ops.K, m_ops.M);
   }
-  std::vector<std::exception_ptr> errors(threads);
+  // A failure stops the work on later modes, and the error thrown is the first
+  // failing mode's in `modes` order, as one by one: each thread takes its modes in
+  // that order and goes on while they come before the first failure seen.
+  std::atomic<std::size_t> first_failed{modes.size()};
+  std::vector<std::exception_ptr> errors(modes.size());
   auto work = [&](std::size_t t) {
-    try {
-      for (std::size_t k = t; k < modes.size(); k += threads) out[k] = sensitivity_with(modes[k], shapes[k], t);
-    } catch (...) {
-      errors[t] = std::current_exception();
+    for (std::size_t k : share[t]) {
+      if (k > first_failed.load()) return;
+      try {
+        out[k] = sensitivity_with(modes[k], shapes[k], t);
+      } catch (...) {
+        errors[k] = std::current_exception();
+        std::size_t seen = first_failed.load();
+        while (k < seen && !first_failed.compare_exchange_weak(seen, k)) {
+        }
+        return;
+      }
     }
   };
   std::vector<std::thread> pool;
-  for (std::size_t t = 1; t < threads; ++t) pool.emplace_back(work, t);
+  pool.reserve(threads);  // before any thread starts: a throwing growth would leave them unjoined
+  std::size_t started = 1;
+  try {
+    for (; started < threads; ++started) pool.emplace_back(work, started);
+  } catch (const std::system_error&) {
+    // No more threads to be had (a process limit): the shares not started run here.
+  }
+  for (std::size_t t = started; t < threads; ++t) work(t);
   work(0);
   for (auto& th : pool) th.join();
-  for (const auto& e : errors)
-    if (e) std::rethrow_exception(e);
+  if (first_failed.load() < modes.size()) std::rethrow_exception(errors[first_failed.load()]);
   return out;
 }
 

@@ -72,11 +72,17 @@ class OperatorModel : public ModalModel {
   int parameter_count() const override { return m_parameters; }
   ModalSolution solve(const Eigen::VectorXd& r) override;
   ModeSensitivity sensitivity(int i, bool shapes) override;
-  /// On up to one thread per core, each with its own Nelson solver (a mode's
-  /// ∂φ needs a factorisation of K − λM of its own: 35 modes of the 8.5k-DOF
-  /// beam deck took 0.17 s on one core). The same values as one by one.
+  /// On up to one thread per core (at most kMaxSensitivityThreads), each with its
+  /// own Nelson solver, kept until the next solve (a mode's ∂φ needs a
+  /// factorisation of K − λM of its own: 35 modes of the 8.5k-DOF beam deck took
+  /// 0.17 s on one core; each thread holds one such factor). The same values as one
+  /// by one, and on a failure the same exception: the first failing mode's.
   /// Not to be called concurrently on one model.
   std::vector<ModeSensitivity> sensitivities(const std::vector<int>& modes, const std::vector<bool>& shapes) override;
+  static constexpr std::size_t kMaxSensitivityThreads = 8;
+  /// Threads for sensitivities(); 0 (the default): one per core, at most
+  /// kMaxSensitivityThreads.
+  void set_sensitivity_threads(int threads) { m_threads = threads; }
 
   const Operators& operators() const { return m_ops; }
   ShapeDerivative shape_derivative() const { return m_shape_derivative; }
@@ -89,6 +95,7 @@ class OperatorModel : public ModalModel {
   int m_nmodes;
   ShapeDerivative m_shape_derivative;
   int m_parameters = -1;
+  int m_threads = 0;
   Operators m_ops;
   Eigen::VectorXd m_lambda;
   Eigen::MatrixXd m_phi;

@@ -317,7 +317,7 @@ std::vector<Eigen::VectorXd> neighbours_of_unexplained(DeckProblem& pb, const Mo
 
 std::string deck_at(const std::string& deck_text, const std::string& name, const Eigen::VectorXd& x) {
   formats::Deck deck = formats::read_deck_text(deck_text, name);
-  translators::FeModel fe(deck, resolved_bulk(deck));
+  translators::FeModel fe(deck, resolved_bulk(deck, name));
   formats::BulkModel values = fe.values_at(x);
   const auto& params = fe.parameters();
   for (std::size_t j = 0; j < params.size(); ++j)

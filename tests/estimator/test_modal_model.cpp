@@ -60,14 +60,18 @@ TEST_CASE("OperatorModel: a batch of sensitivities equals the mode-by-mode ones"
   const Eigen::VectorXd r = (Eigen::VectorXd(3) << 1.1, 0.9, 1.05).finished();
   const std::vector<int> modes{7, 0, 3, 1, 5, 2, 6};
   const std::vector<bool> shapes{true, true, false, true, true, false, true};
-  for (auto kind : {ShapeDerivative::Nelson, ShapeDerivative::ModalSum}) {
+  // Three threads whatever the machine has (so that the threaded path runs on a
+  // one-core runner too), one, and the default.
+  for (auto kind : {ShapeDerivative::Nelson, ShapeDerivative::ModalSum})
+  for (int threads : {3, 1, 0}) {
     OperatorModel batch(chain, dense_solve, sensors(), 8, kind), single(chain, dense_solve, sensors(), 8, kind);
+    batch.set_sensitivity_threads(threads);
     batch.solve(r);
     single.solve(r);
     const std::vector<ModeSensitivity> got = batch.sensitivities(modes, shapes);
     REQUIRE(got.size() == modes.size());
     for (std::size_t k = 0; k < modes.size(); ++k) {
-      CAPTURE(k, modes[k], static_cast<int>(kind));
+      CAPTURE(k, modes[k], static_cast<int>(kind), threads);
       const ModeSensitivity want = single.sensitivity(modes[k], shapes[k]);
       // Each mode is computed alone whichever thread takes it: the same bits.
       CHECK(got[k].d_eigenvalue == want.d_eigenvalue);
@@ -104,6 +108,50 @@ TEST_CASE("OperatorModel: batch shape derivatives match central finite differenc
       CHECK(got[k].d_eigenvalue(j) == Approx(dl).epsilon(1e-6));
     }
   }
+}
+
+TEST_CASE("OperatorModel: a mode that cannot be differentiated fails the batch as it fails alone",
+          "[estimator][modal_model]") {
+  // The chain and two identical, uncoupled oscillators: their eigenvalue is double,
+  // and Nelson's method needs a simple one.
+  auto twins = [](const Eigen::VectorXd& r) {
+    Operators ops = chain(r);
+    const int m = n + 2;
+    auto widen = [m](const SparseMatrix& A) {
+      Eigen::MatrixXd D = Eigen::MatrixXd::Zero(m, m);
+      D.topLeftCorner(n, n) = Eigen::MatrixXd(A);
+      return SparseMatrix(D.sparseView());
+    };
+    Eigen::MatrixXd K = Eigen::MatrixXd(widen(ops.K)), M = Eigen::MatrixXd(widen(ops.M));
+    K(n, n) = K(n + 1, n + 1) = 700.0;
+    M(n, n) = M(n + 1, n + 1) = 1.0;
+    ops.K = K.sparseView(), ops.M = M.sparseView();
+    for (auto& d : ops.dK) d = widen(d);
+    for (auto& d : ops.dM) d = widen(d);
+    return ops;
+  };
+  SparseMatrix S(2, n + 2);
+  S.insert(0, 1) = 1.0, S.insert(1, n) = 1.0;
+  const Eigen::VectorXd r = Eigen::VectorXd::Ones(3);
+  OperatorModel alone(twins, dense_solve, S, 6), batch(twins, dense_solve, S, 6);
+  const ModalSolution sol = alone.solve(r);
+  batch.solve(r);
+  batch.set_sensitivity_threads(3);
+  std::vector<int> repeated;
+  for (int i = 0; i + 1 < 6; ++i)
+    if (std::abs(sol.eigenvalues(i + 1) - sol.eigenvalues(i)) < 1e-9 * sol.eigenvalues(i)) repeated = {i, i + 1};
+  REQUIRE(repeated.size() == 2);
+  std::string alone_error;
+  try {
+    alone.sensitivity(repeated[0], true);
+  } catch (const std::runtime_error& e) {
+    alone_error = e.what();
+  }
+  REQUIRE_FALSE(alone_error.empty());
+  const std::vector<int> modes{0, 1, 2, 3, 4, 5};
+  CHECK_THROWS_WITH(batch.sensitivities(modes, std::vector<bool>(6, true)), alone_error);
+  // Without shape derivatives the same modes are fine.
+  CHECK(batch.sensitivities(modes, std::vector<bool>(6, false)).size() == 6);
 }
 
 TEST_CASE("OperatorModel: a batch refuses modes it has not and mismatched flags", "[estimator][modal_model]") {
