@@ -10,7 +10,7 @@
 ///
 /// usage: bench_eigen N [--nd ND] [--block B] [--ncv NCV] [--tol TOL] [--sturm] [--method auto|spectra|block]
 ///                      [--dof-ordering] [--export DIR] [--export-only]
-///                      [--method multilevel [--radius R] [--psteps S] [--degree D] [--ratio R] [--guard G] [--start-smoothing K] [--derived-gram-bound B] [--ml-tol T] [--no-deflate] [--double-coarse]] [--compare] [--system-malloc]
+///                      [--method multilevel [--radius R] [--psteps S] [--degree D] [--ratio R] [--guard G] [--start-smoothing K] [--derived-gram-bound B] [--lock-cluster-gap G] [--ml-tol T] [--no-deflate] [--double-coarse]] [--compare] [--system-malloc]
 ///                      [--factor-only] [--analyze-only]
 ///   N = 12 → 10 368 DOF, 25 → 93 750 DOF, 55 → 998 250 DOF.
 ///   By default the ordering is computed on the grid-point graph (EigenOptions::
@@ -138,6 +138,7 @@ int main(int argc, char** argv) {
     else if (!std::strcmp(argv[i], "--guard") && i + 1 < argc) ml.guard = std::stoi(argv[++i]);
     else if (!std::strcmp(argv[i], "--start-smoothing") && i + 1 < argc) ml.start_smoothing = std::stoi(argv[++i]);
     else if (!std::strcmp(argv[i], "--derived-gram-bound") && i + 1 < argc) ml.derived_gram_bound = std::stod(argv[++i]);
+    else if (!std::strcmp(argv[i], "--lock-cluster-gap") && i + 1 < argc) ml.lock_cluster_gap = std::stod(argv[++i]);
     else if (!std::strcmp(argv[i], "--compare")) compare = true;
     else if (!std::strcmp(argv[i], "--no-deflate")) no_deflate = true;
     else if (!std::strcmp(argv[i], "--dof-ordering")) dof_ordering = true;

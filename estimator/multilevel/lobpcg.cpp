@@ -244,10 +244,19 @@ LobpcgResult lobpcg_largest(const SparseMatrix& A, const SparseMatrix& M, const 
     rel = relative_residuals(r2, ax2, res.mu, 0.0);
     std::vector<Eigen::Index> active;
     int wanted_done = 0;
-    for (Eigen::Index j = 0; j < b; ++j) {
+    {
       // A NaN residual or a non-positive Ritz value is never "converged".
-      if (!(rel(j) <= o.tol) || !(res.mu(j) > 0.0)) active.push_back(j);
-      else if (j < o.nev) ++wanted_done;
+      std::vector<char> done(static_cast<size_t>(b));
+      for (Eigen::Index j = 0; j < b; ++j) done[static_cast<size_t>(j)] = rel(j) <= o.tol && res.mu(j) > 0.0;
+      for (Eigen::Index j = 0; j < b; ++j) {
+        bool lock = done[static_cast<size_t>(j)];
+        if (lock && j < o.nev) ++wanted_done;
+        // Locked only with its whole cluster (LobpcgOptions::lock_cluster_gap).
+        for (Eigen::Index i = 0; i < b && lock; ++i)
+          if (!done[static_cast<size_t>(i)] && std::abs(res.mu(i) - res.mu(j)) <= o.lock_cluster_gap * std::abs(res.mu(j)))
+            lock = false;
+        if (!lock) active.push_back(j);
+      }
     }
     report(o.progress,
            "LOBPCG iteration " + std::to_string(res.iterations) + ": " + std::to_string(wanted_done) + " of " +

@@ -7,8 +7,8 @@
 /// product, so every Gram matrix of the iteration is positive definite.
 ///
 /// Each iteration: residuals R = M X − A X Θ; preconditioned directions
-/// W = T R (T ≈ A⁻¹, e.g. AggregationAmg) for the columns not yet converged (soft
-/// locking); W made A-orthogonal to X and A-orthonormal (by an eigen-decomposition
+/// W = T R (T ≈ A⁻¹, e.g. AggregationAmg) for the columns not yet converged, a
+/// near-degenerate cluster left out only as a whole (soft locking); W made A-orthogonal to X and A-orthonormal (by an eigen-decomposition
 /// of its Gram matrix, which drops dependent directions); Rayleigh–Ritz on
 /// span[X W P]; the new X is the b best Ritz vectors, the new P their part along
 /// [W P] (the "conjugate" direction). Converged when, for each wanted column,
@@ -37,6 +37,15 @@ struct LobpcgOptions {
   /// most this: their rounding then stays a few ε times it. Why: 1.75 of the 7.5
   /// Gram products' worth an iteration (docs/performance.md). 0: always computed.
   double derived_gram_bound = 10.0;
+  /// A converged column leaves the preconditioned (active) set only with its whole
+  /// cluster: while a column not yet converged has a Ritz value within this
+  /// relative distance of its own, it stays. Why: the Rayleigh–Ritz step mixes
+  /// Ritz vectors of near-equal values, and a converged one left out beside an
+  /// unconverged partner takes on its error (the 1M lattice, triple eigenvalues:
+  /// a converged mode went back from 1.0e-6 to 3e-6 and the run took 26
+  /// iterations, or 23, as rounding fell; with clusters locked together, 23 either
+  /// way). 0: every column by itself.
+  double lock_cluster_gap = 1e-4;
   Progress progress;
 };
 

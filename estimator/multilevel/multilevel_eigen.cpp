@@ -232,6 +232,7 @@ MultilevelRun multilevel_lowest(const SparseMatrix& K_in, const SparseMatrix& M_
   lo.maxit = o.maxit;
   lo.mass_rows = mass_rows;
   lo.derived_gram_bound = o.derived_gram_bound;
+  lo.lock_cluster_gap = o.lock_cluster_gap;
   lo.progress = progress;
   LobpcgResult lr;
   try {

@@ -34,6 +34,8 @@ struct MultilevelOptions {
   int start_smoothing = 10;
   /// LobpcgOptions::derived_gram_bound (0: every Gram block computed from the blocks).
   double derived_gram_bound = 10.0;
+  /// LobpcgOptions::lock_cluster_gap (0: columns soft-locked one by one).
+  double lock_cluster_gap = 1e-4;
 };
 
 struct MultilevelRun {
