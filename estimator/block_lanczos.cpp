@@ -69,46 +69,40 @@ BlockLanczosResult block_lanczos(const std::function<MatrixXd(const MatrixXd&)>&
     // half of a column's squared norm (the DGKS "twice is enough" test:
     // cancellation there leaves round-off along older vectors). The n x m by
     // m x b products are the iteration's dense work: system BLAS.
-    auto project = [&](long lo, long hi) -> bool {
-      const MatrixXd MW = mass(W);
-      const MatrixXd C = detail::at_b(V.middleCols(lo, hi - lo), MW);
-      const VectorXd before = W.cwiseProduct(MW).colwise().sum().transpose();
-      detail::gemm(false, false, -1.0, V.middleCols(lo, hi - lo), C, 1.0, W);
-      if (col0 >= 0) H.block(lo, col0, hi - lo, W.cols()) += C;
-      for (long c = 0; c < W.cols(); ++c)  // ‖w − V c‖²_M = ‖w‖²_M − ‖c‖² (V M-orthonormal)
-        if (before(c) - C.col(c).squaredNorm() < 0.5 * before(c)) return true;
-      return false;
-    };
-    // With M V kept, C = (M V)ᵀ W needs no product with M, and M W is carried
-    // through the full passes (M W − M V C); it is recomputed after the local
-    // pass, which removes the recurrence's large components by design (carried
-    // through that cancellation, M W would keep its round-off relative to the
-    // larger W), and after a full pass that cancelled (the DGKS case). One
-    // product with M a block instead of four or five.
-    auto project_kept = [&](long lo, long hi, bool carry) -> bool {
-      const MatrixXd C = detail::at_b(MV.middleCols(lo, hi - lo), W);
+    // One pass against columns [lo, hi): W ← W − V C, C = Vᵀ M W; with `test`, true
+    // when it removed more than half of a column's squared M-norm. Without M V
+    // kept, M W is formed from the W projected. With it, C = (M V)ᵀ W needs no
+    // product with M, and M W (current on entry when `test`) is carried through
+    // the pass, M W − M V C: one product with M a block instead of four or five.
+    auto project = [&](long lo, long hi, bool test) -> bool {
+      const auto Vs = V.middleCols(lo, hi - lo);
+      MatrixXd C;
+      if (keep_mv) {
+        C = detail::at_b(MV.middleCols(lo, hi - lo), W);
+      } else {
+        MW = mass(W);
+        C = detail::at_b(Vs, MW);
+      }
       VectorXd before;
-      if (carry) before = W.cwiseProduct(MW).colwise().sum().transpose();
-      detail::gemm(false, false, -1.0, V.middleCols(lo, hi - lo), C, 1.0, W);
-      if (carry) detail::gemm(false, false, -1.0, MV.middleCols(lo, hi - lo), C, 1.0, MW);
+      if (test) before = W.cwiseProduct(MW).colwise().sum().transpose();
+      detail::gemm(false, false, -1.0, Vs, C, 1.0, W);
+      if (keep_mv && test) detail::gemm(false, false, -1.0, MV.middleCols(lo, hi - lo), C, 1.0, MW);
       if (col0 >= 0) H.block(lo, col0, hi - lo, W.cols()) += C;
-      if (carry)
-        for (long c = 0; c < W.cols(); ++c)
+      if (test)
+        for (long c = 0; c < W.cols(); ++c)  // ‖w − V c‖²_M = ‖w‖²_M − ‖c‖² (V M-orthonormal)
           if (before(c) - C.col(c).squaredNorm() < 0.5 * before(c)) return true;
       return false;
     };
     if (act > 0) {
-      const long lo = std::max<long>(0, act - 2L * b);
-      if (keep_mv) {
-        project_kept(lo, act, false);
-        MW = mass(W);
-        if (project_kept(0, act, true)) {
-          MW = mass(W);
-          project_kept(0, act, true);
-        }
-      } else {
-        project(lo, act);
-        if (project(0, act)) project(0, act);
+      // A carried M W is formed afresh after the local pass, which removes the
+      // recurrence's large components by design (carried through that
+      // cancellation, it would keep its round-off relative to the larger W), and
+      // after a full pass that cancelled (the DGKS case).
+      project(std::max<long>(0, act - 2L * b), act, false);
+      if (keep_mv) MW = mass(W);
+      if (project(0, act, true)) {
+        if (keep_mv) MW = mass(W);
+        project(0, act, true);
       }
     }
     // M w is carried along (M w − M W_kept r) rather than recomputed: one product

@@ -59,7 +59,6 @@ std::vector<ModeSensitivity> OperatorModel::sensitivities(const std::vector<int>
   if (shapes.size() != modes.size()) throw std::invalid_argument("sensitivities: one shapes flag per mode expected");
   for (int i : modes)
     if (i < 0 || i >= m_lambda.size()) throw std::out_of_range("OperatorModel: no mode " + std::to_string(i + 1));
-  std::vector<ModeSensitivity> out(modes.size());
   // Only the shape derivatives cost (a factorisation each with Nelson's method, a
   // pass over the modes with modal summation); the rest is a few sparse products.
   // So the modes with shapes are dealt round-robin (neighbouring modes cost alike),
@@ -70,10 +69,8 @@ std::vector<ModeSensitivity> OperatorModel::sensitivities(const std::vector<int>
                                            : std::min<std::size_t>(std::max(1u, std::thread::hardware_concurrency()),
                                                                    kMaxSensitivityThreads);
   const std::size_t threads = std::min(wanted, std::max<std::size_t>(1, shaped));
-  if (threads <= 1) {
-    for (std::size_t k = 0; k < modes.size(); ++k) out[k] = sensitivity_with(modes[k], shapes[k], 0);
-    return out;
-  }
+  if (threads <= 1) return ModalModel::sensitivities(modes, shapes);
+  std::vector<ModeSensitivity> out(modes.size());
   std::vector<std::vector<std::size_t>> share(threads);
   for (std::size_t k = 0, next = 0; k < modes.size(); ++k) share[shapes[k] ? next++ % threads : 0].push_back(k);
   if (m_shape_derivative == ShapeDerivative::Nelson) {

@@ -209,9 +209,11 @@ Screen prepare_screen(DeckProblem& pb, const Eigen::VectorXd& r, const std::vect
   const Eigen::VectorXd d = pb.prior.cov.diagonal().array().sqrt();
   std::vector<double> e;
   std::vector<Eigen::VectorXd> w;
+  std::vector<const MeasuredMode*> tests;  // each row's test mode
   for (const auto& p : all_pairs) {
     if (p.config != 0) continue;
     const auto& t = pb.test[static_cast<std::size_t>(p.test)];
+    tests.push_back(&t);
     Screen::Row row;
     row.fem = p.fem;
     row.f = hz(sol.eigenvalues(p.fem));
@@ -229,12 +231,10 @@ Screen prepare_screen(DeckProblem& pb, const Eigen::VectorXd& r, const std::vect
   std::vector<bool> shapes;
   for (const auto& row : sc.rows) modes.push_back(row.fem), shapes.push_back(row.use_s);
   const std::vector<ModeSensitivity> sens = pb.model->sensitivities(modes, shapes);
-  std::size_t next = 0;
-  for (const auto& p : all_pairs) {
-    if (p.config != 0) continue;
-    const auto& t = pb.test[static_cast<std::size_t>(p.test)];
-    const Screen::Row& row = sc.rows[next];
-    const ModeSensitivity& s = sens[next++];
+  for (std::size_t k = 0; k < sc.rows.size(); ++k) {
+    const MeasuredMode& t = *tests[k];
+    const Screen::Row& row = sc.rows[k];
+    const ModeSensitivity& s = sens[k];
     if (row.use_f) {
       e.push_back((t.frequency_hz - row.f) / row.sigma_f);
       w.push_back((s.d_eigenvalue / (8 * M_PI * M_PI * row.f)).cwiseProduct(d) / row.sigma_f);
