@@ -10,7 +10,7 @@
 ///
 /// usage: bench_eigen N [--nd ND] [--block B] [--ncv NCV] [--tol TOL] [--sturm] [--method auto|spectra|block]
 ///                      [--dof-ordering] [--export DIR] [--export-only]
-///                      [--method multilevel [--radius R] [--psteps S] [--degree D] [--ratio R] [--guard G] [--start-smoothing K] [--derived-gram-bound B] [--lock-cluster-gap G] [--ml-tol T] [--no-deflate] [--double-coarse]] [--compare] [--system-malloc]
+///                      [--method multilevel [--radius R] [--psteps S] [--degree D] [--ratio R] [--guard G] [--start-smoothing K] [--derived-gram-bound B] [--lock-cluster-gap G] [--ml-tol T] [--no-deflate] [--no-strain] [--double-coarse]] [--compare] [--system-malloc]
 ///                      [--factor-only] [--analyze-only]
 ///   N = 12 → 10 368 DOF, 25 → 93 750 DOF, 55 → 998 250 DOF.
 ///   By default the ordering is computed on the grid-point graph (EigenOptions::
@@ -111,7 +111,7 @@ int main(int argc, char** argv) {
   EigenMethod method = EigenMethod::Auto;
   double tol = 1e-10;
   ssid::estimator::multilevel::MultilevelOptions ml;
-  bool compare = false, no_deflate = false, keep_freed = true;
+  bool compare = false, no_deflate = false, keep_freed = true, no_strain = false;
   bool sturm = false, dof_ordering = false, export_only = false, factor_only = false, analyze_only = false;
   std::string export_dir;
   for (int i = 2; i < argc; ++i) {
@@ -141,6 +141,7 @@ int main(int argc, char** argv) {
     else if (!std::strcmp(argv[i], "--lock-cluster-gap") && i + 1 < argc) ml.lock_cluster_gap = std::stod(argv[++i]);
     else if (!std::strcmp(argv[i], "--compare")) compare = true;
     else if (!std::strcmp(argv[i], "--no-deflate")) no_deflate = true;
+    else if (!std::strcmp(argv[i], "--no-strain")) no_strain = true;
     else if (!std::strcmp(argv[i], "--dof-ordering")) dof_ordering = true;
     else if (!std::strcmp(argv[i], "--export-only")) export_only = true;
     else if (!std::strcmp(argv[i], "--factor-only")) factor_only = true;
@@ -218,7 +219,10 @@ int main(int argc, char** argv) {
   o.dof_groups = groups;
   o.multilevel = ml;
   o.multilevel.deflate = !no_deflate;
-  if (method == EigenMethod::Multilevel || method == EigenMethod::Auto) o.near_null_space = rigid_body_modes(m);
+  if (method == EigenMethod::Multilevel || method == EigenMethod::Auto) {
+    o.near_null_space = rigid_body_modes(m);
+    if (!no_strain) o.strain_fields = strain_fields(m);
+  }
   if (method == EigenMethod::Multilevel) {
     const double t_start = now_s();
     o.progress = [t_start](const std::string& msg, double) {
@@ -239,6 +243,7 @@ int main(int argc, char** argv) {
       EigenOptions d = o;
       d.method = EigenMethod::Auto;
       d.near_null_space.resize(0, 0);
+      d.strain_fields.resize(0, 0);
       d.progress = nullptr;
       const EigenResult ref = EigenSolver(d).solve(m.K, m.M);
       double worst = 0.0, worst_rigid = 0.0;

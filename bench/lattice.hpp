@@ -107,6 +107,25 @@ inline Eigen::MatrixXd rigid_body_modes(const Model& m) {
   return B;
 }
 
+/// The six constant-strain fields u = E (x − x̄) of the lattice (rotations zero), the
+/// same fields translators::a_set_strain_fields builds from a deck: the multilevel
+/// method's coarse space takes them beside the rigid-body modes.
+inline Eigen::MatrixXd strain_fields(const Model& m) {
+  Eigen::MatrixXd F = Eigen::MatrixXd::Zero(6 * m.nodes, 6);
+  const int n = m.n;
+  const double c = 0.5 * (n - 1);
+  for (long a = 0; a < m.nodes; ++a) {
+    const Eigen::Vector3d x(a % n - c, (a / n) % n - c, a / n / n - c);
+    int col = 0;
+    for (int p = 0; p < 3; ++p)
+      for (int q = p; q < 3; ++q, ++col) {
+        F(6 * a + p, col) += 0.5 * x(q);
+        F(6 * a + q, col) += 0.5 * x(p);
+      }
+  }
+  return F;
+}
+
 inline Model lattice(int n, const Section& s) {
   Model m;
   m.n = n;

@@ -104,8 +104,12 @@ estimator::EigenOptions eigen_options(const translators::FeModel& model, std::op
                                       std::string& source, int default_nd) {
   estimator::EigenOptions o = requested_modes(model, nmodes, n, source, default_nd);
   // The rigid-body modes let the solver fall back to the multilevel method when the
-  // factor of K − σM would not fit in memory (EigenMethod::Auto), or use it on request.
-  if (n > estimator::kDenseEigenLimit) o.near_null_space = translators::a_set_rigid_body_modes(model);
+  // factor of K − σM would not fit in memory (EigenMethod::Auto), or use it on
+  // request; the strain fields make its coarse space linear in each aggregate.
+  if (n > estimator::kDenseEigenLimit) {
+    o.near_null_space = translators::a_set_rigid_body_modes(model);
+    o.strain_fields = translators::a_set_strain_fields(model);
+  }
   return o;
 }
 

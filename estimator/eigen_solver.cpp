@@ -212,7 +212,7 @@ void solve_multilevel(const SparseMatrix& K, const SparseMatrix& M, double sigma
     res.warnings.push_back("only " + std::to_string(nd) + " of the " + std::to_string(o.nd) +
                            " requested modes are computed (DOFs with mass: " + std::to_string(n_massive) + ")");
   multilevel::MultilevelRun run = multilevel::multilevel_lowest(
-      K, M, sigma, nd, o.dof_groups, o.near_null_space, o.multilevel, o.progress);
+      K, M, sigma, nd, o.dof_groups, o.near_null_space, o.multilevel, o.progress, o.strain_fields);
   res.nev = nd;
   res.ncv = 0;
   res.lanczos_runs = 1;
@@ -345,6 +345,9 @@ EigenResult EigenSolver::solve(const SparseMatrix& K, const SparseMatrix& M) {
 
   const bool multilevel_possible =
       o.near_null_space.size() > 0 && !o.dof_groups.empty() && !has_high && !has_low && o.nd > 0;
+  if (o.strain_fields.size() > 0 && o.strain_fields.rows() != n)
+    throw std::invalid_argument("EigenSolver: strain_fields has " + std::to_string(o.strain_fields.rows()) +
+                                " rows for " + std::to_string(n) + " DOFs");
   if (o.method == EigenMethod::Multilevel) {
     if (!multilevel_possible)
       throw std::invalid_argument(

@@ -113,21 +113,32 @@ std::vector<long> aggregate(const std::vector<long>& start, const std::vector<lo
 
 }  // namespace
 
-AggregationAmg::AggregationAmg(const SparseMatrix& A, const std::vector<long>& groups, const Eigen::MatrixXd& B,
-                               const AmgOptions& options)
+AggregationAmg::AggregationAmg(const SparseMatrix& A, const std::vector<long>& groups, const Eigen::MatrixXd& B_in,
+                               const AmgOptions& options, const Eigen::MatrixXd& F)
     : m_A(A), m_options(options) {
   const long n = A.rows();
   if (A.cols() != n || !A.isCompressed()) throw std::invalid_argument("AggregationAmg: A must be square and compressed");
-  if (static_cast<long>(groups.size()) != n || B.rows() != n || B.cols() == 0)
+  if (static_cast<long>(groups.size()) != n || B_in.rows() != n || B_in.cols() == 0)
     throw std::invalid_argument("AggregationAmg: " + std::to_string(groups.size()) + " groups and a " +
-                                std::to_string(B.rows()) + " x " + std::to_string(B.cols()) +
+                                std::to_string(B_in.rows()) + " x " + std::to_string(B_in.cols()) +
                                 " near-null space for " + std::to_string(n) + " DOFs");
-  if (options.aggregate_radius < 0 || options.prolongator_steps < 0 || options.smoother_degree < 1 ||
+  if (F.size() > 0 && F.rows() != n)
+    throw std::invalid_argument("AggregationAmg: the strain fields have " + std::to_string(F.rows()) + " rows for " +
+                                std::to_string(n) + " DOFs");
+  if (options.aggregate_radius < 0 || options.prolongator_steps < -1 || options.smoother_degree < 1 ||
       !(options.smoother_ratio > 1.0))
     throw std::invalid_argument(
         "AggregationAmg: the radius must be >= 0 (0: the default), the smoother degree >= 1, the prolongator steps "
-        ">= 0 and the ratio > 1");
+        ">= -1 (-1: automatic) and the ratio > 1");
   if (m_options.aggregate_radius == 0) m_options.aggregate_radius = AmgOptions{}.aggregate_radius;
+  if (m_options.prolongator_steps < 0) m_options.prolongator_steps = F.size() > 0 ? 1 : 2;
+  // The coarse space's fields: the near-null space, then the strain fields.
+  Eigen::MatrixXd B_fields;
+  if (F.size() > 0) {
+    B_fields.resize(n, B_in.cols() + F.cols());
+    B_fields << B_in, F;
+  }
+  const Eigen::MatrixXd& B = F.size() > 0 ? B_fields : B_in;
   using Clock = std::chrono::steady_clock;
   auto since = [](Clock::time_point t) { return std::chrono::duration<double>(Clock::now() - t).count(); };
   auto t = Clock::now();
@@ -238,7 +249,7 @@ AggregationAmg::AggregationAmg(const SparseMatrix& A, const std::vector<long>& g
   m_times.aggregation = since(t);
   t = Clock::now();
 
-  if (options.prolongator_steps > 0) {
+  if (m_options.prolongator_steps > 0) {
     // D⁻¹ as a sparse block-diagonal matrix, then P ← P − ω (D⁻¹A) P, s times.
     std::vector<Eigen::Triplet<double>> td;
     td.reserve(m_dinv.size());
@@ -256,7 +267,7 @@ AggregationAmg::AggregationAmg(const SparseMatrix& A, const std::vector<long>& g
     // 1M lattice's second step against about 1 s for (D⁻¹A) P.
     const SparseMatrix DinvA = parallel_product(Dinv, A);
     m_P = P0;
-    for (int step = 0; step < options.prolongator_steps; ++step) m_P = m_P - omega * parallel_product(DinvA, m_P);
+    for (int step = 0; step < m_options.prolongator_steps; ++step) m_P = m_P - omega * parallel_product(DinvA, m_P);
   } else {
     m_P = P0;
   }

@@ -11,8 +11,9 @@
 ///   neighbours are all free takes every free grid point within
 ///   `aggregate_radius` graph steps; leftovers join a neighbouring aggregate;
 /// - the tentative prolongator P₀ restricts the near-null space B (the rigid-body
-///   modes, n x 6) to each aggregate and orthonormalises it (QR), so the coarse
-///   space reproduces rigid motions exactly;
+///   modes, n x 6), and the further low-energy fields F when given (the
+///   constant-strain fields), to each aggregate and orthonormalises them (QR), so
+///   the coarse space reproduces rigid motions (and uniform strains) exactly;
 /// - the prolongator is smoothed, P = (I − ω D⁻¹A) P₀, ω = 4/(3 ρ(D⁻¹A)), D the
 ///   grid-point blocks of A: coarse functions then bend smoothly instead of
 ///   jumping at aggregate borders (the energy of P's columns drops by orders);
@@ -50,12 +51,17 @@ struct AmgOptions {
   int smoother_degree = 4;       ///< Chebyshev degree before and after the coarse correction
   double smoother_ratio = 30.0;  ///< the Chebyshev interval is [ρ/ratio, ρ] of D⁻¹A
   /// Jacobi smoothing steps of the prolongator, P = (I − ω D⁻¹A)^s P₀ (0: the
-  /// tentative, piecewise-rigid P₀). Two rather than the classical one: a beam
-  /// model's piecewise-rigid aggregates bend too stiffly, and the second step
-  /// lowers the coarse model's first frequency error from 3.6x to 1.7x in λ and the
-  /// eigen-solver's iterations by a third (94k lattice: 34 -> 23 with radius 1,
-  /// 43 -> 27 with radius 2) for a coarse factor about twice as dense.
-  int prolongator_steps = 2;
+  /// tentative P₀; −1: automatic, 1 with strain fields F, 2 without).
+  /// Without F, two rather than the classical one: a beam model's piecewise-rigid
+  /// aggregates bend too stiffly, and the second step lowers the coarse model's
+  /// first frequency error from 3.6x to 1.7x in λ and the eigen-solver's iterations
+  /// by a third (94k lattice: 34 -> 23 with radius 1, 43 -> 27 with radius 2) for a
+  /// coarse factor about twice as dense. With F the coarse space bends by itself
+  /// (94k: λ₁ of the coarse model 1.07x the model's with one step, 1.03x with two),
+  /// and one step keeps the coarse matrix's stencil, and so its factor, small: 18
+  /// iterations with one step, 14 with two for a coarse factor 4-5x as costly
+  /// (docs/performance.md).
+  int prolongator_steps = -1;
   /// The cycle (smoothing, restriction, prolongation) in single precision; the
   /// coarse factor and solve too unless coarse_single_precision is off. Why: a preconditioner needs a few digits, and its
   /// sparse block products are bound by memory traffic, which floats halve (the 94k
@@ -84,12 +90,15 @@ struct AmgOptions {
 class AggregationAmg {
  public:
   /// A: symmetric positive definite, both triangles stored, compressed. groups:
-  /// grid point of each DOF (any ids ≥ 0). B: near-null space, A.rows() x k.
+  /// grid point of each DOF (any ids ≥ 0). B: near-null space, A.rows() x k. F:
+  /// further low-energy fields for the coarse space (the constant-strain fields,
+  /// translators::a_set_strain_fields), A.rows() x m, or empty; in an aggregate
+  /// where they are (nearly) dependent on B, the QR drops what they repeat.
   /// Throws std::invalid_argument on inconsistent sizes, NotPositiveDefiniteBlock
   /// for a grid point whose block of A is singular, and std::runtime_error when
   /// the coarse matrix cannot be factorised. A must outlive this object.
   AggregationAmg(const SparseMatrix& A, const std::vector<long>& groups, const Eigen::MatrixXd& B,
-                 const AmgOptions& options = {});
+                 const AmgOptions& options = {}, const Eigen::MatrixXd& F = Eigen::MatrixXd());
   // The cycle's levels point into this object.
   AggregationAmg(const AggregationAmg&) = delete;
   AggregationAmg& operator=(const AggregationAmg&) = delete;

@@ -49,11 +49,12 @@ void smooth_start(const SparseMatrix& A, int steps, RowBlock& X) {
 
 MultilevelRun multilevel_lowest(const SparseMatrix& K_in, const SparseMatrix& M_in, double sigma, int nev,
                                 const std::vector<long>& groups_in, const Eigen::MatrixXd& B_in,
-                                const MultilevelOptions& o, const Progress& progress) {
+                                const MultilevelOptions& o, const Progress& progress, const Eigen::MatrixXd& F_in) {
   MultilevelRun run;
   const long n = K_in.rows();
-  if (static_cast<long>(groups_in.size()) != n || B_in.rows() != n)
-    throw std::invalid_argument("multilevel eigen-solver: groups and near-null space must have one row per DOF");
+  if (static_cast<long>(groups_in.size()) != n || B_in.rows() != n || (F_in.size() > 0 && F_in.rows() != n))
+    throw std::invalid_argument(
+        "multilevel eigen-solver: groups, near-null space and strain fields must have one row per DOF");
   // DOFs with mass first: every M X is then zero below row `mass_rows`, and the
   // Gram matrices with M skip those rows (half the DOFs of a beam model are
   // massless rotations). The results are permuted back at the end.
@@ -73,10 +74,11 @@ MultilevelRun multilevel_lowest(const SparseMatrix& K_in, const SparseMatrix& M_
   SparseMatrix K = perm * K_in * perm.transpose();  // released before LOBPCG, which needs only A and M
   const SparseMatrix M = perm * M_in * perm.transpose();
   std::vector<long> groups(static_cast<size_t>(n));
-  Eigen::MatrixXd B(n, B_in.cols());
+  Eigen::MatrixXd B(n, B_in.cols()), F(F_in.size() > 0 ? n : 0, F_in.cols());
   for (long i = 0; i < n; ++i) {
     groups[static_cast<size_t>(perm.indices()(i))] = groups_in[static_cast<size_t>(i)];
     B.row(perm.indices()(i)) = B_in.row(i);
+    if (F.size() > 0) F.row(perm.indices()(i)) = F_in.row(i);
   }
 
   if (nev < 1) throw std::invalid_argument("multilevel eigen-solver: ND must be at least 1");
@@ -88,7 +90,7 @@ MultilevelRun multilevel_lowest(const SparseMatrix& K_in, const SparseMatrix& M_
   A.makeCompressed();
   std::unique_ptr<AggregationAmg> amg_ptr;
   try {
-    amg_ptr = std::make_unique<AggregationAmg>(A, groups, B, o.amg);
+    amg_ptr = std::make_unique<AggregationAmg>(A, groups, B, o.amg, F);
   } catch (const NotPositiveDefiniteBlock& e) {
     run.failure = MultilevelRun::Failure::NotPositiveDefinite;
     for (long i = 0; i < n; ++i)

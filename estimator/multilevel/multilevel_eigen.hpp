@@ -57,9 +57,12 @@ struct MultilevelRun {
 };
 
 /// sigma < the lowest eigenvalue (K − σM positive definite). groups: grid point of
-/// each DOF; B: near-null space (rigid-body modes), n x k.
+/// each DOF; B: near-null space (rigid-body modes), n x k, also searched for exact
+/// zero-energy modes (MultilevelOptions::deflate); F: further fields for the coarse
+/// space only (the constant-strain fields, AggregationAmg), n x m, or empty.
 MultilevelRun multilevel_lowest(const Eigen::SparseMatrix<double>& K, const Eigen::SparseMatrix<double>& M,
                                 double sigma, int nev, const std::vector<long>& groups, const Eigen::MatrixXd& B,
-                                const MultilevelOptions& options, const Progress& progress);
+                                const MultilevelOptions& options, const Progress& progress,
+                                const Eigen::MatrixXd& F = Eigen::MatrixXd());
 
 }  // namespace ssid::estimator::multilevel

@@ -21,4 +21,26 @@ Eigen::MatrixXd a_set_rigid_body_modes(const FeModel& model) {
   return B;
 }
 
+Eigen::MatrixXd a_set_strain_fields(const FeModel& model) {
+  const auto& a_to_g = model.reduction().a_to_g;
+  const ModelGeometry& geo = model.geometry();
+  // Centred on the grids' mean position: the fields' constant part (a translation,
+  // already in the rigid-body modes) stays small against their variation.
+  Eigen::Vector3d centre = Eigen::Vector3d::Zero();
+  for (const GridPoint& p : geo.grids()) centre += p.x;
+  if (!geo.grids().empty()) centre /= static_cast<double>(geo.grids().size());
+  Eigen::MatrixXd F = Eigen::MatrixXd::Zero(static_cast<Eigen::Index>(a_to_g.size()), 6);
+  for (std::size_t i = 0; i < a_to_g.size(); ++i) {
+    const Dof& d = geo.gset().at(a_to_g[i]);
+    if (d.component < 1 || d.component > 3 || !geo.has_grid(d.point)) continue;  // rotations, scalar points: 0
+    const GridPoint& p = geo.grid(d.point, "strain fields");
+    const Eigen::Vector3d x = p.x - centre, e = p.frame.col(d.component - 1);
+    // e · (E x) for E = sym(e_a e_bᵀ): (e_a x_b + e_b x_a) / 2.
+    int col = 0;
+    for (int a = 0; a < 3; ++a)
+      for (int b = a; b < 3; ++b, ++col) F(static_cast<Eigen::Index>(i), col) = 0.5 * (e(a) * x(b) + e(b) * x(a));
+  }
+  return F;
+}
+
 }  // namespace ssid::translators

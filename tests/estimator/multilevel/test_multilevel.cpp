@@ -61,7 +61,8 @@ std::string frame_deck(int nx, int ny, int nz) {
 struct Frame {
   translators::FeOperators op;
   std::vector<long> groups;
-  Eigen::MatrixXd rigid;  // a-set rigid-body modes
+  Eigen::MatrixXd rigid;   // a-set rigid-body modes
+  Eigen::MatrixXd strain;  // a-set constant-strain fields
 };
 
 Frame frame(int nx, int ny, int nz) {
@@ -76,6 +77,7 @@ Frame frame(int nx, int ny, int nz) {
   REQUIRE(static_cast<long>(a_to_g.size()) == f.op.K.rows());
   for (const std::size_t g : a_to_g) f.groups.push_back(static_cast<long>(model.geometry().gset().at(g).point));
   f.rigid = translators::a_set_rigid_body_modes(model);
+  f.strain = translators::a_set_strain_fields(model);
   return f;
 }
 
@@ -380,6 +382,49 @@ TEST_CASE("aggregation preconditioner: symmetric, positive definite, and conjuga
     CHECK(kept.prolongator().nonZeros() == amg_double.prolongator().nonZeros());
   }
 
+  // With the strain fields: up to twelve coarse DOFs an aggregate; the tentative
+  // prolongator reproduces the fields exactly (they lie in its span); and, the
+  // prolongator smoothed alike, the richer coarse space can only lower the coarse
+  // model's eigenvalues (Courant–Fischer: span P₀ grows, and so does S P₀).
+  {
+    multilevel::AmgOptions tentative;
+    tentative.prolongator_steps = 0;
+    const multilevel::AggregationAmg p0(A, f.groups, f.rigid, tentative, f.strain);
+    CHECK(p0.coarse_size() > 6 * p0.aggregates());
+    CHECK(p0.coarse_size() <= 12 * p0.aggregates());
+    const Eigen::MatrixXd P0(p0.prolongator());
+    CHECK((P0.transpose() * P0 - Eigen::MatrixXd::Identity(P0.cols(), P0.cols())).norm() < 1e-12);
+    for (const Eigen::MatrixXd* fields : {&f.strain, &f.rigid})
+      CHECK((*fields - P0 * (P0.transpose() * *fields)).norm() <= 1e-12 * fields->norm());
+    CHECK_THROWS_AS(multilevel::AggregationAmg(A, f.groups, f.rigid, tentative, f.strain.topRows(10)),
+                    std::invalid_argument);
+
+    auto coarse_lambda = [&](const multilevel::AggregationAmg& amg_) {
+      const Eigen::MatrixXd P(amg_.prolongator());
+      const Eigen::MatrixXd Kc = P.transpose() * (f.op.K * P), Mc = P.transpose() * (f.op.M * P);
+      return Eigen::GeneralizedSelfAdjointEigenSolver<Eigen::MatrixXd>(Kc, Mc).eigenvalues();
+    };
+    multilevel::AmgOptions one_step;
+    one_step.prolongator_steps = 1;
+    const multilevel::AggregationAmg rigid_only(A, f.groups, f.rigid, one_step), with_fields(A, f.groups, f.rigid, one_step, f.strain);
+    const Eigen::VectorXd lr = coarse_lambda(rigid_only), lf = coarse_lambda(with_fields);
+    const double top = lr(29);
+    for (int j = 6; j < 30; ++j) CHECK(lf(j) <= lr(j) + 1e-9 * top);
+    // And by much, in the lowest elastic modes: the coarse space bends.
+    EigenOptions lowest;
+    lowest.nd = 7;
+    const EigenResult direct = solve_modes(f.op.K, f.op.M, lowest);
+    REQUIRE(direct.ok());
+    const Eigen::VectorXd& fine = direct.eigenvalues;
+    INFO("first elastic eigenvalue: model " << fine(6) << ", coarse model " << lr(6) << " (rigid-body modes), "
+                                            << lf(6) << " (with the strain fields)");
+    CHECK(lf(6) >= fine(6) * (1.0 - 1e-9));
+    CHECK(lf(6) - fine(6) < 0.5 * (lr(6) - fine(6)));
+    // The automatic smoothing: one step with the fields, two without.
+    const multilevel::AggregationAmg auto_fields(A, f.groups, f.rigid, {}, f.strain);
+    CHECK(auto_fields.prolongator().nonZeros() == with_fields.prolongator().nonZeros());
+  }
+
   // Preconditioned conjugate gradients on A x = b, against plain CG.
   auto cg = [&](bool precondition) {
     const Eigen::VectorXd b = Eigen::VectorXd::Random(n);
@@ -561,21 +606,28 @@ TEST_CASE("multilevel eigen-solver agrees with the direct solver on an irregular
   // With the rigid-body modes taken out first (the default) and kept in the
   // iteration; with the start smoothed (the default) and as interpolated.
   // And with every Gram block of LOBPCG computed from the blocks (none derived).
+  // And with the strain fields in the coarse space (as the CLI sets it) or not.
   struct Variant {
     bool deflate;
     int smoothing;
     double derived_gram_bound;
+    bool strain;
   };
-  for (const auto& [deflate, smoothing, bound] :
-       {Variant{true, 10, 10.0}, Variant{false, 10, 10.0}, Variant{true, 0, 10.0}, Variant{true, 10, 0.0}}) {
+  int iterations_with_fields = 0, iterations_rigid_only = 0;
+  for (const auto& [deflate, smoothing, bound, strain] :
+       {Variant{true, 10, 10.0, true}, Variant{true, 10, 10.0, false}, Variant{false, 10, 10.0, true},
+        Variant{true, 0, 10.0, true}, Variant{true, 10, 0.0, true}}) {
     o.multilevel.deflate = deflate;
     o.multilevel.start_smoothing = smoothing;
     o.multilevel.derived_gram_bound = bound;
+    o.strain_fields = strain ? f.strain : Eigen::MatrixXd();
     const EigenResult ml = solve_modes(f.op.K, f.op.M, o);
     INFO((deflate ? "deflated: " : "not deflated: ") << "start smoothing " << smoothing << ", derived Gram bound "
-                                                     << bound << ": " << ml.message
-                                                   << "; iterations " << ml.iterations << ", coarse " << ml.coarse_size);
+                                                     << bound << (strain ? ", strain fields" : ", rigid only") << ": "
+                                                     << ml.message << "; iterations " << ml.iterations << ", coarse "
+                                                     << ml.coarse_size);
     REQUIRE(ml.ok());
+    if (deflate && smoothing == 10 && bound == 10.0) (strain ? iterations_with_fields : iterations_rigid_only) = ml.iterations;
     CHECK(ml.method == "Multilevel");
     CHECK(ml.deflated == (deflate ? 6 : 0));
     REQUIRE(ml.size() == 24);
@@ -597,6 +649,9 @@ TEST_CASE("multilevel eigen-solver agrees with the direct solver on an irregular
     CHECK(ml.orthogonality < 1e-10);
     CHECK(ml.backward_errors.maxCoeff() < 1e-8);
   }
+  INFO("LOBPCG iterations: " << iterations_with_fields << " with the strain fields, " << iterations_rigid_only
+                             << " without");
+  CHECK(iterations_with_fields < iterations_rigid_only);
   // Fewer modes than rigid-body ones: all from the near-null space, no iteration.
   o.multilevel.derived_gram_bound = 10.0;
   o.multilevel.deflate = true;
@@ -649,6 +704,10 @@ TEST_CASE("multilevel method: clear refusals", "[multilevel]") {
   o.f_low = std::numeric_limits<double>::quiet_NaN();
   o.near_null_space = f.rigid.topRows(10);
   CHECK_THROWS_WITH(solve_modes(f.op.K, f.op.M, o), Catch::Contains("near_null_space has 10 rows"));
+  o.near_null_space = f.rigid;
+  o.strain_fields = f.strain.topRows(12);
+  CHECK_THROWS_WITH(solve_modes(f.op.K, f.op.M, o), Catch::Contains("strain_fields has 12 rows"));
+  o.strain_fields.resize(0, 0);
   // A model too small for its coarse space: a status, not an exception.
   const Frame tiny = frame(2, 2, 2);
   o.dof_groups = tiny.groups;
