@@ -128,9 +128,9 @@ AggregationAmg::AggregationAmg(const SparseMatrix& A, const std::vector<long>& g
   if (options.aggregate_radius < 0 || options.prolongator_steps < -1 || options.smoother_degree < 1 ||
       !(options.smoother_ratio > 1.0))
     throw std::invalid_argument(
-        "AggregationAmg: the radius must be >= 0 (0: the default), the smoother degree >= 1, the prolongator steps "
+        "AggregationAmg: the radius must be >= 0 (0: automatic), the smoother degree >= 1, the prolongator steps "
         ">= -1 (-1: automatic) and the ratio > 1");
-  if (m_options.aggregate_radius == 0) m_options.aggregate_radius = AmgOptions{}.aggregate_radius;
+  if (m_options.aggregate_radius == 0) m_options.aggregate_radius = F.size() > 0 && n > AmgOptions::kLargeModelDofs ? 3 : 2;
   if (m_options.prolongator_steps < 0) m_options.prolongator_steps = F.size() > 0 ? 1 : 2;
   // The coarse space's fields: the near-null space, then the strain fields.
   Eigen::MatrixXd B_fields;

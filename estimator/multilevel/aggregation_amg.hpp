@@ -40,14 +40,20 @@ struct NotPositiveDefiniteBlock : std::runtime_error {
 };
 
 struct AmgOptions {
-  /// Graph distance from an aggregate's root to its members. 2 at every size with
-  /// the two-step prolongator (the 3D lattice, LOBPCG iterations and wall time: 10k
-  /// 25 its 1.6 s against 21 its 2.4 s with radius 1; 94k 26 its 14-16 s against
-  /// 23 its 22 s; 1M 24 its 230 s with the double-precision cycle, where radius 1
-  /// makes a coarse model of 121k DOFs
-  /// whose factor no longer pays and radius 3 needs 40 iterations;
-  /// docs/performance.md). 0 means the default, 2.
-  int aggregate_radius = 2;
+  /// Graph distance from an aggregate's root to its members; 0: automatic.
+  /// Automatic with strain fields F: 2 up to kLargeModelDofs rows of A, 3 beyond.
+  /// The coarse model holds about a seventh of the DOFs with radius 2 and a
+  /// fifteenth with radius 3, and its factor grows faster than the model: the lattice
+  /// (LOBPCG iterations and wall time, docs/performance.md) at 94k DOFs 17 its 4.8 s
+  /// against 28 its 6.1 s, at 162k 18 its 10.5 s against 27 its 9.4 s, at 384k 17 its
+  /// 25.8 s against 24 its 23.8 s, at 1M 16 its 90-94 s against 23 its 67 s.
+  /// Automatic without F: 2 at every size (the two-step prolongator: 10k 25 its 1.6 s
+  /// against 21 its 2.4 s with radius 1; 94k 26 its 14-16 s against 23 its 22 s; 1M
+  /// 24 its 230 s, where radius 1 makes a coarse model of 121k DOFs whose factor no
+  /// longer pays and radius 3 needs 40 iterations).
+  int aggregate_radius = 0;
+  /// The model size from which the automatic radius with strain fields is 3.
+  static constexpr long kLargeModelDofs = 120000;
   int smoother_degree = 4;       ///< Chebyshev degree before and after the coarse correction
   double smoother_ratio = 30.0;  ///< the Chebyshev interval is [ρ/ratio, ρ] of D⁻¹A
   /// Jacobi smoothing steps of the prolongator, P = (I − ω D⁻¹A)^s P₀ (0: the
@@ -125,6 +131,8 @@ class AggregationAmg {
   void prolong(const RowBlock& Y, RowBlock& X) const;
   long coarse_size() const { return m_coarse_blocks.empty() ? 0 : m_coarse_blocks.back(); }  ///< also once P is released
   long aggregates() const { return m_aggregates; }
+  /// The options as applied: the automatic radius and prolongator steps resolved.
+  const AmgOptions& options() const { return m_options; }
   double spectral_radius() const { return m_rho; }  ///< estimate of ρ(D⁻¹A) used by the smoothers
   /// Whether the cycle runs in single precision: AmgOptions::single_precision,
   /// unless A or D⁻¹ has entries beyond 1e30 (single precision would overflow).
