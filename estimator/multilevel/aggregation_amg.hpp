@@ -63,7 +63,8 @@ struct AmgOptions {
   /// first frequency error from 3.6x to 1.7x in λ and the eigen-solver's iterations
   /// by a third (94k lattice: 34 -> 23 with radius 1, 43 -> 27 with radius 2) for a
   /// coarse factor about twice as dense. With F the coarse space bends by itself
-  /// (94k: λ₁ of the coarse model 1.07x the model's with one step, 1.03x with two),
+  /// (94k, radius 2: the coarse model's first elastic λ 1.15x the model's with one
+  /// step, 1.035x with two; 2.8x with two steps without F),
   /// and one step keeps the coarse matrix's stencil, and so its factor, small: 18
   /// iterations with one step, 14 with two for a coarse factor 4-5x as costly
   /// (docs/performance.md).

@@ -26,9 +26,10 @@ Eigen::MatrixXd a_set_rigid_body_modes(const FeModel& model);
 ///
 /// Why: with the rigid-body modes, they make the coarse space of the multilevel
 /// solver linear in each aggregate rather than piecewise rigid. A piecewise-rigid
-/// space bends too stiffly: the benchmark frame lattice's coarse model put its first
-/// elastic frequency 1.7x too high (λ 2.8x); with these fields 1.02x, and the
-/// LOBPCG iterations went from 25 to 18 at 94k DOFs (docs/performance.md).
+/// space bends too stiffly: the 94k-DOF benchmark lattice's coarse model put its
+/// first elastic eigenvalue 2.8x too high (frequency 1.7x); with these fields 1.15x
+/// (frequency 1.07x, and with a prolongator smoothed once instead of twice), and
+/// LOBPCG took 17 iterations instead of 25 (docs/performance.md).
 Eigen::MatrixXd a_set_strain_fields(const FeModel& model);
 
 }  // namespace ssid::translators
