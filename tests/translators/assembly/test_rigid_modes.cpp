@@ -4,6 +4,7 @@
 // taken in basic axes (the frames ignored) must not.
 #include <Eigen/Dense>
 #include <array>
+#include <memory>
 #include <string>
 #include <utility>
 #include <catch2/catch.hpp>
@@ -15,6 +16,17 @@
 #include "translators/constraints.hpp"
 
 using namespace ssid;
+
+namespace {
+/// The model of a deck given as text (the deck is read, resolved and checked).
+std::unique_ptr<translators::FeModel> model_of(const std::string& text, const std::string& name) {
+  const formats::Deck deck = formats::read_deck_text(text, name);
+  formats::BulkModel bulk = formats::parse_bulk(deck);
+  formats::resolve(deck, bulk);
+  REQUIRE(bulk.problems.empty());
+  return std::make_unique<translators::FeModel>(deck, std::move(bulk));
+}
+}  // namespace
 
 TEST_CASE("a-set rigid-body modes: K annihilates them in displacement frames, with an RBE2", "[assembly]") {
   // Free frame: bars 1-2-3 and 4-5, joined by an RBE2 at 3/4; grid 2 displaced in a
@@ -28,11 +40,8 @@ TEST_CASE("a-set rigid-body modes: K annihilates them in displacement frames, wi
       "CBAR,1,1,1,2,0.,0.,1.\nCBAR,2,1,2,3,0.,0.,1.\nCBAR,4,1,4,5,0.,0.,1.\n"
       "PBAR,1,2,1.0E-3,2.0E-7,8.0E-7,1.0E-7\nMAT1,2,7.0E10,,0.3,2700.\nCONM2,20,5,,3.0\n"
       "RBE2,30,3,123456,4\nENDDATA\n";
-  const formats::Deck deck = formats::read_deck_text(text, "free.bdf");
-  formats::BulkModel bulk = formats::parse_bulk(deck);
-  formats::resolve(deck, bulk);
-  REQUIRE(bulk.problems.empty());
-  const translators::FeModel model(deck, std::move(bulk));
+  const auto model_ptr = model_of(text, "free.bdf");
+  const translators::FeModel& model = *model_ptr;
   const translators::FeOperators op = model.operators(model.initial_parameters(), false);
   const Eigen::MatrixXd K(op.K);
   const Eigen::MatrixXd B = translators::a_set_rigid_body_modes(model);
@@ -85,11 +94,8 @@ std::string rod_lattice() {
 }  // namespace
 
 TEST_CASE("a-set strain fields: affine in basic axes, given in displacement frames", "[assembly]") {
-  const formats::Deck deck = formats::read_deck_text(rod_lattice(), "rods.bdf");
-  formats::BulkModel bulk = formats::parse_bulk(deck);
-  formats::resolve(deck, bulk);
-  REQUIRE(bulk.problems.empty());
-  const translators::FeModel model(deck, std::move(bulk));
+  const auto model_ptr = model_of(rod_lattice(), "rods.bdf");
+  const translators::FeModel& model = *model_ptr;
   const translators::FeOperators op = model.operators(model.initial_parameters(), false);
   const Eigen::MatrixXd K(op.K);
   const Eigen::MatrixXd F = translators::a_set_strain_fields(model);
