@@ -356,17 +356,22 @@ EigenResult EigenSolver::solve(const SparseMatrix& K, const SparseMatrix& M) {
 
   const bool multilevel_possible =
       o.near_null_space.size() > 0 && !o.dof_groups.empty() && !has_high && !has_low && o.nd > 0;
-  if (o.strain_fields.size() > 0 && o.strain_fields.rows() != n)
-    throw std::invalid_argument("EigenSolver: strain_fields has " + std::to_string(o.strain_fields.rows()) +
-                                " rows for " + std::to_string(n) + " DOFs");
+  // The multilevel method's fields, when given, checked whatever the method (Auto
+  // may fall back to it): one row per DOF, finite values.
+  for (const auto& [field, name] : {std::pair{&o.near_null_space, "near_null_space"},
+                                    std::pair{&o.strain_fields, "strain_fields"}}) {
+    if (field->size() == 0) continue;
+    if (field->rows() != n)
+      throw std::invalid_argument("EigenSolver: " + std::string(name) + " has " + std::to_string(field->rows()) +
+                                  " rows for " + std::to_string(n) + " DOFs");
+    if (!field->allFinite())
+      throw std::invalid_argument("EigenSolver: " + std::string(name) + " has values that are not finite");
+  }
   if (o.method == EigenMethod::Multilevel) {
     if (!multilevel_possible)
       throw std::invalid_argument(
           "EigenSolver: the multilevel method needs dof_groups, near_null_space (the rigid-body modes) and ND, "
           "without a frequency band (V1/V2, F1/F2)");
-    if (o.near_null_space.rows() != n)
-      throw std::invalid_argument("EigenSolver: near_null_space has " + std::to_string(o.near_null_space.rows()) +
-                                  " rows for " + std::to_string(n) + " DOFs");
     solve_multilevel(K, M, sigma, o, mass, n_massive, t0, res);
     return res;
   }
@@ -385,8 +390,7 @@ EigenResult EigenSolver::solve(const SparseMatrix& K, const SparseMatrix& M) {
     res.factor_flops = m_factor.factor_flops();
     res.factor_bytes = m_factor.factor_bytes();
     res.ordering = m_factor.ordering();
-    if (fs.code == FactorStatus::Code::TooLarge && o.method == EigenMethod::Auto && multilevel_possible &&
-        o.near_null_space.rows() == n) {
+    if (fs.code == FactorStatus::Code::TooLarge && o.method == EigenMethod::Auto && multilevel_possible) {
       res.warnings.push_back("the factor of K - sigma M would take " + std::to_string(res.factor_bytes / 1073741824.0) +
                              " GiB (limit " + std::to_string(m_factor.memory_limit() / 1073741824.0) +
                              " GiB): solved by the multilevel method instead");

@@ -114,7 +114,7 @@ struct EigenOptions {
   /// The constant-strain displacement fields (n x 6, translators::a_set_strain_fields),
   /// added to EigenMethod::Multilevel's coarse space; empty: rigid-body modes only.
   /// Why: a coarse space linear in each aggregate rather than piecewise rigid (94k
-  /// lattice: 18 LOBPCG iterations against 25; docs/performance.md).
+  /// lattice: 17-18 LOBPCG iterations against 25; docs/performance.md).
   Eigen::MatrixXd strain_fields;
   multilevel::MultilevelOptions multilevel;  ///< EigenMethod::Multilevel's settings
   /// K − σM with a reciprocal condition estimate below this is reported near-singular.

@@ -113,6 +113,13 @@ std::vector<long> aggregate(const std::vector<long>& start, const std::vector<lo
 
 }  // namespace
 
+AmgOptions AggregationAmg::resolved(const AmgOptions& options, long grid_points, bool strain_fields) {
+  AmgOptions o = options;
+  if (o.aggregate_radius == 0) o.aggregate_radius = strain_fields && grid_points > AmgOptions::kLargeModelGrids ? 3 : 2;
+  if (o.prolongator_steps < 0) o.prolongator_steps = strain_fields ? 1 : 2;
+  return o;
+}
+
 AggregationAmg::AggregationAmg(const SparseMatrix& A, const std::vector<long>& groups, const Eigen::MatrixXd& B_in,
                                const AmgOptions& options, const Eigen::MatrixXd& F)
     : m_A(A), m_options(options) {
@@ -130,20 +137,14 @@ AggregationAmg::AggregationAmg(const SparseMatrix& A, const std::vector<long>& g
     throw std::invalid_argument(
         "AggregationAmg: the radius must be >= 0 (0: automatic), the smoother degree >= 1, the prolongator steps "
         ">= -1 (-1: automatic) and the ratio > 1");
-  if (m_options.aggregate_radius == 0) m_options.aggregate_radius = F.size() > 0 && n > AmgOptions::kLargeModelDofs ? 3 : 2;
-  if (m_options.prolongator_steps < 0) m_options.prolongator_steps = F.size() > 0 ? 1 : 2;
-  // The coarse space's fields: the near-null space, then the strain fields.
-  Eigen::MatrixXd B_fields;
-  if (F.size() > 0) {
-    B_fields.resize(n, B_in.cols() + F.cols());
-    B_fields << B_in, F;
-  }
-  const Eigen::MatrixXd& B = F.size() > 0 ? B_fields : B_in;
+  const bool fields = F.size() > 0 && F.cwiseAbs().maxCoeff() > 0.0;  // all-zero fields add nothing
+  const Eigen::MatrixXd& B = B_in;
   using Clock = std::chrono::steady_clock;
   auto since = [](Clock::time_point t) { return std::chrono::duration<double>(Clock::now() - t).count(); };
   auto t = Clock::now();
   const GroupIndex g = index_groups(groups);
   const long ng = g.count();
+  m_options = resolved(options, ng, fields);
   m_start = g.start;
   m_dofs = g.dofs;
 
@@ -220,7 +221,7 @@ AggregationAmg::AggregationAmg(const SparseMatrix& A, const std::vector<long>& g
     for (long a = 0; a < ng; ++a) agg_groups[static_cast<size_t>(fill[static_cast<size_t>(agg[static_cast<size_t>(a)])]++)] = a;
   }
   std::vector<Eigen::Triplet<double>> tp;
-  tp.reserve(static_cast<size_t>(n) * static_cast<size_t>(B.cols()));
+  tp.reserve(static_cast<size_t>(n) * static_cast<size_t>(B.cols() + (fields ? F.cols() : 0)));
   std::vector<long> coarse_group;  // aggregate of each coarse DOF (its ordering group)
   long nc = 0;
   std::vector<long> rows;
@@ -230,12 +231,36 @@ AggregationAmg::AggregationAmg(const SparseMatrix& A, const std::vector<long>& g
       const long a = agg_groups[static_cast<size_t>(p)];
       for (long q = m_start[static_cast<size_t>(a)]; q < m_start[static_cast<size_t>(a) + 1]; ++q) rows.push_back(m_dofs[static_cast<size_t>(q)]);
     }
-    Eigen::MatrixXd Bl(static_cast<Eigen::Index>(rows.size()), B.cols());
-    for (size_t i = 0; i < rows.size(); ++i) Bl.row(static_cast<Eigen::Index>(i)) = B.row(rows[i]);
+    const Eigen::Index nr = static_cast<Eigen::Index>(rows.size());
+    Eigen::MatrixXd Bl(nr, B.cols());
+    for (Eigen::Index i = 0; i < nr; ++i) Bl.row(i) = B.row(rows[static_cast<size_t>(i)]);
     Eigen::ColPivHouseholderQR<Eigen::MatrixXd> qr(Bl);
     qr.setThreshold(1e-10);
-    const long rank = qr.rank();
-    const Eigen::MatrixXd Q = qr.householderQ() * Eigen::MatrixXd::Identity(Bl.rows(), rank);
+    Eigen::MatrixXd Q = qr.householderQ() * Eigen::MatrixXd::Identity(nr, qr.rank());
+    if (fields) {
+      // The strain fields' part outside span B (projected twice: one pass leaves
+      // rounding of the part removed, which is most of a field far from the model's
+      // centre). A direction is kept only above kFieldThreshold of the largest
+      // (and above 1e-10 of the fields' own size): an aggregate that cannot tell a
+      // field from a rigid motion (a straight chain of grids, a flat patch) leaves
+      // a remainder of coordinate rounding, which normalised would be a rough,
+      // high-energy coarse shape.
+      Eigen::MatrixXd Fl(nr, F.cols());
+      for (Eigen::Index i = 0; i < nr; ++i) Fl.row(i) = F.row(rows[static_cast<size_t>(i)]);
+      const double size = Fl.colwise().norm().maxCoeff();
+      Fl -= Q * (Q.transpose() * Fl);
+      Fl -= Q * (Q.transpose() * Fl);
+      Eigen::ColPivHouseholderQR<Eigen::MatrixXd> qf(Fl);
+      qf.setThreshold(kFieldThreshold);
+      const Eigen::Index rf = qf.maxPivot() > 1e-10 * size ? qf.rank() : 0;
+      if (rf > 0) {
+        const Eigen::MatrixXd QF = qf.householderQ() * Eigen::MatrixXd::Identity(nr, rf);
+        Eigen::MatrixXd QB(nr, Q.cols() + rf);
+        QB << Q, QF;
+        Q.swap(QB);
+      }
+    }
+    const long rank = Q.cols();
     for (long j = 0; j < rank; ++j) {
       for (size_t i = 0; i < rows.size(); ++i)
         if (Q(static_cast<Eigen::Index>(i), j) != 0.0) tp.emplace_back(rows[i], nc, Q(static_cast<Eigen::Index>(i), j));
@@ -365,7 +390,7 @@ void AggregationAmg::cycle(const Level<T>& L, const RowBlockOf<T>& R, RowBlockOf
 }
 
 // Why split by columns rather than leave the threads to OpenBLAS: a coarse
-// model's supernodes are small (the 94k lattice: 6594 DOFs), and OpenBLAS's threads
+// model's supernodes are small (the 94k lattice: 13 188 DOFs), and OpenBLAS's threads
 // took their work by hand-overs on every call and spun, yielding, between calls,
 // competing with the cycle's own threads for the cores (94k: 2 s of 12.5 s of CPU).
 // Each part reads all of L: with 45 columns, 22 flops or more per value read.

@@ -14,7 +14,7 @@
 ///   modes, n x 6), and the further low-energy fields F when given (the
 ///   constant-strain fields), to each aggregate and orthonormalises them (QR), so
 ///   the coarse space reproduces rigid motions (and uniform strains) exactly;
-/// - the prolongator is smoothed, P = (I − ω D⁻¹A) P₀, ω = 4/(3 ρ(D⁻¹A)), D the
+/// - the prolongator is smoothed, P = (I − ω D⁻¹A)^s P₀ (s = prolongator_steps), ω = 4/(3 ρ(D⁻¹A)), D the
 ///   grid-point blocks of A: coarse functions then bend smoothly instead of
 ///   jumping at aggregate borders (the energy of P's columns drops by orders);
 /// - the coarse matrix Aᶜ = Pᵀ A P is factorised by CHOLMOD (it is small);
@@ -41,26 +41,28 @@ struct NotPositiveDefiniteBlock : std::runtime_error {
 
 struct AmgOptions {
   /// Graph distance from an aggregate's root to its members; 0: automatic.
-  /// Automatic with strain fields F: 2 up to kLargeModelDofs rows of A, 3 beyond.
+  /// Automatic with strain fields F: 2 up to kLargeModelGrids grid points, 3 beyond.
   /// The coarse model holds about a seventh of the DOFs with radius 2 and a
   /// fifteenth with radius 3, and its factor grows faster than the model: the lattice
   /// (LOBPCG iterations and wall time, docs/performance.md) at 94k DOFs 17 its 4.8 s
   /// against 28 its 6.1 s, at 162k 18 its 10.5 s against 27 its 9.4 s, at 384k 17 its
-  /// 25.8 s against 24 its 23.8 s, at 1M 16 its 90-94 s against 23 its 67 s.
+  /// 25.8 s against 24 its 23.8 s, at 1M 16 its 90-94 s against 23 its 67-75 s
+  /// (15 625, 27 000, 64 000 and 166 375 grid points).
   /// Automatic without F: 2 at every size (the two-step prolongator: 10k 25 its 1.6 s
   /// against 21 its 2.4 s with radius 1; 94k 26 its 14-16 s against 23 its 22 s; 1M
   /// 24 its 230 s, where radius 1 makes a coarse model of 121k DOFs whose factor no
   /// longer pays and radius 3 needs 40 iterations).
   int aggregate_radius = 0;
-  /// The model size from which the automatic radius with strain fields is 3.
-  static constexpr long kLargeModelDofs = 120000;
+  /// The automatic radius with strain fields is 3 above this many grid points
+  /// (grid points rather than DOFs: the coarse model grows with the aggregates).
+  static constexpr long kLargeModelGrids = 20000;
   int smoother_degree = 4;       ///< Chebyshev degree before and after the coarse correction
   double smoother_ratio = 30.0;  ///< the Chebyshev interval is [ρ/ratio, ρ] of D⁻¹A
   /// Jacobi smoothing steps of the prolongator, P = (I − ω D⁻¹A)^s P₀ (0: the
   /// tentative P₀; −1: automatic, 1 with strain fields F, 2 without).
   /// Without F, two rather than the classical one: a beam model's piecewise-rigid
   /// aggregates bend too stiffly, and the second step lowers the coarse model's
-  /// first frequency error from 3.6x to 1.7x in λ and the eigen-solver's iterations
+  /// first eigenvalue error from 3.6x to 1.7x (94k lattice, radius 1) and the eigen-solver's iterations
   /// by a third (94k lattice: 34 -> 23 with radius 1, 43 -> 27 with radius 2) for a
   /// coarse factor about twice as dense. With F the coarse space bends by itself
   /// (94k, radius 2: the coarse model's first elastic λ 1.15x the model's with one
@@ -99,8 +101,9 @@ class AggregationAmg {
   /// A: symmetric positive definite, both triangles stored, compressed. groups:
   /// grid point of each DOF (any ids ≥ 0). B: near-null space, A.rows() x k. F:
   /// further low-energy fields for the coarse space (the constant-strain fields,
-  /// translators::a_set_strain_fields), A.rows() x m, or empty; in an aggregate
-  /// where they are (nearly) dependent on B, the QR drops what they repeat.
+  /// translators::a_set_strain_fields), A.rows() x m, or empty (all zeros: the
+  /// same); in each aggregate only their directions outside B's span, above
+  /// kFieldThreshold of the largest, join it.
   /// Throws std::invalid_argument on inconsistent sizes, NotPositiveDefiniteBlock
   /// for a grid point whose block of A is singular, and std::runtime_error when
   /// the coarse matrix cannot be factorised. A must outlive this object.
@@ -134,6 +137,12 @@ class AggregationAmg {
   long aggregates() const { return m_aggregates; }
   /// The options as applied: the automatic radius and prolongator steps resolved.
   const AmgOptions& options() const { return m_options; }
+  /// The automatic radius and prolongator steps resolved for a model of
+  /// `grid_points` grid points, with strain fields or not.
+  static AmgOptions resolved(const AmgOptions& options, long grid_points, bool strain_fields);
+  /// A strain field's direction outside the rigid-body modes is kept in an
+  /// aggregate's coarse space only above this fraction of the largest one.
+  static constexpr double kFieldThreshold = 1e-6;
   double spectral_radius() const { return m_rho; }  ///< estimate of ρ(D⁻¹A) used by the smoothers
   /// Whether the cycle runs in single precision: AmgOptions::single_precision,
   /// unless A or D⁻¹ has entries beyond 1e30 (single precision would overflow).

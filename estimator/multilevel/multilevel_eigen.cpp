@@ -114,7 +114,8 @@ MultilevelRun multilevel_lowest(const SparseMatrix& K_in, const SparseMatrix& M_
                        std::to_string(at.coarse_factor) + " of which analysis " +
                        std::to_string(at.coarse_analysis) + ", ordering " + amg.coarse_factor().ordering() +
                        "; aggregate radius " + std::to_string(amg.options().aggregate_radius) +
-                       ", prolongator steps " + std::to_string(amg.options().prolongator_steps) + ")",
+                       ", prolongator steps " + std::to_string(amg.options().prolongator_steps) +
+                       ", coarse factor in " + (amg.coarse_factor_single() ? "single" : "double") + " precision)",
          0.1);
 
   // Exact zero-energy modes (rigid-body modes of a free structure) taken out of the

@@ -24,8 +24,10 @@ Eigen::MatrixXd a_set_rigid_body_modes(const FeModel& model) {
 Eigen::MatrixXd a_set_strain_fields(const FeModel& model) {
   const auto& a_to_g = model.reduction().a_to_g;
   const ModelGeometry& geo = model.geometry();
-  // Centred on the grids' mean position: the fields' constant part (a translation,
-  // already in the rigid-body modes) stays small against their variation.
+  // Centred on the grids' mean position, so that the fields are of the model's size
+  // rather than of its distance from the basic origin. (Their constant part in an
+  // aggregate is a translation: the multilevel solver keeps only what lies outside
+  // the rigid-body modes there, AggregationAmg.)
   Eigen::Vector3d centre = Eigen::Vector3d::Zero();
   for (const GridPoint& p : geo.grids()) centre += p.x;
   if (!geo.grids().empty()) centre /= static_cast<double>(geo.grids().size());

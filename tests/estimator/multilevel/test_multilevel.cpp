@@ -390,8 +390,8 @@ TEST_CASE("aggregation preconditioner: symmetric, positive definite, and conjuga
     multilevel::AmgOptions tentative;
     tentative.prolongator_steps = 0;
     const multilevel::AggregationAmg p0(A, f.groups, f.rigid, tentative, f.strain);
-    CHECK(p0.coarse_size() > 6 * p0.aggregates());
-    CHECK(p0.coarse_size() <= 12 * p0.aggregates());
+    CHECK(p0.coarse_size() == 12 * p0.aggregates());  // the frame's aggregates are 3D: no field lost
+    CHECK(p0.options().prolongator_steps == 0);  // as asked
     const Eigen::MatrixXd P0(p0.prolongator());
     CHECK((P0.transpose() * P0 - Eigen::MatrixXd::Identity(P0.cols(), P0.cols())).norm() < 1e-12);
     for (const Eigen::MatrixXd* fields : {&f.strain, &f.rigid})
@@ -420,9 +420,45 @@ TEST_CASE("aggregation preconditioner: symmetric, positive definite, and conjuga
                                             << lf(6) << " (with the strain fields)");
     CHECK(lf(6) >= fine(6) * (1.0 - 1e-9));
     CHECK(lf(6) - fine(6) < 0.5 * (lr(6) - fine(6)));
-    // The automatic smoothing: one step with the fields, two without.
+    // The automatic smoothing: one step with the fields, two without; radius 2 for a
+    // model this size either way, 3 with the fields above kLargeModelGrids grid points.
     const multilevel::AggregationAmg auto_fields(A, f.groups, f.rigid, {}, f.strain);
     CHECK(auto_fields.prolongator().nonZeros() == with_fields.prolongator().nonZeros());
+    CHECK(auto_fields.options().prolongator_steps == 1);
+    CHECK(auto_fields.options().aggregate_radius == 2);
+    CHECK(amg.options().prolongator_steps == 2);
+    CHECK(amg.options().aggregate_radius == 2);
+    using multilevel::AggregationAmg;
+    using multilevel::AmgOptions;
+    CHECK(AggregationAmg::resolved({}, AmgOptions::kLargeModelGrids, true).aggregate_radius == 2);
+    CHECK(AggregationAmg::resolved({}, AmgOptions::kLargeModelGrids + 1, true).aggregate_radius == 3);
+    CHECK(AggregationAmg::resolved({}, AmgOptions::kLargeModelGrids + 1, false).aggregate_radius == 2);
+    CHECK(AggregationAmg::resolved({}, AmgOptions::kLargeModelGrids + 1, false).prolongator_steps == 2);
+    AmgOptions asked;
+    asked.aggregate_radius = 1;
+    asked.prolongator_steps = 3;
+    CHECK(AggregationAmg::resolved(asked, AmgOptions::kLargeModelGrids + 1, true).aggregate_radius == 1);
+    CHECK(AggregationAmg::resolved(asked, AmgOptions::kLargeModelGrids + 1, true).prolongator_steps == 3);
+    // All-zero fields are no fields.
+    const AggregationAmg zero_fields(A, f.groups, f.rigid, {}, Eigen::MatrixXd::Zero(n, 6));
+    CHECK(zero_fields.coarse_size() == 6 * zero_fields.aggregates());
+    CHECK(zero_fields.options().prolongator_steps == 2);
+
+    // A field an aggregate cannot tell from a rigid motion (here: a translation plus
+    // rounding-sized noise, as a straight chain of grids or a flat patch would
+    // leave) is dropped, not kept as a normalised rough shape; a field that differs
+    // from it by 1e-4 of its size is kept.
+    std::mt19937 rng(5);
+    std::uniform_real_distribution<double> u(-1.0, 1.0);
+    Eigen::VectorXd noise(n);
+    for (long i = 0; i < n; ++i) noise(i) = u(rng);
+    for (const auto& [scale, per_aggregate] : {std::pair{1e-9, 11L}, std::pair{1e-4, 12L}}) {
+      Eigen::MatrixXd F = f.strain;
+      F.col(5) = 3.0 * f.rigid.col(2) + scale * F.col(5).cwiseAbs().maxCoeff() * noise;  // |noise_i| <= 1
+      const AggregationAmg noisy(A, f.groups, f.rigid, tentative, F);
+      INFO("perturbation " << scale << ": coarse " << noisy.coarse_size() << ", aggregates " << noisy.aggregates());
+      CHECK(noisy.coarse_size() == per_aggregate * noisy.aggregates());
+    }
   }
 
   // Preconditioned conjugate gradients on A x = b, against plain CG.
@@ -675,6 +711,7 @@ TEST_CASE("Auto falls back to the multilevel method when the factor would not fi
   const EigenResult refused = solve_modes(f.op.K, f.op.M, o);
   CHECK(refused.status == EigenResult::Status::FactorFailed);
   o.near_null_space = f.rigid;
+  o.strain_fields = f.strain;  // as the CLI sets them
   const EigenResult r = solve_modes(f.op.K, f.op.M, o);
   REQUIRE(r.ok());
   CHECK(r.method == "Multilevel");
@@ -682,6 +719,7 @@ TEST_CASE("Auto falls back to the multilevel method when the factor would not fi
   CHECK(r.warnings[0].find("multilevel") != std::string::npos);
   o.max_factor_bytes = 0.0;
   o.near_null_space.resize(0, 0);
+  o.strain_fields.resize(0, 0);
   const EigenResult direct = solve_modes(f.op.K, f.op.M, o);
   for (int j = 6; j < 12; ++j) CHECK(r.eigenvalues(j) == Approx(direct.eigenvalues(j)).epsilon(1e-10));
 }
@@ -707,6 +745,12 @@ TEST_CASE("multilevel method: clear refusals", "[multilevel]") {
   o.near_null_space = f.rigid;
   o.strain_fields = f.strain.topRows(12);
   CHECK_THROWS_WITH(solve_modes(f.op.K, f.op.M, o), Catch::Contains("strain_fields has 12 rows"));
+  o.strain_fields = f.strain;
+  o.strain_fields(3, 2) = std::numeric_limits<double>::quiet_NaN();
+  CHECK_THROWS_WITH(solve_modes(f.op.K, f.op.M, o), Catch::Contains("strain_fields has values that are not finite"));
+  o.method = EigenMethod::Auto;  // checked whatever the method
+  CHECK_THROWS_WITH(solve_modes(f.op.K, f.op.M, o), Catch::Contains("strain_fields has values that are not finite"));
+  o.method = EigenMethod::Multilevel;
   o.strain_fields.resize(0, 0);
   // A model too small for its coarse space: a status, not an exception.
   const Frame tiny = frame(2, 2, 2);
