@@ -90,8 +90,9 @@ struct AmgOptions {
   /// reciprocal condition estimate (min diag L / max diag L)² at least this;
   /// otherwise the coarse matrix is factorised in double (a model whose coarse
   /// matrix single precision cannot resolve then costs time, not accuracy). The
-  /// estimate is crude (0.056 for the 94k lattice, whose κ(Aᶜ) is 1.2·10⁴ by power
-  /// iterations): the check mainly catches a factorisation that breaks down or
+  /// estimate is crude (94k lattice: 0.021 with the strain fields, whose κ(Aᶜ) is
+  /// 2.4·10⁴ by power and inverse iterations; 0.056 and 1.2·10⁴ with the rigid-body
+  /// modes alone): the check mainly catches a factorisation that breaks down or
   /// nearly does.
   double single_min_rcond = 1e-6;
 };
