@@ -120,14 +120,14 @@ AmgOptions AggregationAmg::resolved(const AmgOptions& options, long grid_points,
   return o;
 }
 
-AggregationAmg::AggregationAmg(const SparseMatrix& A, const std::vector<long>& groups, const Eigen::MatrixXd& B_in,
+AggregationAmg::AggregationAmg(const SparseMatrix& A, const std::vector<long>& groups, const Eigen::MatrixXd& B,
                                const AmgOptions& options, const Eigen::MatrixXd& F)
     : m_A(A), m_options(options) {
   const long n = A.rows();
   if (A.cols() != n || !A.isCompressed()) throw std::invalid_argument("AggregationAmg: A must be square and compressed");
-  if (static_cast<long>(groups.size()) != n || B_in.rows() != n || B_in.cols() == 0)
+  if (static_cast<long>(groups.size()) != n || B.rows() != n || B.cols() == 0)
     throw std::invalid_argument("AggregationAmg: " + std::to_string(groups.size()) + " groups and a " +
-                                std::to_string(B_in.rows()) + " x " + std::to_string(B_in.cols()) +
+                                std::to_string(B.rows()) + " x " + std::to_string(B.cols()) +
                                 " near-null space for " + std::to_string(n) + " DOFs");
   if (F.size() > 0 && F.rows() != n)
     throw std::invalid_argument("AggregationAmg: the strain fields have " + std::to_string(F.rows()) + " rows for " +
@@ -138,7 +138,6 @@ AggregationAmg::AggregationAmg(const SparseMatrix& A, const std::vector<long>& g
         "AggregationAmg: the radius must be >= 0 (0: automatic), the smoother degree >= 1, the prolongator steps "
         ">= -1 (-1: automatic) and the ratio > 1");
   const bool fields = F.size() > 0 && F.cwiseAbs().maxCoeff() > 0.0;  // all-zero fields add nothing
-  const Eigen::MatrixXd& B = B_in;
   using Clock = std::chrono::steady_clock;
   auto since = [](Clock::time_point t) { return std::chrono::duration<double>(Clock::now() - t).count(); };
   auto t = Clock::now();
@@ -232,9 +231,12 @@ AggregationAmg::AggregationAmg(const SparseMatrix& A, const std::vector<long>& g
       for (long q = m_start[static_cast<size_t>(a)]; q < m_start[static_cast<size_t>(a) + 1]; ++q) rows.push_back(m_dofs[static_cast<size_t>(q)]);
     }
     const Eigen::Index nr = static_cast<Eigen::Index>(rows.size());
-    Eigen::MatrixXd Bl(nr, B.cols());
-    for (Eigen::Index i = 0; i < nr; ++i) Bl.row(i) = B.row(rows[static_cast<size_t>(i)]);
-    Eigen::ColPivHouseholderQR<Eigen::MatrixXd> qr(Bl);
+    auto aggregate_rows = [&](const Eigen::MatrixXd& X) {  // X's rows of this aggregate
+      Eigen::MatrixXd Xl(nr, X.cols());
+      for (Eigen::Index i = 0; i < nr; ++i) Xl.row(i) = X.row(rows[static_cast<size_t>(i)]);
+      return Xl;
+    };
+    Eigen::ColPivHouseholderQR<Eigen::MatrixXd> qr(aggregate_rows(B));
     qr.setThreshold(1e-10);
     Eigen::MatrixXd Q = qr.householderQ() * Eigen::MatrixXd::Identity(nr, qr.rank());
     if (fields) {
@@ -245,8 +247,7 @@ AggregationAmg::AggregationAmg(const SparseMatrix& A, const std::vector<long>& g
       // field from a rigid motion (a straight chain of grids, a flat patch) leaves
       // a remainder of coordinate rounding, which normalised would be a rough,
       // high-energy coarse shape.
-      Eigen::MatrixXd Fl(nr, F.cols());
-      for (Eigen::Index i = 0; i < nr; ++i) Fl.row(i) = F.row(rows[static_cast<size_t>(i)]);
+      Eigen::MatrixXd Fl = aggregate_rows(F);
       const double size = Fl.colwise().norm().maxCoeff();
       Fl -= Q * (Q.transpose() * Fl);
       Fl -= Q * (Q.transpose() * Fl);
