@@ -1,11 +1,12 @@
 /// \file main.cpp
 /// `ssid`: structural system identification. Git-style subcommands; this file
 /// only dispatches. Exceptions that escape a subcommand become a one-line error
-/// on stderr and exit code 1, never a crash.
+/// on stderr and the exit code of their kind (exit_codes.hpp), never a crash.
 #include <exception>
 #include <iostream>
 
 #include "cli/cli_util.hpp"
+#include "cli/exit_codes.hpp"
 #include "estimator/allocation_policy.hpp"
 #include "formats/parse_error.hpp"
 
@@ -70,12 +71,18 @@ int main(int argc, char** argv) {
     if (name != c.name) continue;
     try {
       return c.run(args);
-    } catch (const ssid::formats::ParseError& e) {
+    } catch (const ssid::formats::InputError& e) {
       ssid::cli::print_error(e.what());
-      return 1;
+      return ssid::cli::kExitBadInput;
+    } catch (const boost::program_options::error& e) {
+      ssid::cli::print_error(e.what());
+      return ssid::cli::kExitBadInput;
+    } catch (const ssid::formats::NumericalError& e) {
+      ssid::cli::print_error(e.what());
+      return ssid::cli::kExitUntrusted;
     } catch (const std::exception& e) {
       ssid::cli::print_error(e.what());
-      return 1;
+      return ssid::cli::kExitFailure;
     }
   }
   std::cerr << "ssid: '" << name << "' is not a command\n";

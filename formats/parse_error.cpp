@@ -17,7 +17,7 @@ std::string with_chain(const SourceLocation& w, const std::string& msg) {
 }  // namespace
 
 ParseError::ParseError(SourceLocation where, const std::string& message)
-    : std::runtime_error(with_chain(where, message)), m_where(std::move(where)), m_detail(message) {}
+    : InputError(with_chain(where, message)), m_where(std::move(where)), m_detail(message) {}
 
 std::string Problem::str() const {
   return with_chain(where, (severity == Severity::Warning ? "warning: " : "") + message);

@@ -28,9 +28,9 @@ struct GridPoint {
 
 /// Bad model data found while assembling (a dangling reference, a degenerate
 /// geometry): the message starts with "file:line: CARD id".
-class ModelError : public std::runtime_error {
+class ModelError : public formats::InputError {
  public:
-  using std::runtime_error::runtime_error;
+  using formats::InputError::InputError;
 };
 
 class ModelGeometry {
