@@ -1,7 +1,9 @@
 #include "formats/bulk_model.hpp"
 
+#include "formats/bulk_catalogue.hpp"
 #include "formats/nastran_number.hpp"
 
+#include <algorithm>
 #include <array>
 #include <cmath>
 #include <unordered_set>
@@ -123,12 +125,30 @@ void apply_defaults(const Deck& deck, BulkModel& m) {
 
 bool is_supported_card(const std::string& name) { return parsers().count(name) > 0; }
 
+std::vector<std::string> supported_card_names() {
+  std::vector<std::string> names;
+  for (const auto& [name, fn] : parsers()) names.push_back(name);
+  std::sort(names.begin(), names.end());
+  return names;
+}
+
+namespace {
+/// "unknown card name CRDO — did you mean CROD?" (NASTRAN: USER FATAL MESSAGE 307).
+Problem unknown_card(const Deck& deck, const Card& c) {
+  std::string msg = "unknown card name " + c.name;
+  if (auto near = nearest_bulk_entry_name(c.name)) msg += " — did you mean " + *near + "?";
+  else msg += " (not a NASTRAN bulk data entry)";
+  return error_at(deck, c, 0, msg);
+}
+}  // namespace
+
 BulkModel parse_bulk(const Deck& deck) {
   BulkModel m;
   const auto& table = parsers();
   // Decks come in runs of one card type: remember the last lookup.
   const std::string* last_name = nullptr;
   ParseFn fn = nullptr;
+  bool known = false;  ///< the name is a bulk data entry (typed or kept verbatim)
   std::size_t* counter = nullptr;
   for (std::size_t i = 0; i < deck.cards.size(); ++i) {
     const Card& c = deck.cards[i];
@@ -136,10 +156,14 @@ BulkModel parse_bulk(const Deck& deck) {
       auto it = table.find(c.name);
       fn = it == table.end() ? nullptr : it->second;
       counter = fn ? &m.supported[c.name] : &m.unsupported[c.name];
+      known = fn || is_bulk_entry_name(c.name);
       last_name = &c.name;
     }
     ++*counter;
-    if (!fn) continue;
+    if (!fn) {
+      if (!known) m.problems.push_back(unknown_card(deck, c));
+      continue;
+    }
     try {
       fn(FieldReader(deck, c), i, m);
     } catch (const ParseError& e) {
@@ -559,6 +583,27 @@ void resolve(const Deck& deck, BulkModel& m) {
                                      std::to_string(ratio) + ")"));
     }
   }
+}
+
+BulkModel resolved_bulk(const Deck& deck, const std::string& who, std::vector<std::string>* warnings) {
+  BulkModel model = parse_bulk(deck);
+  resolve(deck, model);
+  constexpr std::size_t kShown = 20;
+  std::string errors;
+  std::size_t count = 0;
+  const std::vector<Problem>* lists[] = {&deck.problems, &model.problems};
+  for (const auto* list : lists)
+    for (const auto& p : *list) {
+      if (p.severity != Problem::Severity::Error) {
+        if (warnings) warnings->push_back(p.str());
+      } else if (++count <= kShown) {
+        errors += "\n  " + p.str();
+      }
+    }
+  if (count)
+    throw InputError((who.empty() ? "" : who + ": ") + std::to_string(count) + " error(s) in the deck; nothing assembled:" +
+                     errors + (count > kShown ? "\n  ... and " + std::to_string(count - kShown) + " more" : ""));
+  return model;
 }
 
 }  // namespace ssid::formats

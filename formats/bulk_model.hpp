@@ -82,6 +82,10 @@ struct BulkModel {
 };
 
 /// Parses every card with a typed parser; field errors are collected, not thrown.
+/// A card with no typed parser is kept verbatim when its name is a NASTRAN bulk
+/// data entry (bulk_catalogue.hpp); any other name is an error, as in NASTRAN
+/// (USER FATAL MESSAGE 307), with the nearest real name as a suggestion:
+/// "unknown card name CRDO — did you mean CROD?".
 /// Then applies the deck-wide defaults (GRDSET to GRID, BAROR to CBAR, BEAMOR to CBEAM).
 BulkModel parse_bulk(const Deck& deck);
 
@@ -98,5 +102,17 @@ std::map<std::size_t, std::vector<FieldValue>> write_bulk(const BulkModel& model
 
 /// True when a card of this name has a typed parser.
 bool is_supported_card(const std::string& name);
+
+/// The names of the cards with a typed parser, sorted.
+std::vector<std::string> supported_card_names();
+
+/// parse_bulk and resolve, refusing a deck with errors: the one check every path
+/// from a deck to a model goes through (modes, assemble, correlate, estimate,
+/// diagnose, update-deck). Throws InputError when reading the deck (Deck::problems:
+/// a missing ENDDATA, a cut card, an orphan continuation) or its cards found any:
+/// "<who>: N error(s) in the deck; nothing assembled:" and the first twenty, one a
+/// line, each with its file:line ("<who>: " left out when who is empty). Warnings
+/// pass, appended to `warnings` when given (as Problem::str()).
+BulkModel resolved_bulk(const Deck& deck, const std::string& who = "", std::vector<std::string>* warnings = nullptr);
 
 }  // namespace ssid::formats

@@ -82,8 +82,11 @@ struct ReadOptions {
 
 /// Reads a deck and every file it includes. Throws ParseError on input that
 /// cannot be a deck (missing file, empty file, binary data, overlong line,
-/// unterminated INCLUDE quote, INCLUDE cycle); collects softer problems
-/// (orphan continuations, missing continuations) in Deck::problems.
+/// unterminated INCLUDE quote, INCLUDE cycle); collects the deck's integrity
+/// problems in Deck::problems, each an error at its file:line (docs/deck.md,
+/// "Deck integrity"): a continuation line with no card before it, a continuation
+/// announced in field 10 that never comes, and, in a deck with BEGIN BULK, a
+/// missing ENDDATA and a card cut by the end of the file.
 Deck read_deck(const std::string& path, const ReadOptions& options = {});
 
 /// Reads a deck from text in memory; `name` is used in messages and as the base

@@ -163,6 +163,10 @@ struct Reader {
   std::uint32_t pending_file = 0;
   std::vector<std::string_view> fields;                   ///< fields of the pending card
   std::vector<std::pair<std::uint32_t, std::uint32_t>> rows;  ///< its physical lines
+  /// The pending card's last line is the first half of a large-field row (fields
+  /// 2-5): a large-field card cut after it has lost its continuation.
+  bool pending_half = false;
+  std::uint32_t begin_bulk_line = 0;  ///< line of BEGIN BULK in the main file (0: none)
   LineFields lf;                                          ///< reused per line
   std::string scratch;
 
@@ -209,6 +213,7 @@ struct Reader {
   void add_rows(const LineFields& lf, std::uint32_t line_number) {
     // Rows of the folded card are 8 fields wide; a large line fills half a row.
     if (!lf.large && (fields.size() - 1) % 8 != 0) fields.resize(fields.size() + (8 - (fields.size() - 1) % 8));
+    pending_half = lf.large && (fields.size() - 1) % 8 == 0;
     rows.emplace_back(line_number, static_cast<std::uint32_t>(fields.size()));
     const std::size_t width = lf.large ? 4 : 8;
     fields.insert(fields.end(), lf.data.begin(), lf.data.end());
@@ -294,7 +299,10 @@ struct Reader {
         std::string u = upper(tdata);
         if (!u.empty()) deck.statements.push_back({section, u, fi, l.number});
         if (section == Section::Executive && u == "CEND") section = Section::CaseControl;
-        else if (u.rfind("BEGIN", 0) == 0 && u.find("BULK") != std::string::npos) section = Section::Bulk;
+        else if (u.rfind("BEGIN", 0) == 0 && u.find("BULK") != std::string::npos) {
+          section = Section::Bulk;
+          if (parent < 0) begin_bulk_line = l.number;
+        }
         continue;
       }
       if (section == Section::AfterEnddata) continue;
@@ -333,12 +341,51 @@ struct Reader {
       add_rows(lf, l.number);
       pending_marker = std::string(lf.marker);
     }
-    if (section == Section::Bulk) finish_card(fi, emitted, true);
+    if (section == Section::Bulk) {
+      // The main file of a deck with BEGIN BULK ends inside the bulk data.
+      const bool no_enddata = parent < 0 && deck.has_bulk_marker;
+      if (no_enddata) check_cut_card(text);
+      finish_card(fi, emitted, true);
+      if (no_enddata) missing_enddata(fi, text);
+    }
     SourceFile& f = deck.files[fi];
     if (emitted < f.text.size())
       f.chunks.push_back({Chunk::Kind::Verbatim, emitted, static_cast<std::uint32_t>(f.text.size()), 0});
     chain.pop_back();
     return fi;
+  }
+
+  /// With no ENDDATA, a card that runs to the end of the file is cut when its last
+  /// line has no line ending or is the first half of a large-field row (a card
+  /// whose field 10 announces a continuation is reported by finish_card). NASTRAN
+  /// stops on the missing ENDDATA (missing_enddata); naming the cut card as well
+  /// tells where the file was cut and that the card's values are not all there.
+  void check_cut_card(const std::string& text) {
+    if (!pending || !pending_marker.empty() || card.end != text.size()) return;
+    const bool no_line_end = text.back() != '\n';
+    if (!no_line_end && !pending_half) return;
+    const std::string label = card.name + (fields.size() > 1 && !fields[1].empty() ? " " + std::string(fields[1]) : "");
+    deck.problems.push_back({Problem::Severity::Error, deck.location(card.file, card.line),
+                             label + ": card cut by the end of the file: " +
+                                 (no_line_end ? std::string("its last line has no line ending")
+                                              : std::string("a large-field card with no continuation line")) +
+                                 ", and no ENDDATA follows"});
+  }
+
+  /// A deck with BEGIN BULK must end its bulk data with ENDDATA. NASTRAN-95 stops
+  /// on reaching the end of the input first (mis/xsort.f: USER FATAL MESSAGE 219,
+  /// MISSING ENDDATA CARD), and MSC/Autodesk Nastran require it ("BEGIN BULK and
+  /// ENDDATA are required even if there are no Bulk Data entries", Autodesk Nastran
+  /// Reference Guide, BEGIN BULK, remark 1). A deck cut short ends so: an error,
+  /// reported at the last line.
+  void missing_enddata(std::uint32_t fi, const std::string& text) {
+    const auto lines = static_cast<std::uint32_t>(std::count(text.begin(), text.end(), '\n') +
+                                                  (!text.empty() && text.back() != '\n' ? 1 : 0));
+    deck.problems.push_back({Problem::Severity::Error, deck.location(fi, lines),
+                             "missing ENDDATA: the bulk data" +
+                                 (begin_bulk_line ? " begun at line " + std::to_string(begin_bulk_line) + " (BEGIN BULK)"
+                                                  : std::string()) +
+                                 " runs to the end of the file, as in a deck cut short"});
   }
 
   void handle_include(std::uint32_t fi, const Line& first, LineCursor& cursor, std::uint32_t& emitted,
