@@ -151,6 +151,7 @@ int cmd_correlate(const Args& args) {
     }
     auto m = translators::map_test_nodes(nodes, grids, mo);
     for (const auto& p : m.problems) problems.push_back(test_path + ": " + p);
+    if (from_deck) translators::require_mapped(test.dofs, m, test_path, "the deck " + fe_path);
     mapping_json = {{"by", map}, {"mapped", m.matches.size()}, {"unmapped", m.unmapped}};
     test = translators::relabel(test, m);
     if (from_deck) {

@@ -3,6 +3,8 @@
 #include <iostream>
 
 #include "cli/cli_util.hpp"
+#include "cli/exit_codes.hpp"
+#include "formats/bulk_catalogue.hpp"
 #include "formats/bulk_model.hpp"
 #include "formats/deck_writer.hpp"
 
@@ -38,6 +40,9 @@ int deck_summary(const Args& args) {
   j["cards"] = counts;
   j["typed"] = model.supported;
   j["unsupported"] = model.unsupported;
+  j["unknown"] = nlohmann::json::array();  // names that are no bulk data entry (each card an error)
+  for (const auto& [name, n] : model.unsupported)
+    if (!formats::is_bulk_entry_name(name)) j["unknown"].push_back(name);
   j["problems"] = nlohmann::json::array();
   for (const auto& p : problems) j["problems"].push_back(p.str());
   j["total_cards"] = deck.cards.size();
@@ -53,7 +58,10 @@ int deck_summary(const Args& args) {
     std::cout << "cards:\n";
     for (const auto& [name, n] : counts)
       std::cout << "  " << name << std::string(name.size() < 10 ? 10 - name.size() : 1, ' ') << n
-                << (model.unsupported.count(name) ? "  (kept verbatim)" : "  (typed)") << "\n";
+                << (!model.unsupported.count(name)            ? "  (typed)"
+                    : formats::is_bulk_entry_name(name) ? "  (kept verbatim)"
+                                                        : "  (unknown name: an error)")
+                << "\n";
     std::size_t typed = 0;
     for (const auto& [name, n] : model.supported) typed += n;
     std::cout << "typed: " << typed << " card(s) of " << model.supported.size() << " type(s)\n";
@@ -69,7 +77,8 @@ int deck_summary(const Args& args) {
   std::string report;
   for (const auto& p : problems) report += p.str() + "\n";
   std::cerr << report << std::flush;
-  return errors ? 1 : 0;
+  // A summary that lists errors is a deck the other commands refuse: bad input.
+  return errors ? kExitBadInput : kExitSuccess;
 }
 
 int deck_write(const Args& args) {

@@ -10,7 +10,6 @@
 #include <limits>
 #include <stdexcept>
 
-#include "estimator/deck_loading.hpp"
 #include "estimator/dense_eigen.hpp"
 #include "formats/bulk_model.hpp"
 
@@ -20,12 +19,7 @@ LoadedModel load_model(const std::string& path, const translators::AssemblyOptio
   LoadedModel l;
   l.path = path;
   l.deck = formats::read_deck(path);
-  formats::BulkModel bulk = estimator::resolved_bulk(l.deck, path, &l.warnings);
-  try {
-    l.model = std::make_unique<translators::FeModel>(l.deck, std::move(bulk), options);
-  } catch (const translators::ModelError& e) {
-    throw std::runtime_error(path + ": cannot assemble the model: " + std::string(e.what()));
-  }
+  l.model = translators::assemble_deck(l.deck, path, options, &l.warnings);
   return l;
 }
 

@@ -21,9 +21,9 @@ struct LoadedModel {
   std::vector<std::string> warnings;  ///< deck warnings ("file:line: ...")
 };
 
-/// Reads, parses, resolves and assembles a deck. Throws std::invalid_argument
-/// listing the deck's first twenty errors (file:line each; estimator::resolved_bulk),
-/// or std::runtime_error with the ModelError of a card that cannot be assembled.
+/// Reads, parses, resolves and assembles a deck (translators::assemble_deck). Throws
+/// InputError listing the deck's first twenty errors (file:line each), or a ModelError
+/// "<file:line>: cannot assemble the model: ..." for what cannot be assembled.
 LoadedModel load_model(const std::string& path, const translators::AssemblyOptions& options = {});
 
 /// Writes the deck warnings and the model's notes (ignored cards, AUTOSPC, ...)

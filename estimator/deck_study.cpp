@@ -11,7 +11,6 @@
 #include <stdexcept>
 
 #include "estimator/correlation.hpp"
-#include "estimator/deck_loading.hpp"
 #include "estimator/eigen_solver.hpp"
 #include "formats/bulk_model.hpp"
 #include "formats/uff.hpp"
@@ -124,7 +123,7 @@ struct LoadedDeck {
 LoadedDeck load_deck(const std::string& path) {
   LoadedDeck l;
   l.deck = std::make_shared<formats::Deck>(formats::read_deck(path));
-  l.fe = std::make_shared<translators::FeModel>(*l.deck, resolved_bulk(*l.deck, path));
+  l.fe = translators::assemble_deck(*l.deck, path);
   return l;
 }
 
@@ -438,9 +437,8 @@ EstimationProblem prepare_problem(const Study& study, const std::string& deck, c
                                        ? " by id; map them by position (study \"mapping\": {\"by\": \"position\", "
                                          "\"tolerance\": ...})"
                                        : " within the position tolerance"));
-    if (!obs.unmapped.empty())
-      pc.notes.push_back(sc.measured + ": " + std::to_string(obs.unmapped.size()) +
-                         " measured DOF(s) on unmapped test nodes left out");
+    // A measured node that maps nowhere is an error, not a sensor left out.
+    translators::require_mapped(set.dofs, mapping, sc.measured, "the deck " + sc.deck);
     const translators::DofMap& gset = fe.geometry().gset();
     const SparseMatrix Cg = translators::observation_matrix(obs, gset);
     const SparseMatrix Ca_all = Cg * fe.reduction().T;

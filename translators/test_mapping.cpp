@@ -5,6 +5,9 @@
 #include <map>
 #include <stdexcept>
 #include <unordered_map>
+#include <unordered_set>
+
+#include "formats/parse_error.hpp"
 
 namespace ssid::translators {
 
@@ -42,7 +45,8 @@ NodeMapping map_test_nodes(const std::vector<TestNode>& nodes, const std::vector
       }
       if (o.by == MapBy::Id) {
         m.unmapped.push_back(n.id);
-        m.problems.push_back("test node " + std::to_string(n.id) + ": no grid with this id");
+        m.why_unmapped[n.id] = "no grid with this id";
+        m.problems.push_back("test node " + std::to_string(n.id) + ": " + m.why_unmapped[n.id]);
         continue;
       }
     }
@@ -61,11 +65,11 @@ NodeMapping map_test_nodes(const std::vector<TestNode>& nodes, const std::vector
       m.matches.push_back({n.id, grids[best_g].id, best, true});
     } else {
       m.unmapped.push_back(n.id);
-      m.problems.push_back("test node " + std::to_string(n.id) + ": " +
-                           (best_g < grids.size() ? "nearest grid " + std::to_string(grids[best_g].id) + " at " +
-                                                        fmt_distance(best) + " is beyond the tolerance " +
-                                                        fmt_distance(o.tolerance)
-                                                  : std::string("no grids")));
+      m.why_unmapped[n.id] = best_g < grids.size() ? "nearest grid " + std::to_string(grids[best_g].id) + " at " +
+                                                         fmt_distance(best) + " is beyond the tolerance " +
+                                                         fmt_distance(o.tolerance)
+                                                   : std::string("no grids");
+      m.problems.push_back("test node " + std::to_string(n.id) + ": " + m.why_unmapped[n.id]);
     }
   }
   // Two test nodes on one grid is legal (redundant sensors) but usually a mistake.
@@ -78,6 +82,35 @@ NodeMapping map_test_nodes(const std::vector<TestNode>& nodes, const std::vector
       m.problems.push_back(s);
     }
   return m;
+}
+
+void require_mapped(const std::vector<MeasuredDof>& measured, const NodeMapping& mapping, const std::string& test,
+                    const std::string& model) {
+  std::unordered_set<std::int64_t> mapped, seen;
+  for (const auto& x : mapping.matches) mapped.insert(x.test_node);
+  // Per node, in the order measured: "test node 5: no grid with this id".
+  std::vector<std::string> lines;
+  std::string single;  // the same for one node, naming the model
+  for (const auto& md : measured) {
+    if (mapped.count(md.node) || !seen.insert(md.node).second) continue;
+    const std::string node = "test node " + std::to_string(md.node) + ": ";
+    const auto why = mapping.why_unmapped.find(md.node);
+    if (why != mapping.why_unmapped.end()) {
+      lines.push_back(node + why->second);
+      single = lines.back() + " in " + model;
+    } else {
+      lines.push_back(node + "not a node of the test geometry (dataset 15 or 2411)");
+      single = lines.back() + ", so no grid of " + model;
+    }
+  }
+  if (lines.empty()) return;
+  const std::string lead = test.empty() ? "" : test + ": ";
+  if (lines.size() == 1) throw formats::InputError(lead + single);
+  constexpr std::size_t kShown = 10;
+  std::string msg = lead + std::to_string(lines.size()) + " measured test nodes map to no grid of " + model + ":";
+  for (std::size_t k = 0; k < lines.size() && k < kShown; ++k) msg += "\n  " + lines[k];
+  if (lines.size() > kShown) msg += "\n  ... and " + std::to_string(lines.size() - kShown) + " more";
+  throw formats::InputError(msg);
 }
 
 Observation observe(const std::vector<MeasuredDof>& measured, const NodeMapping& mapping,

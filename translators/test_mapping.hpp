@@ -16,6 +16,7 @@
 #include <Eigen/Core>
 #include <Eigen/SparseCore>
 #include <cstdint>
+#include <map>
 #include <optional>
 #include <string>
 #include <vector>
@@ -60,6 +61,8 @@ struct NodeMatch {
 struct NodeMapping {
   std::vector<NodeMatch> matches;
   std::vector<std::int64_t> unmapped;  ///< test nodes with no grid
+  /// Why each unmapped node maps nowhere, e.g. "no grid with this id".
+  std::map<std::int64_t, std::string> why_unmapped;
   std::vector<std::string> problems;   ///< why nodes are unmapped, shared grids, local systems
 
   /// The grid a test node maps to.
@@ -77,6 +80,18 @@ struct MeasuredDof {
   int direction = 1;
   bool operator==(const MeasuredDof& o) const { return node == o.node && direction == o.direction; }
 };
+
+/// Refuses measured DOFs on test nodes that map to no grid: a sensor the model
+/// cannot see, which left out would estimate or correlate on part of the data
+/// (and, with a misnumbered test, on the wrong data) without a word. Throws
+/// formats::InputError naming each such node and why, `model` saying where the
+/// grids come from (e.g. "the deck rod.bdf"), `test` (the measured file) leading:
+///   "test.unv: test node 5: no grid with this id in the deck rod.bdf"
+/// or, for several, "test.unv: 3 measured test nodes map to no grid of the deck
+/// rod.bdf:" and one "  test node 5: no grid with this id" a line (ten at most).
+/// Test nodes with no measured DOF (geometry only) are not checked.
+void require_mapped(const std::vector<MeasuredDof>& measured, const NodeMapping& mapping, const std::string& test,
+                    const std::string& model);
 
 /// One measured DOF in terms of FE DOFs: value = Σ coefficient · u(dof).
 struct ObservationRow {

@@ -5,7 +5,6 @@
 #include <set>
 #include <stdexcept>
 
-#include "estimator/deck_loading.hpp"
 #include "estimator/eigen_solver.hpp"
 #include "formats/bulk_model.hpp"
 #include "translators/test_mapping.hpp"
@@ -35,7 +34,7 @@ DeckProblem make_deck_problem(const std::string& deck_text, const std::string& n
   DeckProblem pb;
   pb.name = name;
   pb.deck = std::make_unique<formats::Deck>(formats::read_deck_text(deck_text, name));
-  pb.fe = std::make_unique<translators::FeModel>(*pb.deck, resolved_bulk(*pb.deck, name));
+  pb.fe = translators::assemble_deck(*pb.deck, name);
   const translators::FeModel& fe = *pb.fe;
 
   // Test DOFs onto the model: grids by id.
@@ -47,6 +46,7 @@ DeckProblem make_deck_problem(const std::string& deck_text, const std::string& n
   for (auto id : ids) nodes.push_back({id, Eigen::Vector3d::Zero(), 0});
   const translators::NodeMapping mapping = translators::map_test_nodes(nodes, grids, {});
   for (const auto& p : mapping.problems) pb.problems.push_back(p);
+  translators::require_mapped(measured.dofs, mapping, "", "the deck " + name);
   const translators::Observation obs = translators::observe(measured.dofs, mapping, grids);
   if (obs.rows.empty()) throw std::runtime_error(name + ": no measured DOF lies on a grid of the model");
   for (const auto& row : obs.rows) pb.dofs.push_back(row.measured);

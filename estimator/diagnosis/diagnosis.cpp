@@ -6,7 +6,6 @@
 #include <set>
 #include <sstream>
 
-#include "estimator/deck_loading.hpp"
 #include "estimator/sensitivity.hpp"
 #include "formats/deck_writer.hpp"
 
@@ -317,9 +316,9 @@ std::vector<Eigen::VectorXd> neighbours_of_unexplained(DeckProblem& pb, const Mo
 
 std::string deck_at(const std::string& deck_text, const std::string& name, const Eigen::VectorXd& x) {
   formats::Deck deck = formats::read_deck_text(deck_text, name);
-  translators::FeModel fe(deck, resolved_bulk(deck, name));
-  formats::BulkModel values = fe.values_at(x);
-  const auto& params = fe.parameters();
+  const std::unique_ptr<translators::FeModel> fe = translators::assemble_deck(deck, name);
+  formats::BulkModel values = fe->values_at(x);
+  const auto& params = fe->parameters();
   for (std::size_t j = 0; j < params.size(); ++j)
     for (auto& d : values.desvars)
       if (d.id == params[j].id) d.xinit = x(static_cast<Eigen::Index>(j));

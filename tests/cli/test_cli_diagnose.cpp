@@ -6,7 +6,7 @@
 #include <fstream>
 #include <nlohmann/json.hpp>
 
-#include "estimator/deck_loading.hpp"
+#include "formats/bulk_model.hpp"
 #include "estimator/diagnosis/deck_problem.hpp"
 #include "formats/uff.hpp"
 #include "tests/cli/cli_run.hpp"
@@ -53,7 +53,7 @@ TEST_CASE("ssid diagnose: hidden mass found, JSON layout, extended deck written"
   // The written deck holds the new DESVAR at the estimate and assembles.
   const std::string text = cli_slurp(deck);
   formats::Deck d = formats::read_deck_text(text, deck);
-  const formats::BulkModel b = estimator::resolved_bulk(d);
+  const formats::BulkModel b = formats::resolved_bulk(d);
   bool found = false;
   for (const auto& dv : b.desvars)
     if (dv.label == "XM29") {

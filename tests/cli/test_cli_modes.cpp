@@ -137,7 +137,7 @@ TEST_CASE("ssid modes: refuses a card it cannot assemble, names it", "[cli][mode
   const fs::path dir = scratch();
   const fs::path deck = write(dir / "quad.bdf", rod_chain(2, 1.0, "EIGRL,1,,,2\n", "CQUAD4,7,1,1,2,3,3\n"));
   auto r = run_ssid("modes " + deck.string());
-  CHECK(r.code == 1);
+  CHECK(r.code == 2);
   CHECK_THAT(r.err, Catch::Contains("CQUAD4") && Catch::Contains("cannot assemble"));
   auto u = run_ssid("modes " + deck.string() + " --seed 3");
   CHECK(u.code == 2);

@@ -30,12 +30,9 @@ bool same(const formats::FieldValue& a, const formats::FieldValue& b) { return a
 }  // namespace
 
 DeckUpdateReport update_deck(formats::Deck& deck, const std::map<std::string, double>& values) {
-  formats::BulkModel bulk = formats::parse_bulk(deck);
-  formats::resolve(deck, bulk);
-  for (const auto& p : bulk.problems)
-    if (p.severity == formats::Problem::Severity::Error)
-      throw std::invalid_argument(p.str() + " (fix the deck before updating it)");
-  const FeModel fe(deck, bulk);
+  const std::unique_ptr<FeModel> model = assemble_deck(deck, deck.files.front().path);
+  const FeModel& fe = *model;
+  const formats::BulkModel& bulk = fe.bulk();
   const auto& params = fe.parameters();
 
   DeckUpdateReport report;

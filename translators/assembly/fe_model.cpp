@@ -32,9 +32,11 @@ std::string upper(std::string s) {
   return s;
 }
 
-/// `NAME = n` in case control (global, or the first subcase), e.g. SPC, MPC, METHOD.
-std::optional<std::int64_t> case_control(const Deck& deck, const std::string& name) {
+/// `NAME = n` in case control (global, or the first subcase), e.g. SPC, MPC, METHOD;
+/// `where` receives the statement's place.
+std::optional<std::int64_t> case_control(const Deck& deck, const std::string& name, formats::SourceLocation& where) {
   std::optional<std::int64_t> global, first_subcase;
+  formats::SourceLocation global_at, first_subcase_at;
   int subcase = 0;
   for (const auto& st : deck.statements) {
     if (st.section != formats::Section::CaseControl) continue;
@@ -51,11 +53,17 @@ std::optional<std::int64_t> case_control(const Deck& deck, const std::string& na
     if (key != name) continue;
     try {
       const std::int64_t v = std::stoll(t.substr(eq + 1));
-      if (subcase == 0) global = v;
-      else if (subcase == 1 && !first_subcase) first_subcase = v;
+      if (subcase == 0) {
+        global = v;
+        global_at = deck.location(st.file, st.line);
+      } else if (subcase == 1 && !first_subcase) {
+        first_subcase = v;
+        first_subcase_at = deck.location(st.file, st.line);
+      }
     } catch (const std::exception&) {
     }
   }
+  where = global ? global_at : first_subcase_at;
   return global ? global : first_subcase;
 }
 
@@ -94,16 +102,19 @@ std::string field_name(const std::string& type, std::int64_t fid) {
 FeModel::FeModel(const Deck& deck, BulkModel model, AssemblyOptions options) : m_model(std::move(model)) {
   const BulkModel& m = m_model;
 
-  // Cards we do not assemble: harmless ones are noted, the others refused.
+  // Cards we do not assemble: harmless ones are noted, the others refused, at the first of them.
   for (const auto& [name, count] : m.unsupported) {
     if (no_effect_cards().count(name)) {
       m_notes.push_back(std::to_string(count) + " " + name + " card" + (count > 1 ? "s" : "") +
                         " ignored: no effect on K or M");
       continue;
     }
-    throw ModelError(name + " (" + std::to_string(count) + " card" + (count > 1 ? "s" : "") +
-                     "): ssid cannot assemble this card and it may change K or M; remove it or model it with "
-                     "supported cards");
+    const auto first = std::find_if(deck.cards.begin(), deck.cards.end(), [&](const auto& c) { return c.name == name; });
+    const formats::SourceLocation at = first != deck.cards.end() ? deck.location(*first) : formats::SourceLocation{};
+    throw ModelError(at, name + " (" + std::to_string(count) + " card" + (count > 1 ? "s" : "") +
+                             (at.file.empty() ? "" : ", first at " + at.str()) +
+                             "): ssid cannot assemble this card and it may change K or M; remove it or model it with "
+                             "supported cards");
   }
 
   // Parameters of the analysis.
@@ -136,10 +147,11 @@ FeModel::FeModel(const Deck& deck, BulkModel model, AssemblyOptions options) : m
   const ModelGeometry& geo = *m_geometry;
 
   // Constraint sets selected by case control (or the only one in a deck without case control).
+  std::map<std::string, formats::SourceLocation> selected_at;  // the case control statement of each selection
   auto select = [&](const char* what, std::optional<std::int64_t> forced, std::set<std::int64_t> available)
       -> std::optional<std::int64_t> {
     if (forced) return forced;
-    if (auto cc = case_control(deck, what)) return cc;
+    if (auto cc = case_control(deck, what, selected_at[what])) return cc;
     if (!has_case_control(deck) && available.size() == 1) {
       m_notes.push_back(std::string("no case control: ") + what + " set " + std::to_string(*available.begin()) +
                         " applied, as the only one");
@@ -164,7 +176,8 @@ FeModel::FeModel(const Deck& deck, BulkModel model, AssemblyOptions options) : m
       if (e.sid == *method) m_eigrl = &e;
     for (const auto& e : m.eigrs)
       if (e.sid == *method) m_eigr = &e;
-    if (!m_eigrl && !m_eigr) throw ModelError("METHOD = " + std::to_string(*method) + ": no EIGRL or EIGR with that SID");
+    if (!m_eigrl && !m_eigr)
+      throw ModelError(selected_at["METHOD"], "METHOD = " + std::to_string(*method) + ": no EIGRL or EIGR with that SID");
   }
 
   // Single-point constraints: GRID PS and the selected set (SPCADD expanded).
@@ -199,7 +212,7 @@ FeModel::FeModel(const Deck& deck, BulkModel model, AssemblyOptions options) : m
         for (auto g : s.grids) add_components(g, s.c, card_label(deck, s.card));
       }
     if (!found && !std::any_of(m.spcadds.begin(), m.spcadds.end(), [&](const auto& a) { return a.sid == *spc_set; }))
-      throw ModelError("SPC = " + std::to_string(*spc_set) + ": no SPC, SPC1 or SPCADD with that SID");
+      throw ModelError(selected_at["SPC"], "SPC = " + std::to_string(*spc_set) + ": no SPC, SPC1 or SPCADD with that SID");
   }
 
   // Multipoint constraints: rigid elements and the selected MPC set.
@@ -405,5 +418,16 @@ FeOperators FeModel::operators(const Eigen::VectorXd& x, bool derivatives) const
 }
 
 Eigen::MatrixXd FeModel::expand(const Eigen::MatrixXd& a_modes) const { return m_reduction.T * a_modes; }
+
+std::unique_ptr<FeModel> assemble_deck(const Deck& deck, const std::string& who, const AssemblyOptions& options,
+                                       std::vector<std::string>* warnings) {
+  BulkModel bulk = formats::resolved_bulk(deck, who, warnings);
+  try {
+    return std::make_unique<FeModel>(deck, std::move(bulk), options);
+  } catch (const ModelError& e) {
+    const std::string at = e.where().file.empty() ? who : e.where().str();
+    throw ModelError(e.where(), (at.empty() ? "" : at + ": ") + "cannot assemble the model: " + e.what());
+  }
+}
 
 }  // namespace ssid::translators

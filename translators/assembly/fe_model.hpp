@@ -109,4 +109,14 @@ class FeModel {
   const formats::Eigr* m_eigr = nullptr;
 };
 
+/// The one way from a read deck to its model (modes, assemble, correlate, estimate,
+/// diagnose, update-deck): formats::resolved_bulk, which refuses a deck with errors
+/// (InputError, each with its file:line), then the FeModel, whose ModelError comes
+/// back as "<place>: cannot assemble the model: <what>", the place being the first
+/// card or statement at fault, or `who` (the deck's name) when the message itself
+/// starts with the card's file:line. Warnings are appended to `warnings` when given.
+std::unique_ptr<FeModel> assemble_deck(const formats::Deck& deck, const std::string& who,
+                                       const AssemblyOptions& options = {},
+                                       std::vector<std::string>* warnings = nullptr);
+
 }  // namespace ssid::translators

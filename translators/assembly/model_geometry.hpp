@@ -27,10 +27,19 @@ struct GridPoint {
 };
 
 /// Bad model data found while assembling (a dangling reference, a degenerate
-/// geometry): the message starts with "file:line: CARD id".
+/// geometry): the message starts with "file:line: CARD id", or, for what no
+/// single card says (cards of a type ssid does not assemble, a case control
+/// selection), the place is given apart as where().
 class ModelError : public formats::InputError {
  public:
   using formats::InputError::InputError;
+  ModelError(formats::SourceLocation where, const std::string& message)
+      : formats::InputError(message), m_where(std::move(where)) {}
+  /// The first card or statement at fault; file empty when the message names it.
+  const formats::SourceLocation& where() const { return m_where; }
+
+ private:
+  formats::SourceLocation m_where;
 };
 
 class ModelGeometry {

@@ -6,7 +6,7 @@
 #include <Eigen/Dense>
 #include <catch2/catch.hpp>
 
-#include "estimator/deck_loading.hpp"
+#include "formats/bulk_model.hpp"
 #include "estimator/diagnosis/deck_problem.hpp"
 #include "estimator/eigen_solver.hpp"
 #include "tests/estimator/diagnosis/truss_cases.hpp"
@@ -25,7 +25,7 @@ struct Loaded {
 Loaded load(const std::string& text) {
   Loaded l;
   l.deck = std::make_unique<formats::Deck>(formats::read_deck_text(text, "x.bdf"));
-  l.fe = std::make_unique<translators::FeModel>(*l.deck, estimator::resolved_bulk(*l.deck));
+  l.fe = std::make_unique<translators::FeModel>(*l.deck, formats::resolved_bulk(*l.deck));
   return l;
 }
 
