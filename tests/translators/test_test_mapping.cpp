@@ -3,6 +3,7 @@
 #include <Eigen/Geometry>
 #include <random>
 
+#include "formats/parse_error.hpp"
 #include "translators/test_mapping.hpp"
 #include "translators/test_modes.hpp"
 
@@ -24,6 +25,43 @@ TEST_CASE("Test nodes map to grids by id; unknown ids are reported", "[mapping]"
   CHECK(m.unmapped == std::vector<std::int64_t>{99});
   REQUIRE(m.problems.size() == 1);
   CHECK(m.problems[0] == "test node 99: no grid with this id");
+}
+
+TEST_CASE("Measured DOFs on test nodes that map to no grid are refused, each node named", "[mapping][integrity]") {
+  auto message = [](const std::vector<MeasuredDof>& measured, const NodeMapping& m) {
+    try {
+      require_mapped(measured, m, "test.unv", "the deck rod.bdf");
+    } catch (const ssid::formats::InputError& e) {
+      return std::string(e.what());
+    }
+    return std::string("accepted");
+  };
+  std::vector<TestNode> nodes{{1, {0, 0, 0}, 0}, {5, {1, 0, 0}, 0}, {6, {2, 0, 0}, 0}, {99, {3, 0, 0}, 0}};
+  const auto m = map_test_nodes(nodes, grids3(), {});
+  CHECK(m.why_unmapped.at(5) == "no grid with this id");
+  // Node 99 carries no measured DOF (geometry only): not checked.
+  CHECK(message({{1, 1}, {1, 2}}, m) == "accepted");
+  CHECK(message({{1, 1}, {5, 1}, {5, 2}}, m) == "test.unv: test node 5: no grid with this id in the deck rod.bdf");
+  CHECK(message({{6, 3}, {1, 1}, {5, 1}}, m) ==
+        "test.unv: 2 measured test nodes map to no grid of the deck rod.bdf:\n"
+        "  test node 6: no grid with this id\n"
+        "  test node 5: no grid with this id");
+  // A measured node the test geometry does not list at all.
+  CHECK(message({{1, 1}, {42, 1}}, m) ==
+        "test.unv: test node 42: not a node of the test geometry (dataset 15 or 2411), so no grid of the deck rod.bdf");
+  // Position matching: the reason is the distance.
+  NodeMapOptions o;
+  o.by = MapBy::Position;
+  o.tolerance = 0.01;
+  const auto p = map_test_nodes({{103, {4, 0, 0}, 0}}, grids3(), o);
+  CHECK(message({{103, 1}}, p) ==
+        "test.unv: test node 103: nearest grid 7 at 2 is beyond the tolerance 0.01 in the deck rod.bdf");
+  // At most ten listed.
+  std::vector<MeasuredDof> many;
+  for (int k = 0; k < 12; ++k) many.push_back({1000 + k, 1});
+  const std::string all = message(many, m);
+  CHECK_THAT(all, Catch::StartsWith("test.unv: 12 measured test nodes map to no grid of the deck rod.bdf:\n"));
+  CHECK_THAT(all, Catch::EndsWith("  test node 1009: not a node of the test geometry (dataset 15 or 2411)\n  ... and 2 more"));
 }
 
 TEST_CASE("Test nodes map to the nearest grid within a tolerance", "[mapping]") {
