@@ -134,11 +134,15 @@ std::vector<std::string> supported_card_names() {
 
 namespace {
 /// "unknown card name CRDO — did you mean CROD?" (NASTRAN: USER FATAL MESSAGE 307).
-Problem unknown_card(const Deck& deck, const Card& c) {
-  std::string msg = "unknown card name " + c.name;
-  if (auto near = nearest_bulk_entry_name(c.name)) msg += " — did you mean " + *near + "?";
-  else msg += " (not a NASTRAN bulk data entry)";
-  return error_at(deck, c, 0, msg);
+/// The text is made once per name (`made`): a garbage file can hold a million cards.
+Problem unknown_card(const Deck& deck, const Card& c, std::unordered_map<std::string, std::string>& made) {
+  auto [it, fresh] = made.try_emplace(c.name);
+  if (fresh) {
+    it->second = "unknown card name " + c.name;
+    if (auto near = nearest_bulk_entry_name(c.name)) it->second += " — did you mean " + *near + "?";
+    else it->second += " (not a NASTRAN bulk data entry)";
+  }
+  return error_at(deck, c, 0, it->second);
 }
 }  // namespace
 
@@ -149,6 +153,7 @@ BulkModel parse_bulk(const Deck& deck) {
   const std::string* last_name = nullptr;
   ParseFn fn = nullptr;
   bool known = false;  ///< the name is a bulk data entry (typed or kept verbatim)
+  std::unordered_map<std::string, std::string> unknown_messages;
   std::size_t* counter = nullptr;
   for (std::size_t i = 0; i < deck.cards.size(); ++i) {
     const Card& c = deck.cards[i];
@@ -161,7 +166,7 @@ BulkModel parse_bulk(const Deck& deck) {
     }
     ++*counter;
     if (!fn) {
-      if (!known) m.problems.push_back(unknown_card(deck, c));
+      if (!known) m.problems.push_back(unknown_card(deck, c, unknown_messages));
       continue;
     }
     try {
