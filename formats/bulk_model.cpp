@@ -337,25 +337,35 @@ void resolve(const Deck& deck, BulkModel& m) {
     for (std::int64_t id : s.ids) grids.define(id, s.card);
   grids.define_verbatim({"EPOINT"});
 
+  // NASTRAN keeps four element id spaces apart (the QRG's "unique with respect
+  // to all other element identification numbers" is said of each family, and
+  // MSC/NX decks reuse ids across them): structural elements (with springs,
+  // dampers and bushings), mass elements, rigid elements, plot elements. An RBE2
+  // and a CQUAD4 may both be 1; two CBARs may not.
   IdSpace elements(deck, out, "element");
   for (const auto& e : m.crods) elements.define(e.eid, e.card);
   for (const auto& e : m.conrods) elements.define(e.eid, e.card);
   for (const auto& e : m.cbars) elements.define(e.eid, e.card);
   for (const auto& e : m.cbeams) elements.define(e.eid, e.card);
-  for (const auto& e : m.conm2s) elements.define(e.eid, e.card);
-  for (const auto& e : m.cmass1s) elements.define(e.eid, e.card);
-  for (const auto& e : m.cmass2s) elements.define(e.eid, e.card);
   for (const auto& e : m.celas1s) elements.define(e.eid, e.card);
   for (const auto& e : m.celas2s) elements.define(e.eid, e.card);
   for (const auto& e : m.cbushes) elements.define(e.eid, e.card);
-  for (const auto& e : m.rbars) elements.define(e.eid, e.card);
-  for (const auto& e : m.rbe2s) elements.define(e.eid, e.card);
-  for (const auto& e : m.rbe3s) elements.define(e.eid, e.card);
-  // Element cards kept verbatim share the id space.
+  // Element cards kept verbatim share the id space of their family.
   elements.define_verbatim({"CQUAD4", "CQUAD8", "CQUADR", "CTRIA3", "CTRIA6", "CTRIAR", "CSHEAR", "CHEXA", "CPENTA",
                             "CTETRA", "CPYRAM", "CTUBE", "CBEND", "CGAP", "CDAMP1", "CDAMP2", "CDAMP3", "CDAMP4",
-                            "CVISC", "CELAS3", "CELAS4", "CMASS3", "CMASS4", "CONM1", "CBUSH1D", "CFAST", "CWELD",
-                            "RBE1", "RROD", "RSPLINE", "PLOTEL"});
+                            "CVISC", "CELAS3", "CELAS4", "CBUSH1D", "CFAST", "CWELD"});
+  IdSpace masses(deck, out, "mass element");
+  for (const auto& e : m.conm2s) masses.define(e.eid, e.card);
+  for (const auto& e : m.cmass1s) masses.define(e.eid, e.card);
+  for (const auto& e : m.cmass2s) masses.define(e.eid, e.card);
+  masses.define_verbatim({"CMASS3", "CMASS4", "CONM1"});
+  IdSpace rigids(deck, out, "rigid element");
+  for (const auto& e : m.rbars) rigids.define(e.eid, e.card);
+  for (const auto& e : m.rbe2s) rigids.define(e.eid, e.card);
+  for (const auto& e : m.rbe3s) rigids.define(e.eid, e.card);
+  rigids.define_verbatim({"RBAR1", "RBE1", "RROD", "RSPLINE", "RSSCON", "RTRPLT"});
+  IdSpace plot_elements(deck, out, "plot element");
+  plot_elements.define_verbatim({"PLOTEL"});
 
   IdSpace properties(deck, out, "property");
   for (const auto& p : m.prods) properties.define(p.pid, p.card);
@@ -566,7 +576,9 @@ void resolve(const Deck& deck, BulkModel& m) {
   dvmrels.define_verbatim({"DVMREL2"});
   for (const auto& d : m.dvprel1s) {
     // Element-valued designs (CONM2 M, CELAS2 K, …): the PID field holds the element id.
-    if (d.type == "CONM2" || d.type == "CELAS2" || d.type == "CMASS2" || d.type == "CONROD")
+    if (d.type == "CONM2" || d.type == "CMASS2")
+      masses.need(d.pid, d.type, d.card, 3, "EID");
+    else if (d.type == "CELAS2" || d.type == "CONROD")
       elements.need(d.pid, d.type, d.card, 3, "EID");
     else
       properties.need(d.pid, d.type, d.card, 3, "PID");

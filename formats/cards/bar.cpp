@@ -18,7 +18,19 @@ Cbar parse_cbar(const FieldReader& r) {
   c.orientation_blank = !read_orientation(r, 5, c.g0, c.x);
   if (c.g0 == c.ga || c.g0 == c.gb) r.fail(5, "G0", "a grid other than GA and GB");
   c.offt_blank = r.blank(8);
-  c.offt = r.choice(8, "OFFT", k_offt_words, "GGG");
+  if (!c.offt_blank && r.is_integer(8)) {
+    // The older form of field 9 (COSMIC NASTRAN): a flag saying which form
+    // fields 6-8 take, 1 = X1-X3, 2 = G0. MSC Nastran still runs such decks; the
+    // offsets are then in the displacement systems, as OFFT GGG.
+    c.legacy_flag = r.integer(8, "F");
+    if (c.legacy_flag != 1 && c.legacy_flag != 2) r.fail(8, "OFFT", "one of GGG, BGG, GGO, BGO, GOG, BOG, GOO, BOO, "
+                                                               "or the older flag 1 (X1-X3) or 2 (G0)");
+    if (!c.orientation_blank && (c.legacy_flag == 2) != (c.g0 > 0))
+      r.fail(8, "F", c.legacy_flag == 2 ? "1 (fields 6-8 hold X1-X3, not G0)" : "2 (field 6 holds G0, not X1)");
+    c.offt = "GGG";
+  } else {
+    c.offt = r.choice(8, "OFFT", k_offt_words, "GGG");
+  }
   c.pa = r.components(9, "PA", true);
   c.pb = r.components(10, "PB", true);
   const char* w[] = {"W1A", "W2A", "W3A", "W1B", "W2B", "W3B"};
@@ -31,7 +43,7 @@ Cbar parse_cbar(const FieldReader& r) {
 std::vector<FieldValue> write_cbar(const Cbar& c) {
   std::vector<FieldValue> v = {std::string("CBAR"), c.eid, c.pid_blank ? FieldValue() : FieldValue(c.pid), c.ga, c.gb};
   write_orientation(v, 5, c.g0, c.x, c.orientation_blank);
-  put(v, 8, c.offt_blank ? FieldValue() : FieldValue(c.offt));
+  put(v, 8, c.offt_blank ? FieldValue() : c.legacy_flag ? FieldValue(c.legacy_flag) : FieldValue(c.offt));
   put(v, 9, text_or_blank(c.pa));
   put(v, 10, text_or_blank(c.pb));
   for (int k = 0; k < 3; ++k) put(v, 11 + k, or_default(c.wa[k], 0.0));

@@ -11,7 +11,9 @@
 /// Orientation: an integer in field 6 is G0 (vector from GA to G0, fields 7-8
 /// blank), otherwise X1-X3 (reals, in GA's displacement system). Blank fields
 /// 6-8 take BAROR's orientation; OFFT blank takes BAROR's, else "GGG"
-/// (one of GGG BGG GGO BGO GOG BOG GOO BOO). PA, PB: pin flags (components
+/// (one of GGG BGG GGO BGO GOG BOG GOO BOO); the older form of field 9, an
+/// integer flag F (1: fields 6-8 are X1-X3, 2: field 6 is G0), is read as OFFT
+/// GGG, checked against fields 6-8 and written back. PA, PB: pin flags (components
 /// released at each end), blank = none. W1A..W3B: end offsets, blank = 0.0.
 ///
 /// | 1     | 2 | 3   | 4 | 5 | 6     | 7  | 8  | 9    |
@@ -46,6 +48,7 @@ struct Cbar {
   std::int64_t g0 = 0;                     ///< > 0: orientation from GA to G0; else x
   std::array<double, 3> x{0.0, 0.0, 0.0};  ///< orientation vector (GA's displacement system)
   std::string offt = "GGG";
+  std::int64_t legacy_flag = 0;            ///< field 9 as the older flag F (1 or 2), 0 = not given
   std::string pa, pb;                      ///< pin flags (component digits), "" = none
   std::array<double, 3> wa{0.0, 0.0, 0.0}, wb{0.0, 0.0, 0.0};  ///< end offsets
   /// Fields that were blank (filled from BAROR or the NASTRAN default); written blank.

@@ -150,6 +150,29 @@ TEST_CASE("CBAR: X vector or G0 in field 6, OFFT, pins, offsets, BAROR defaults"
         "t.bdf:2: CBAR 10 continuation 1 field 2 (PA): expected components (digits 1-6, each at most once), got \"17\"");
 }
 
+TEST_CASE("CBAR: the older field 9, a flag 1 (X1-X3) or 2 (G0), is read as OFFT GGG and kept", "[cards][bar]") {
+  // MSC Nastran runs decks written this way (COSMIC NASTRAN's CBAR: F = 1 when
+  // fields 6-8 hold X1-X3, 2 when field 6 holds G0).
+  auto x = parse_text("CBAR    1       1       1       2       .0      .0      1.0     1\n", parse_cbar);
+  CHECK(x.legacy_flag == 1);
+  CHECK(x.offt == "GGG");
+  CHECK(x.x == std::array<double, 3>{0.0, 0.0, 1.0});
+  auto g = parse_text("CBAR    1       1       1       2       7                       2\n", parse_cbar);
+  CHECK(g.legacy_flag == 2);
+  CHECK(g.g0 == 7);
+  CHECK(g.offt == "GGG");
+  check_roundtrip(x, parse_cbar, write_cbar);
+  check_roundtrip(g, parse_cbar, write_cbar);
+  CHECK(write_cbar(x)[8] == FieldValue(std::int64_t{1}));
+  CHECK(error_of("CBAR    1       1       1       2       .0      .0      1.0     3\n", parse_cbar) ==
+        "t.bdf:1: CBAR 1 field 9 (OFFT): expected one of GGG, BGG, GGO, BGO, GOG, BOG, GOO, BOO, or the older flag 1 "
+        "(X1-X3) or 2 (G0), got \"3\"");
+  CHECK(error_of("CBAR    1       1       1       2       .0      .0      1.0     2\n", parse_cbar) ==
+        "t.bdf:1: CBAR 1 field 9 (F): expected 1 (fields 6-8 hold X1-X3, not G0), got \"2\"");
+  CHECK(error_of("CBAR    1       1       1       2       7                       1\n", parse_cbar) ==
+        "t.bdf:1: CBAR 1 field 9 (F): expected 2 (field 6 holds G0, not X1), got \"1\"");
+}
+
 TEST_CASE("PBARL: dimension count by type, NSM after the dimensions, unknown types kept", "[cards][section]") {
   auto p = parse_text("PBARL   1       2               I\n        1.      2.      3.      4.      5.      6.      .5\n", parse_pbarl);
   CHECK(p.group == "MSCBML0");

@@ -42,8 +42,6 @@ TEST_CASE("resolve: duplicate ids in each id space", "[resolve]") {
   CHECK(got == std::vector<std::string>{
                    "r.bdf:2: duplicate grid or scalar point 1 (GRID; first defined by GRID at r.bdf:1)",
                    "r.bdf:4: duplicate grid or scalar point 2 (GRID; first defined by SPOINT at r.bdf:3)",
-                   "r.bdf:10: duplicate element 5 (CONM2; first defined by CROD at r.bdf:9)",
-                   "r.bdf:11: duplicate element 5 (RBE2; first defined by CROD at r.bdf:9)",
                    "r.bdf:8: duplicate property 3 (PBAR; first defined by PROD at r.bdf:7)",
                    "r.bdf:6: duplicate material 1 (MAT1; first defined by MAT1 at r.bdf:5)",
                    // Grid 2 is first an SPOINT: structural elements need a GRID.
@@ -55,6 +53,46 @@ TEST_CASE("resolve: duplicate ids in each id space", "[resolve]") {
                    "r.bdf:16: duplicate DVPREL 1 (DVPREL1; first defined by DVPREL1 at r.bdf:14)",
                    "r.bdf:20: duplicate DVMREL 1 (DVMREL1; first defined by DVMREL1 at r.bdf:18)",
                });
+}
+
+TEST_CASE("resolve: element ids are unique within each family NASTRAN keeps apart, not across", "[resolve]") {
+  // Structural (with springs, dampers, bushings), mass, rigid and plot elements
+  // each have their own id space: MSC/NX decks reuse ids across them (an RBE2
+  // with the id of a CQUAD4 or a CONM2, a PLOTEL with a CBAR's, a CONM2 with a
+  // CVISC's) and NASTRAN runs them.
+  auto across = problems_of(
+      "GRID    1               0.      0.      0.\n"
+      "GRID    2               1.      0.      0.\n"
+      "GRID    3               1.      1.      0.\n"
+      "GRID    4               0.      1.      0.\n"
+      "MAT1    1       2.1+11          .3\n"
+      "PBAR    3       1       1.\n"
+      "CBAR    7       3       1       2       0.      0.      1.\n"
+      "CQUAD4  8       9       1       2       3       4\n"
+      "CVISC   9       10      1       2\n"
+      "CONM2   7       1               1.\n"
+      "CONM2   9       2               1.\n"
+      "RBE2    8       3       123     4\n"
+      "RBE2    7       4       123     1\n"
+      "PLOTEL  7       1       3\n");
+  CHECK(across == std::vector<std::string>{});
+  auto within = problems_of(
+      "GRID    1               0.      0.      0.\n"             // 1
+      "GRID    2               1.      0.      0.\n"             // 2
+      "CONM2   7       1               1.\n"                     // 3
+      "CMASS2  7       1.      2       1\n"                      // 4
+      "RBE2    8       1       123     2\n"                      // 5
+      "RBAR    8       1       2       123456\n"                 // 6
+      "PLOTEL  9       1       2\n"                              // 7
+      "PLOTEL  9       2       1\n"                              // 8
+      "CELAS2  5       1.      1       1       2       1\n"      // 9
+      "CDAMP2  5       1.      1       2       2       2\n");    // 10
+  CHECK(within == std::vector<std::string>{
+                      "r.bdf:10: duplicate element 5 (CDAMP2; first defined by CELAS2 at r.bdf:9)",
+                      "r.bdf:4: duplicate mass element 7 (CMASS2; first defined by CONM2 at r.bdf:3)",
+                      "r.bdf:6: duplicate rigid element 8 (RBAR; first defined by RBE2 at r.bdf:5)",
+                      "r.bdf:8: duplicate plot element 9 (PLOTEL; first defined by PLOTEL at r.bdf:7)",
+                  });
 }
 
 TEST_CASE("resolve: dangling references of every kind and properties of the wrong type", "[resolve]") {

@@ -52,15 +52,15 @@ el::BarSection dims_section(const std::string& type, const std::vector<double>& 
   try {
     if (!ddims) {
       const auto p = el::section_properties(shape, dims);
-      s.a = p.a; s.i1 = p.i1; s.i2 = p.i2; s.i12 = p.i12; s.j = p.j;
+      s.a = p.a; s.i1 = p.i1; s.i2 = p.i2; s.i12 = p.i12; s.j = p.j; s.k1 = p.k1; s.k2 = p.k2;
       s.nsm = nsm;
       return s;
     }
-    const Eigen::Matrix<double, 5, Eigen::Dynamic> J = el::section_jacobian(shape, dims);
+    const Eigen::Matrix<double, el::kSectionValues, Eigen::Dynamic> J = el::section_jacobian(shape, dims);
     Eigen::VectorXd dd(static_cast<Eigen::Index>(ddims->size()));
     for (std::size_t i = 0; i < ddims->size(); ++i) dd(static_cast<Eigen::Index>(i)) = (*ddims)[i];
-    const Eigen::Matrix<double, 5, 1> r = J * dd;
-    s.a = r(0); s.i1 = r(1); s.i2 = r(2); s.i12 = r(3); s.j = r(4);
+    const Eigen::Matrix<double, el::kSectionValues, 1> r = J * dd;
+    s.a = r(0); s.i1 = r(1); s.i2 = r(2); s.i12 = r(3); s.j = r(4); s.k1 = r(5); s.k2 = r(6);
     s.nsm = dnsm;
     return s;
   } catch (const std::invalid_argument& e) {

@@ -13,17 +13,33 @@ namespace {
 using formats::BulkModel;
 using formats::Deck;
 
-/// Cards that cannot change K or M in a real-eigenvalue analysis: ignored, with a note.
+/// Cards that cannot change K or M in a real-eigenvalue analysis: ignored, with a
+/// note. NASTRAN's SOL 103 (and the real-modes step of its modal solutions) runs
+/// decks that hold them: loads, temperatures, dynamic-response and optimisation
+/// data, aeroelastic models (the structure's modes come first; the aerodynamic
+/// boxes, splines and flutter or trim requests act only in SOL 144-146), extra
+/// points and transfer functions (TF enters only the direct dynamic-response
+/// matrices, selected by TFL), plot elements and output requests.
 const std::set<std::string>& no_effect_cards() {
   static const std::set<std::string> s = {
-      "FORCE",   "FORCE1",  "FORCE2",  "MOMENT",  "MOMENT1", "MOMENT2", "LOAD",    "PLOAD",   "PLOAD1",  "PLOAD2",
-      "PLOAD4",  "GRAV",    "RFORCE",  "TEMP",    "TEMPD",   "TEMPP1",  "SPCD",    "DAREA",   "DLOAD",   "RLOAD1",
-      "RLOAD2",  "TLOAD1",  "TLOAD2",  "FREQ",    "FREQ1",   "FREQ2",   "TSTEP",   "TABLED1", "TABLED2", "TABLED3",
-      "TABLED4", "TABDMP1", "DRESP1",  "DRESP2",  "DCONSTR", "DOPTPRM", "DEQATN",  "DTABLE",  "DVPREL2", "DVMREL2",
-      "DLINK",   "AERO",    "AEROS",   "CAERO1",  "PAERO1",  "SPLINE1", "SPLINE2", "SET1",    "AESTAT",  "AESURF",
-      "TRIM",    "MONPNT1", "ENDDATA", "EIGB",    "EIGC",    "SUPORT",  "SUPORT1", "CVISC",   "PVISC",   "CDAMP1",
-      "CDAMP2",  "PDAMP",   "NLPARM",  "TABLES1", "MATS1",   "CORD1R",  "CORD1C",  "CORD1S",  "DMIG",    "DTI",
-      "USET",    "USET1",   "SEQGP",   "PLOTEL",  "CONM1X"};
+      // loads, enforced motion, temperatures
+      "FORCE", "FORCE1", "FORCE2", "MOMENT", "MOMENT1", "MOMENT2", "LOAD", "PLOAD", "PLOAD1", "PLOAD2", "PLOAD4",
+      "GRAV", "RFORCE", "TEMP", "TEMPD", "TEMPP1", "SPCD",
+      // dynamic response (frequency, transient, random)
+      "DAREA", "DLOAD", "RLOAD1", "RLOAD2", "TLOAD1", "TLOAD2", "DPHASE", "DELAY", "FREQ", "FREQ1", "FREQ2", "FREQ3",
+      "FREQ4", "FREQ5", "TSTEP", "TABLED1", "TABLED2", "TABLED3", "TABLED4", "TABDMP1", "RANDPS", "TABRND1",
+      "EPOINT", "TF", "NOLIN1", "NOLIN2", "NOLIN3", "NOLIN4",
+      // optimisation
+      "DRESP1", "DRESP2", "DCONSTR", "DOPTPRM", "DEQATN", "DTABLE", "DVPREL2", "DVMREL2", "DLINK", "DCONADD",
+      // aeroelasticity (SOL 144-146)
+      "AERO", "AEROS", "CAERO1", "CAERO2", "CAERO3", "CAERO4", "CAERO5", "PAERO1", "PAERO2", "PAERO3", "PAERO4",
+      "PAERO5", "SPLINE1", "SPLINE2", "SPLINE3", "SPLINE4", "SPLINE5", "SPLINE6", "SPLINE7", "SET1", "SET2",
+      "AEFACT", "AELINK", "AELIST", "AEPARM", "AESTAT", "AESURF", "AESURFS", "AECOMP", "AECOMPL", "AEDW", "AEFORCE",
+      "AEPRESS", "CSSCHD", "DIVERG", "FLFACT", "FLUTTER", "GUST", "MKAERO1", "MKAERO2", "TRIM", "UXVEC", "MONPNT1",
+      "MONPNT2", "MONPNT3", "MONDSP1",
+      // other solutions' data, output and bookkeeping
+      "ENDDATA", "EIGB", "EIGC", "SUPORT", "SUPORT1", "CVISC", "PVISC", "CDAMP1", "CDAMP2", "PDAMP", "NLPARM",
+      "TABLES1", "MATS1", "CORD1R", "CORD1C", "CORD1S", "DMIG", "DTI", "USET", "USET1", "SEQGP", "PLOTEL", "CONM1X"};
   return s;
 }
 

@@ -36,19 +36,20 @@ void check_dims(SectionShape s, const std::vector<double>& d) {
   }
 }
 
-/// (A, I1, I2, I12, J) for scalar T (double or complex for the complex step).
+/// (A, I1, I2, I12, J, K1, K2) for scalar T (double or complex for the complex
+/// step); the shear factors as section.hpp states them.
 template <class T>
-std::array<T, 5> props(SectionShape s, const std::vector<T>& d) {
+std::array<T, kSectionValues> props(SectionShape s, const std::vector<T>& d) {
   const double pi = M_PI;
   switch (s) {
     case SectionShape::Rod: {
       const T r2 = d[0] * d[0];
-      return {pi * r2, pi * r2 * r2 / 4.0, pi * r2 * r2 / 4.0, T(0), pi * r2 * r2 / 2.0};
+      return {pi * r2, pi * r2 * r2 / 4.0, pi * r2 * r2 / 4.0, T(0), pi * r2 * r2 / 2.0, T(0.9), T(0.9)};
     }
     case SectionShape::Tube: {
       const T ro2 = d[0] * d[0], ri2 = d[1] * d[1];
       const T i = pi * (ro2 * ro2 - ri2 * ri2) / 4.0;
-      return {pi * (ro2 - ri2), i, i, T(0), 2.0 * i};
+      return {pi * (ro2 - ri2), i, i, T(0), 2.0 * i, T(0.5), T(0.5)};
     }
     case SectionShape::Bar: {
       const T b = d[0], h = d[1];
@@ -56,14 +57,15 @@ std::array<T, 5> props(SectionShape s, const std::vector<T>& d) {
       const T a = wide ? b : h, c = wide ? h : b;
       const T ca = c / a;
       const T j = a * c * c * c * (1.0 / 3.0 - 0.21 * ca * (1.0 - ca * ca * ca * ca / 12.0));
-      return {b * h, b * h * h * h / 12.0, h * b * b * b / 12.0, T(0), j};
+      return {b * h, b * h * h * h / 12.0, h * b * b * b / 12.0, T(0), j, T(5.0 / 6.0), T(5.0 / 6.0)};
     }
     case SectionShape::Box: {
       const T b = d[0], h = d[1], ty = d[2], tz = d[3];
       const T bi = b - 2.0 * tz, hi = h - 2.0 * ty;
       const T j = 2.0 * ty * tz * (b - tz) * (b - tz) * (h - ty) * (h - ty) / (b * tz + h * ty - tz * tz - ty * ty);
-      return {b * h - bi * hi, (b * h * h * h - bi * hi * hi * hi) / 12.0, (h * b * b * b - hi * bi * bi * bi) / 12.0,
-              T(0), j};
+      const T a = b * h - bi * hi;
+      return {a, (b * h * h * h - bi * hi * hi * hi) / 12.0, (h * b * b * b - hi * bi * bi * bi) / 12.0,
+              T(0), j, 2.0 * hi * tz / a, 2.0 * bi * ty / a};
     }
     case SectionShape::I: {
       const T h = d[0], bb = d[1], bt = d[2], tw = d[3], tb = d[4], tt = d[5];
@@ -77,7 +79,7 @@ std::array<T, 5> props(SectionShape s, const std::vector<T>& d) {
                    aw * (yw - yc) * (yw - yc) + bt * tt * tt * tt / 12.0 + at * (yt - yc) * (yt - yc);
       const T i2 = (tb * bb * bb * bb + hw * tw * tw * tw + tt * bt * bt * bt) / 12.0;
       const T j = (bb * tb * tb * tb + bt * tt * tt * tt + hw * tw * tw * tw) / 3.0;
-      return {a, i1, i2, T(0), j};
+      return {a, i1, i2, T(0), j, aw / a, (ab + at) / a};
     }
   }
   return {};
@@ -106,17 +108,18 @@ int section_dim_count(SectionShape s) {
 SectionProperties section_properties(SectionShape s, const std::vector<double>& dims) {
   check_dims(s, dims);
   const auto p = props<double>(s, dims);
-  return {p[0], p[1], p[2], p[3], p[4]};
+  return {p[0], p[1], p[2], p[3], p[4], p[5], p[6]};
 }
 
-Eigen::Matrix<double, 5, Eigen::Dynamic> section_jacobian(SectionShape s, const std::vector<double>& dims) {
+Eigen::Matrix<double, kSectionValues, Eigen::Dynamic> section_jacobian(SectionShape s,
+                                                                     const std::vector<double>& dims) {
   check_dims(s, dims);
-  Eigen::Matrix<double, 5, Eigen::Dynamic> jac(5, dims.size());
+  Eigen::Matrix<double, kSectionValues, Eigen::Dynamic> jac(kSectionValues, dims.size());
   for (std::size_t k = 0; k < dims.size(); ++k) {
     std::vector<detail::Complex> d(dims.begin(), dims.end());
     d[k] += detail::Complex(0.0, detail::kComplexStep);
     const auto p = props<detail::Complex>(s, d);
-    for (int r = 0; r < 5; ++r) jac(r, k) = p[r].imag() / detail::kComplexStep;
+    for (int r = 0; r < kSectionValues; ++r) jac(r, k) = p[r].imag() / detail::kComplexStep;
   }
   return jac;
 }

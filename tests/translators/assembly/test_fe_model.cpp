@@ -274,3 +274,61 @@ TEST_CASE("cards that cannot be assembled: refused or noted", "[assembly][errors
     CHECK(noted);
   }
 }
+
+namespace {
+/// A massless cantilever of `n` elements (`card` with property 1) along x,
+/// orientation vector y, fixed at grid 1, with a point mass m at the tip.
+std::string tip_mass_cantilever(const std::string& card, const std::string& property, int n, double L, double m) {
+  std::ostringstream s;
+  s << "SOL 103\nCEND\nSPC = 1\nBEGIN BULK\n";
+  for (int i = 0; i <= n; ++i) s << "GRID," << i + 1 << ",," << L * i / n << ",0.,0.\n";
+  for (int i = 0; i < n; ++i) s << card << "," << 100 + i << ",1," << i + 1 << "," << i + 2 << ",0.,1.,0.\n";
+  s << property << "MAT1,2,2.0E11,,0.3\nCONM2,900," << n + 1 << ",," << m << "\nSPC1,1,123456,1\nENDDATA\n";
+  return s.str();
+}
+}  // namespace
+
+TEST_CASE("bar and beam shear flexibility: a massless cantilever with a tip mass has the Timoshenko closed form",
+          "[assembly][shear]") {
+  // The only inertia is the tip mass, so each finite eigenvalue is the tip's
+  // stiffness over m: axial EA/L, and in each bending plane the inverse of the
+  // Timoshenko tip flexibility L³/(3 E I) + L/(K A G), which the shear-flexible
+  // bar element reproduces exactly for end loads, whatever the element count.
+  const int n = 4;
+  const double L = 2.0, m = 3.0, E = 2.0e11, G = E / (2 * 1.3);
+  struct Case {
+    std::string name, card, property;
+    double a, i1, i2, k1, k2;  // k = 0: no shear flexibility
+  };
+  const double pi = M_PI, r = 0.05;
+  const double rod_a = pi * r * r, rod_i = pi * r * r * r * r / 4;
+  // BOX 0.12 (z) x 0.08 (y), top/bottom walls 0.01, side walls 0.006: the side
+  // walls carry plane-1 shear, the top and bottom ones plane-2 shear.
+  const double bb = 0.12, bh = 0.08, ty = 0.01, tz = 0.006;
+  const double box_a = bb * bh - (bb - 2 * tz) * (bh - 2 * ty);
+  const double box_i1 = (bb * bh * bh * bh - (bb - 2 * tz) * std::pow(bh - 2 * ty, 3)) / 12;
+  const double box_i2 = (bh * bb * bb * bb - (bh - 2 * ty) * std::pow(bb - 2 * tz, 3)) / 12;
+  const std::vector<Case> cases = {
+      {"PBARL ROD (K = 0.9)", "CBAR", "PBARL,1,2,,ROD\n,0.05\n", rod_a, rod_i, rod_i, 0.9, 0.9},
+      {"PBEAML ROD (K = 0.9)", "CBEAM", "PBEAML,1,2,,ROD\n,0.05\n", rod_a, rod_i, rod_i, 0.9, 0.9},
+      {"PBARL BOX", "CBAR", "PBARL,1,2,,BOX\n,0.12,0.08,0.01,0.006\n", box_a, box_i1, box_i2,
+       2 * (bh - 2 * ty) * tz / box_a, 2 * (bb - 2 * tz) * ty / box_a},
+      {"PBEAM, K1 K2 blank (1.0)", "CBEAM", "PBEAM,1,2,1.0E-3,2.0E-7,8.0E-7,,1.0E-7\n", 1e-3, 2e-7, 8e-7, 1.0, 1.0},
+      {"PBAR, K1 K2 blank (rigid in shear)", "CBAR", "PBAR,1,2,1.0E-3,2.0E-7,8.0E-7,1.0E-7\n", 1e-3, 2e-7, 8e-7, 0, 0},
+      {"PBAR, K1 K2 given", "CBAR", "PBAR,1,2,1.0E-3,2.0E-7,8.0E-7,1.0E-7\n,,,,,,,,\n,0.6,0.7\n", 1e-3, 2e-7,
+       8e-7, 0.6, 0.7},
+  };
+  for (const auto& c : cases) {
+    INFO(c.name);
+    auto l = load(tip_mass_cantilever(c.card, c.property, n, L, m));
+    const Eigen::VectorXd lambda = eigenvalues(l.model->operators(l.model->initial_parameters(), false));
+    auto bending = [&](double I, double k) {
+      const double flex = L * L * L / (3 * E * I) + (k > 0 ? L / (k * c.a * G) : 0.0);
+      return 1.0 / (m * flex);
+    };
+    std::vector<double> expected = {E * c.a / (L * m), bending(c.i1, c.k1), bending(c.i2, c.k2)};
+    std::sort(expected.begin(), expected.end());
+    REQUIRE(lambda.size() == 3);
+    for (int i = 0; i < 3; ++i) CHECK(lambda(i) == Approx(expected[static_cast<std::size_t>(i)]).epsilon(1e-9));
+  }
+}

@@ -71,9 +71,11 @@ TEST_CASE("PBARL sections: Jacobian matches central differences for every dimens
       auto dp = c.d, dm = c.d;
       dp[k] += h, dm[k] -= h;
       const SectionProperties p = section_properties(c.s, dp), m = section_properties(c.s, dm);
-      const double fd[5] = {(p.a - m.a) / (2 * h), (p.i1 - m.i1) / (2 * h), (p.i2 - m.i2) / (2 * h),
-                            (p.i12 - m.i12) / (2 * h), (p.j - m.j) / (2 * h)};
-      for (int r = 0; r < 5; ++r) {
+      const double fd[kSectionValues] = {(p.a - m.a) / (2 * h),     (p.i1 - m.i1) / (2 * h),
+                                         (p.i2 - m.i2) / (2 * h),   (p.i12 - m.i12) / (2 * h),
+                                         (p.j - m.j) / (2 * h),     (p.k1 - m.k1) / (2 * h),
+                                         (p.k2 - m.k2) / (2 * h)};
+      for (int r = 0; r < kSectionValues; ++r) {
         INFO(section_shape_name(c.s) << " DIM" << k + 1 << " row " << r);
         CHECK(jac(r, k) == Approx(fd[r]).epsilon(1e-7).margin(1e-9 * jac.cwiseAbs().maxCoeff()));
       }
@@ -89,4 +91,32 @@ TEST_CASE("PBARL sections: bad dimensions are refused with the type named", "[se
   CHECK_THROWS_WITH(section_properties(SectionShape::Rod, {-1.0}), Contains("DIM1 must be > 0"));
   CHECK_THROWS_WITH(parse_section_shape("HAT"), Contains("HAT"));
   CHECK(parse_section_shape("BOX") == SectionShape::Box);
+}
+
+TEST_CASE("PBARL sections: shear factors as NASTRAN prints them for its equivalent PBAR", "[section]") {
+  // Values NX Nastran printed (USER INFORMATION MESSAGE 4379) for the same
+  // dimensions, to the five digits it prints: ROD r = 1 -> 0.9, 0.9;
+  // TUBE 0.2/0.195 -> 0.5, 0.5; BOX 6 x 1, walls 0.1 -> 0.11765, 0.85294
+  // (docs/elements.md names the .f06 files).
+  const auto rod = section_properties(SectionShape::Rod, {1.0});
+  CHECK(rod.k1 == 0.9);
+  CHECK(rod.k2 == 0.9);
+  const auto tube = section_properties(SectionShape::Tube, {0.2, 0.195});
+  CHECK(tube.a == Approx(6.2047e-3).epsilon(1e-4));
+  CHECK(tube.k1 == 0.5);
+  CHECK(tube.k2 == 0.5);
+  const auto box = section_properties(SectionShape::Box, {6.0, 1.0, 0.1, 0.1});
+  CHECK(box.a == Approx(1.36).epsilon(1e-12));
+  CHECK(box.i1 == Approx(0.25253).epsilon(5e-5));
+  CHECK(box.i2 == Approx(4.9925).epsilon(5e-5));
+  CHECK(box.j == Approx(0.82930).epsilon(5e-5));
+  CHECK(box.k1 == Approx(0.11765).epsilon(5e-5));
+  CHECK(box.k2 == Approx(0.85294).epsilon(5e-5));
+  // I by the same rule (web, flanges over A): depth 10, flanges 6 x 1, web 0.5.
+  const auto i = section_properties(SectionShape::I, {10.0, 6.0, 6.0, 0.5, 1.0, 1.0});
+  CHECK(i.k1 == Approx(4.0 / 16.0).epsilon(1e-14));
+  CHECK(i.k2 == Approx(12.0 / 16.0).epsilon(1e-14));
+  const auto bar = section_properties(SectionShape::Bar, {3.0, 1.0});
+  CHECK(bar.k1 == Approx(5.0 / 6.0).epsilon(1e-15));
+  CHECK(bar.k2 == Approx(5.0 / 6.0).epsilon(1e-15));
 }
