@@ -5,6 +5,7 @@
 
 #include <algorithm>
 #include <array>
+#include <map>
 #include <cmath>
 #include <unordered_set>
 #include <functional>
@@ -327,15 +328,62 @@ private:
 
 }  // namespace
 
+/// The scalar points scalar elements define by naming them (SPOINT remark 2):
+/// an end with component 0 or blank that no GRID, SPOINT or EPOINT defines.
+/// Typed cards: CELAS1/2, CMASS1/2 (G, C pairs); cards kept verbatim: CDAMP1/2
+/// (G, C pairs), CELAS3/4, CMASS3/4, CDAMP3/4 (scalar points S1, S2 in fields
+/// 4-5). Each becomes a scalar point of the model (BulkModel::implied_spoints).
+void define_implied_spoints(const Deck& deck, BulkModel& m, IdSpace& grids) {
+  std::map<std::int64_t, std::size_t> implied;  // id -> the first card naming it
+  auto end = [&](std::int64_t g, std::int64_t c, std::size_t card) {
+    if (g > 0 && c == 0 && !grids.find(g)) {
+      auto [it, fresh] = implied.emplace(g, card);
+      if (!fresh && card < it->second) it->second = card;
+    }
+  };
+  auto typed = [&](const auto& elements) {
+    for (const auto& e : elements) end(e.g1, e.c1, e.card), end(e.g2, e.c2, e.card);
+  };
+  typed(m.celas1s);
+  typed(m.celas2s);
+  typed(m.cmass1s);
+  typed(m.cmass2s);
+  auto field_id = [&](const Card& c, std::size_t i) -> std::int64_t {
+    auto v = parse_integer(c.field(i));
+    return v ? *v : 0;
+  };
+  for (std::size_t i = 0; i < deck.cards.size(); ++i) {
+    const Card& c = deck.cards[i];
+    if (c.name == "CDAMP1" || c.name == "CDAMP2") {
+      end(field_id(c, 3), field_id(c, 4), i);
+      end(field_id(c, 5), field_id(c, 6), i);
+    } else if (c.name == "CELAS3" || c.name == "CELAS4" || c.name == "CMASS3" || c.name == "CMASS4" ||
+               c.name == "CDAMP3" || c.name == "CDAMP4") {
+      end(field_id(c, 3), 0, i);
+      end(field_id(c, 4), 0, i);
+    }
+  }
+  m.implied_spoints.clear();
+  for (const auto& [id, card] : implied) {
+    m.implied_spoints.push_back(id);
+    grids.define(id, card);
+  }
+}
+
 void resolve(const Deck& deck, BulkModel& m) {
   std::vector<Problem>& out = m.problems;
 
   // --- id spaces ------------------------------------------------------------
   IdSpace grids(deck, out, "grid or scalar point");
   for (const Grid& g : m.grids) grids.define(g.id, g.card);
+  // SPOINT remark: "duplicate scalar point numbers are allowed" (not a GRID's).
   for (const Spoint& s : m.spoints)
-    for (std::int64_t id : s.ids) grids.define(id, s.card);
+    for (std::int64_t id : s.ids) {
+      const IdSpace::Def* d = grids.find(id);
+      if (!d || *d->type != "SPOINT") grids.define(id, s.card);
+    }
   grids.define_verbatim({"EPOINT"});
+  define_implied_spoints(deck, m, grids);
 
   // NASTRAN keeps four element id spaces apart (the QRG's "unique with respect
   // to all other element identification numbers" is said of each family, and
@@ -541,11 +589,13 @@ void resolve(const Deck& deck, BulkModel& m) {
   IdSpace spcadd_ids(deck, out, "SPCADD set");
   for (const Spcadd& s : m.spcadds) {
     spcadd_ids.define(s.sid, s.card);
+    // NASTRAN warns (USER WARNING MESSAGE 2053, UNDEFINED SINGLE-POINT
+    // CONSTRAINT SET) and runs: the set adds no constraint.
     for (std::int64_t set : s.sets)
       if (!spc_sets.count(set))
-        out.push_back(error_at(deck, deck.cards[s.card], 0,
-                               "SPC set " + std::to_string(set) + " required by " + label(deck, s.card) +
-                                   " does not exist (no SPC or SPC1 with that SID)"));
+        out.push_back(warning_at(deck, deck.cards[s.card], 0,
+                                 "SPC set " + std::to_string(set) + " required by " + label(deck, s.card) +
+                                     " does not exist (no SPC or SPC1 with that SID); it adds no constraint"));
   }
   for (const Mpc& mp : m.mpcs)
     for (const MpcTerm& t : mp.terms) scalar_end(t.g, t.c, mp.card, 0, "Gj");

@@ -29,6 +29,10 @@ namespace ssid::formats {
 struct BulkModel {
   std::vector<Grid> grids;
   std::vector<Spoint> spoints;
+  /// Scalar points defined by their appearance on a scalar element's connection
+  /// (CELASi, CMASSi, CDAMPi) and on no SPOINT or GRID: NASTRAN's SPOINT remark
+  /// says they "need not appear on an SPOINT entry". Filled by resolve, ascending.
+  std::vector<std::int64_t> implied_spoints;
   std::vector<Grdset> grdsets;  ///< at most one; applied to grids
   std::vector<Cord2> cord2s;    ///< CORD2R, CORD2C, CORD2S
   // Elements and their properties.

@@ -95,6 +95,29 @@ TEST_CASE("resolve: element ids are unique within each family NASTRAN keeps apar
                   });
 }
 
+TEST_CASE("resolve: scalar points as NASTRAN defines them — repeated SPOINTs, points named by scalar elements",
+          "[resolve]") {
+  // SPOINT remarks: "duplicate scalar point numbers are allowed", and a scalar
+  // point named on a scalar element's connection "need not appear on an SPOINT
+  // entry". A GRID and an SPOINT with one id stay a duplicate.
+  Deck d = read_deck_text(
+      "SPOINT  5       6\n"                                  // 1
+      "SPOINT  5\n"                                          // 2
+      "CELAS2  1       1.      100             200\n"        // 3 implies 100, 200
+      "CMASS2  2       2.      100\n"                        // 4
+      "CDAMP3  3       9       300     5\n"                  // 5 implies 300 (kept verbatim)
+      "CELAS4  4       1.      301\n"                        // 6 implies 301
+      "SPC1    1       0       300     301     100\n"        // 7 refer to implied points
+      "GRID    6               0.      0.      0.\n",        // 8 GRID 6 after SPOINT 6
+      "r.bdf");
+  BulkModel m = parse_bulk(d);
+  resolve(d, m);
+  std::vector<std::string> got;
+  for (const auto& p : m.problems) got.push_back(p.str());
+  CHECK(got == std::vector<std::string>{"r.bdf:8: duplicate grid or scalar point 6 (GRID; first defined by SPOINT at r.bdf:1)"});
+  CHECK(m.implied_spoints == std::vector<std::int64_t>{100, 200, 300, 301});
+}
+
 TEST_CASE("resolve: dangling references of every kind and properties of the wrong type", "[resolve]") {
   auto got = problems_of(
       "GRID    1               0.      0.      0.\n"                           // 1
@@ -136,7 +159,8 @@ TEST_CASE("resolve: dangling references of every kind and properties of the wron
                    "r.bdf:13: GRID 20 required by RBAR 16 does not exist",
                    "r.bdf:14: GRID 21 required by RBE3 17 does not exist",
                    "r.bdf:15: grid or scalar point 3 required by SPC1 1 does not exist",
-                   "r.bdf:16: SPC set 5 required by SPCADD 2 does not exist (no SPC or SPC1 with that SID)",
+                   "r.bdf:16: warning: SPC set 5 required by SPCADD 2 does not exist (no SPC or SPC1 with that SID); it "
+                   "adds no constraint",
                    "r.bdf:17: grid or scalar point 22 required by MPC 3 does not exist",
                    "r.bdf:21: DVPREL1 1 refers to PID 3, which is a PBAR, expected PROD",
                    "r.bdf:22: DESVAR 2 required by DVPREL1 1 does not exist",

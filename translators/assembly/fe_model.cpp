@@ -38,7 +38,11 @@ const std::set<std::string>& no_effect_cards() {
       "AEPRESS", "CSSCHD", "DIVERG", "FLFACT", "FLUTTER", "GUST", "MKAERO1", "MKAERO2", "TRIM", "UXVEC", "MONPNT1",
       "MONPNT2", "MONPNT3", "MONDSP1",
       // other solutions' data, output and bookkeeping
-      "ENDDATA", "EIGB", "EIGC", "SUPORT", "SUPORT1", "CVISC", "PVISC", "CDAMP1", "CDAMP2", "PDAMP", "NLPARM",
+      "ENDDATA", "EIGB", "EIGC", "SUPORT", "SUPORT1", "CVISC", "PVISC", "CDAMP1", "CDAMP2", "CDAMP3", "CDAMP4",
+      "CDAMP5", "PDAMP", "PDAMP5", "NLPARM",
+      // direct matrix input by DMI (read by DMAP and the aerodynamics; K2GG and
+      // M2GG select DMIG, which ssid assembles)
+      "DMI", "DMIJ", "DMIJI", "DMIK",
       "TABLES1", "MATS1", "CORD1R", "CORD1C", "CORD1S", "DMIG", "DTI", "USET", "USET1", "SEQGP", "PLOTEL", "CONM1X"};
   return s;
 }

@@ -45,6 +45,7 @@ ModelGeometry::ModelGeometry(const formats::Deck& deck, const formats::BulkModel
   }
   for (const auto& s : model.spoints)
     for (auto id : s.ids) points.emplace(id, false);
+  for (auto id : model.implied_spoints) points.emplace(id, false);
   for (const auto& [id, is_grid] : points) {
     if (!is_grid) {
       m_spoint_dof[id] = m_gset.add({id, 0});

@@ -26,6 +26,7 @@ DeckEditor::DeckEditor(const std::string& text, const std::string& name)
   for (const auto& x : b.grids) g = std::max(g, x.id);
   for (const auto& x : b.spoints)
     for (auto id : x.ids) g = std::max(g, id);
+  for (auto id : b.implied_spoints) g = std::max(g, id);
   auto elements = [&](const auto& v) { for (const auto& x : v) e = std::max(e, x.eid); };
   elements(b.crods); elements(b.conrods); elements(b.cbars); elements(b.cbeams); elements(b.conm2s);
   elements(b.cmass1s); elements(b.cmass2s); elements(b.celas1s); elements(b.celas2s); elements(b.cbushes);
