@@ -180,20 +180,24 @@ std::vector<FieldValue> write_pbeam(const Pbeam& p) {
   std::vector<FieldValue> v = {std::string("PBEAM"),  p.pid, p.mid, p.a, or_default(p.i1, 0.0),
                                or_default(p.i2, 0.0), or_default(p.i12, 0.0), or_default(p.j, 0.0),
                                or_default(p.nsm, 0.0)};
-  auto row8 = [&](std::initializer_list<FieldValue> row) {
-    for (const auto& x : row) v.push_back(x);
+  // Appends one continuation's eight fields. Each field is moved in as it comes: a
+  // std::initializer_list<FieldValue> (a const array of variants, copied element by
+  // element) made GCC 12 warn -Wmaybe-uninitialized about the std::string alternative.
+  auto row8 = [&v](auto&&... row) {
+    static_assert(sizeof...(row) == 8, "a PBEAM continuation has eight fields");
+    (v.emplace_back(std::forward<decltype(row)>(row)), ...);
   };
   auto z = [](double x) { return or_default(x, 0.0); };
-  row8({z(p.c1), z(p.c2), z(p.d1), z(p.d2), z(p.e1), z(p.e2), z(p.f1), z(p.f2)});
+  row8(z(p.c1), z(p.c2), z(p.d1), z(p.d2), z(p.e1), z(p.e2), z(p.f1), z(p.f2));
   for (const PbeamStation& s : p.stations) {
-    row8({s.so, s.xxb, s.a, s.i1, s.i2, s.i12, s.j, s.nsm});
-    if (s.so == "YES") row8({z(s.c1), z(s.c2), z(s.d1), z(s.d2), z(s.e1), z(s.e2), z(s.f1), z(s.f2)});
+    row8(s.so, s.xxb, s.a, s.i1, s.i2, s.i12, s.j, s.nsm);
+    if (s.so == "YES") row8(z(s.c1), z(s.c2), z(s.d1), z(s.d2), z(s.e1), z(s.e2), z(s.f1), z(s.f2));
   }
   auto b = [](double x, double a, bool blank) { return blank && x == a ? FieldValue() : FieldValue(x); };
-  row8({or_default(p.k1, 1.0), or_default(p.k2, 1.0), z(p.s1), z(p.s2), z(p.nsia), b(p.nsib, p.nsia, p.nsib_blank),
-        z(p.cwa), b(p.cwb, p.cwa, p.cwb_blank)});
-  row8({z(p.m1a), z(p.m2a), b(p.m1b, p.m1a, p.m1b_blank), b(p.m2b, p.m2a, p.m2b_blank), z(p.n1a), z(p.n2a),
-        b(p.n1b, p.n1a, p.n1b_blank), b(p.n2b, p.n2a, p.n2b_blank)});
+  row8(or_default(p.k1, 1.0), or_default(p.k2, 1.0), z(p.s1), z(p.s2), z(p.nsia), b(p.nsib, p.nsia, p.nsib_blank),
+       z(p.cwa), b(p.cwb, p.cwa, p.cwb_blank));
+  row8(z(p.m1a), z(p.m2a), b(p.m1b, p.m1a, p.m1b_blank), b(p.m2b, p.m2a, p.m2b_blank), z(p.n1a), z(p.n2a),
+       b(p.n1b, p.n1a, p.n1b_blank), b(p.n2b, p.n2a, p.n2b_blank));
   trim_blanks(v);
   return v;
 }

@@ -7,6 +7,11 @@
 # Output: samples/import/work/, or $SSID_IMPORT_WORK (exports, spec.json, imported/ and exact/ operators).
 set -eu
 SSID=${1:-ssid}
+# A path given relative to the caller's folder (build/ssid) must survive the cd below;
+# a bare name is looked up on PATH.
+case "$SSID" in
+  */*) SSID=$(cd "$(dirname "$SSID")" && pwd)/$(basename "$SSID") ;;
+esac
 HERE=$(cd "$(dirname "$0")" && pwd)
 DECK=$(cd "$(dirname "${2:-$HERE/../frame.bdf}")" && pwd)/$(basename "${2:-$HERE/../frame.bdf}")
 W="${SSID_IMPORT_WORK:-$HERE/work}"

@@ -212,8 +212,7 @@ TEST_CASE("samples/estimate: the script runs end to end and the truth lies withi
   // README's first command runs `ssid estimate samples/mpi_rod.bdf
   // samples/estimate/measured.unv`: the deck must be the script's nominal deck,
   // and the committed test must give the same answer as the regenerated one
-  // (not bit for bit: the rigid-body modes near 0.3 Hz differ in the last digits
-  // with the BLAS's threading).
+  // (the bytes are compared by tests/docs/regenerate_samples.sh).
   CHECK(cli_slurp(dir / "nominal.bdf") == cli_slurp(fs::path(SSID_SOURCE_DIR) / "samples" / "mpi_rod.bdf"));
   const fs::path readme_json = dir / "readme.json";
   const auto readme = run_ssid("estimate " + (fs::path(SSID_SOURCE_DIR) / "samples" / "mpi_rod.bdf").string() + " " +

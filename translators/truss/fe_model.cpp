@@ -44,7 +44,7 @@ void add_desvar(FeModel& fe, int id, const std::string& label, double init, cons
   fe.desvars.push_back({id, label, init, sig(init / 10.0), sig(init * 10.0), what});
 }
 void add_dvprel(FeModel& fe, const std::string& type, int pid, const std::string& pname, int dvid, double coef) {
-  fe.dvprels.push_back({static_cast<int>(fe.dvprels.size()) + 1, type, pid, pname, dvid, coef});
+  fe.dvprels.push_back({static_cast<int>(fe.dvprels.size()) + 1, type, pid, pname, dvid, coef, {}});
 }
 
 Eigen::Vector3d orientation(const Eigen::Vector3d& axis) {
