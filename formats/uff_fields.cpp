@@ -330,6 +330,12 @@ bool reals_only(std::string_view text) {
   return true;
 }
 
+/// True when the line holds one integer and nothing else.
+bool lone_integer(std::string_view text) {
+  const auto t = tokens(text);
+  return t.size() == 1 && parse_integer(t[0].text).has_value();
+}
+
 /// Reads the values of one line of a stream that still expects `remaining`
 /// values: in the fixed columns `widths` when the line fits them, else in equal
 /// columns of another width, else blank-separated.
@@ -376,10 +382,11 @@ StreamLine read_stream_line(std::string_view text, const std::vector<int>& width
   }
   r.values.clear();
   const auto tok = tokens(text);
-  auto w = uniform_width(text, 0);
-  if (w && *w <= widths[0]) w.reset();  // narrower aligned values: no wider columns, read as blank-separated
-  r.layout = w ? Layout::Uniform : Layout::Free;
-  r.width = w ? *w : 0;
+  // Aligned values no wider than the standard columns are read as blank-separated.
+  const int w = uniform_width(text, 0).value_or(0);
+  r.layout = w > widths[0] ? Layout::Uniform : Layout::Free;
+  r.width = r.layout == Layout::Uniform ? w : 0;
+  const auto uw = static_cast<std::size_t>(r.width);
   if (tok.empty()) {
     r.bad = true;
     r.expected = describe(Kind::Real, widths[0], 0);
@@ -396,9 +403,8 @@ StreamLine read_stream_line(std::string_view text, const std::vector<int>& width
     if (!v) {
       r.bad = true;
       r.bad_index = i;
-      r.expected = w ? describe(Kind::Real, *w, i * static_cast<std::size_t>(*w)) : "real (blank-separated)";
-      r.got = std::string(w ? column_text(text, i * static_cast<std::size_t>(*w), static_cast<std::size_t>(*w))
-                            : tok[i].text);
+      r.expected = uw ? describe(Kind::Real, r.width, i * uw) : "real (blank-separated)";
+      r.got = std::string(uw ? column_text(text, i * uw, uw) : tok[i].text);
       return r;
     }
     r.values.push_back(*v);
@@ -419,11 +425,13 @@ std::vector<double> read_real_stream(const RecordContext& ctx, const std::vector
   // wider ones of its first line) then fill every line but the last, so a line
   // that ends early is missing a value there. Blank-separated values may stop
   // at any line end, but then only more reals may continue them — not a line in
-  // columns holding an integer (the next record's node number, say) — and the
-  // line where they stopped is blamed otherwise.
+  // columns holding an integer — and the line where they stopped is blamed
+  // otherwise. No record of reals is continued by a lone integer (the next
+  // record's node number): the record's last line is blamed then too.
   std::vector<int> line_widths = widths;
   std::optional<Layout> record;
   const Line* stopped = nullptr;  // blank-separated values of this record stopped at the end of this line
+  const Line* last = nullptr;     // the record's last line read
   auto fail_stopped = [&](const std::string& why) {
     ctx.fail(*stopped, std::to_string(out.size()) + " of the " + std::to_string(count) + " values (" + name +
                            ") by the end of this line; " + why);
@@ -439,8 +447,11 @@ std::vector<double> read_real_stream(const RecordContext& ctx, const std::vector
     const Line& l = lines[pos];
     const std::size_t remaining = count - out.size();
     StreamLine r = read_stream_line(l.text, line_widths, remaining);
-    if (stopped && (r.bad || (r.layout == Layout::Columns && !reals_only(l.text))))
+    // A lone integer (the next record's node number, say) never continues a record of reals.
+    if ((stopped && (r.bad || (r.layout == Layout::Columns && !reals_only(l.text)))) || (last && lone_integer(l.text))) {
+      stopped = last;
       fail_stopped("line " + std::to_string(l.number) + " (" + quoted(rtrim(l.text)) + ") does not continue them");
+    }
     if (record == Layout::Columns && r.layout != Layout::Columns && !r.bad) {
       // The record's columns, continued in another layout: reported in the record's columns.
       r.bad = true;
@@ -479,6 +490,7 @@ std::vector<double> read_real_stream(const RecordContext& ctx, const std::vector
       }
     }
     stopped = record != Layout::Columns && r.values.size() < remaining ? &l : nullptr;
+    last = &l;
     out.insert(out.end(), r.values.begin(), r.values.end());
   }
   return out;

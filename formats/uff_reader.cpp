@@ -1,6 +1,7 @@
 /// \file uff_reader.cpp
 /// Universal-file reader: frames datasets between delimiters, then parses the
 /// known ones record by record (layouts in uff.hpp).
+#include <algorithm>
 #include <cmath>
 #include <filesystem>
 #include <fstream>
@@ -344,6 +345,10 @@ std::size_t binary_byte_count(const std::string& file, const Line& header) {
   return static_cast<std::size_t>(v[5].i);
 }
 
+bool is_blank_text(std::string_view s) {
+  return std::all_of(s.begin(), s.end(), [](char c) { return c == ' ' || c == '\t' || c == '\r' || c == '\n' || c == '\f'; });
+}
+
 [[noreturn]] void not_text(const std::string& name, const Line& l, std::size_t column) {
   throw ParseError(SourceLocation{name, 0, {}}, "not a universal file: byte " + detail::byte_hex(l.text[column]) +
                                                     " at line " + std::to_string(l.number) + ", column " +
@@ -390,12 +395,15 @@ UffFile parse_uff(const std::string& text, const std::string& name) {
                        "expected the dataset delimiter \"    -1\" (-1 in columns 1-6), got " +
                            detail::quoted(detail::rtrim(open.text)));
     }
-    if (sc.at_end()) break;  // a trailing lone delimiter
+    // A trailing lone delimiter (maybe followed by blank lines) ends the file.
+    const auto only_blanks_left = [&] { return is_blank_text(std::string_view(text).substr(sc.offset())); };
+    if (only_blanks_left()) break;
     Block b;
     b.header = next_text("where a dataset number is expected");
     // Some writers leave an empty "-1 / -1" pair: a delimiter where a dataset number
     // should be opens the dataset afresh.
-    while (detail::is_delimiter(b.header.text) && !sc.at_end()) b.header = next_text("where a dataset number is expected");
+    while (detail::is_delimiter(b.header.text) && !only_blanks_left())
+      b.header = next_text("where a dataset number is expected");
     if (detail::is_delimiter(b.header.text)) break;
     {
       std::string_view num = b.header.text.substr(0, std::min<std::size_t>(6, b.header.text.size()));

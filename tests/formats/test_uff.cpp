@@ -449,6 +449,15 @@ TEST_CASE("UFF: a line missing a value is blamed on that line, naming record, fi
   CHECK(error_of(kHead55 + "         1\n  1.0 2.0\n         2\n  1.0 2.0 3.0\n    -1\n") ==
         "bad.unv:12: dataset 55 record 10: 2 of the 3 values (data at node) by the end of this line; line 13 (\"  "
         "       2\") does not continue them");
+  // A record's last line missing altogether: the next record's node number does not
+  // continue it; the line before is blamed.
+  CHECK(error_of("    -1\n    55\nA\nB\nC\nD\nE\n         1         2         2         8         2         3\n"
+                 "         2         4         1         1\n"
+                 "   7.7500000000000000E+00   1.0000000000000000E+00   1.2000000000000000E-02\n"
+                 "         1\n   1.0000000000000000E+00   2.0000000000000000E+00   3.0000000000000000E+00\n"
+                 "    -1\n") ==
+        "bad.unv:10: dataset 55 record 8: 3 of the 4 values (type-specific real) by the end of this line; line 11 "
+        "(\"         1\") does not continue them");
   // ... and continue when they do.
   UffFile f = parse_uff(kHead55 + "         1\n  1.0 2.0\n  3.0\n    -1\n", "free.unv");
   CHECK(f.nodal_data()[0]->values(0, 2) == 3.0);
@@ -488,4 +497,5 @@ TEST_CASE("UFF: an empty file, or one without a dataset, is an error", "[uff][er
   CHECK(error_of("\n   \n") == "bad.unv: no dataset in the file" + why);
   CHECK(error_of("    -1\n") == "bad.unv: no dataset in the file" + why);
   CHECK(error_of("    -1\n    -1\n") == "bad.unv: no dataset in the file" + why);
+  CHECK(error_of("    -1\n    -1\n\n  \n") == "bad.unv: no dataset in the file" + why);
 }
