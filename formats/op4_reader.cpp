@@ -476,14 +476,16 @@ private:
         const std::size_t e = up.find_first_of("ED", k + 3);
         if (e != std::string::npos) {
           int w = 0;
-          for (std::size_t i = e + 1; i < up.size() && up[i] >= '0' && up[i] <= '9'; ++i) w = w * 10 + (up[i] - '0');
+          // At most 6 digits: a width beyond is no hint (and would overflow).
+          for (std::size_t i = e + 1; i < up.size() && up[i] >= '0' && up[i] <= '9' && w < 100000; ++i)
+            w = w * 10 + (up[i] - '0');
           m_declared_width = w;
         }
       }
     }
     const std::int64_t ncol = h[0], nrow_signed = h[1], form = h[2], type = h[3];
     m_context = "matrix " + (name.empty() ? std::string("(unnamed)") : name) + ": ";
-    if (ncol < 0 || nrow_signed == 0 || std::llabs(nrow_signed) > 2147483647 || ncol > 2147483647)
+    if (ncol < 0 || nrow_signed == 0 || nrow_signed < -2147483647 || nrow_signed > 2147483647 || ncol > 2147483647)
       fail("header gives " + std::to_string(ncol) + " columns and " + std::to_string(nrow_signed) + " rows", header_line);
     if (type < 1 || type > 4) fail("TYPE must be 1-4 (precision), got " + std::to_string(type), header_line);
     if (auto msg = implausible_size(ncol, std::llabs(nrow_signed), form, static_cast<std::size_t>(m_end - m_begin));
@@ -698,7 +700,7 @@ private:
                        type = word(h.p + 3 * m_wb);
     const std::string name = clean_name(std::string_view(reinterpret_cast<const char*>(h.p + 4 * m_wb), name_bytes));
     m_context = "matrix " + (name.empty() ? std::string("(unnamed)") : name) + ": ";
-    if (ncol < 0 || nrow_signed == 0 || std::llabs(nrow_signed) > 2147483647 || ncol > 2147483647)
+    if (ncol < 0 || nrow_signed == 0 || nrow_signed < -2147483647 || nrow_signed > 2147483647 || ncol > 2147483647)
       fail("header gives " + std::to_string(ncol) + " columns and " + std::to_string(nrow_signed) + " rows", h.offset);
     if (type < 1 || type > 4) fail("TYPE must be 1-4 (precision), got " + std::to_string(type), h.offset);
     if (auto msg = implausible_size(ncol, std::llabs(nrow_signed), form, m_size); !msg.empty()) fail(msg, h.offset);
