@@ -55,3 +55,26 @@ TEST_CASE("review of fuzz finding op4-1: a 64-bit header row count of -2^63", "[
   CHECK(op4_error(op4test::record(h)) ==
         "fuzz.op4: matrix KAA: byte offset 0: header gives 1 columns and -9223372036854775808 rows");
 }
+
+TEST_CASE("review during fuzzing: an identity stored without terms cannot make a small file allocate gigabytes",
+          "[fuzz][op4]") {
+  // 114 bytes declaring a 60 M x 60 M identity (form 8) with no terms: building its
+  // diagonal took 3.4 GB and 32 s (ssid op4 list). Refused like a lying column count.
+  const std::string id = "  60000000  60000000         8         2KAA     1P,3E23.16\n"
+                         "  60000001         1         1\n 1.0000000000000000E+00\n";
+  CHECK(op4_error(id) == "fuzz.op4:1: matrix KAA: identity matrix stored without terms: its 60000000 diagonal terms "
+                         "are implausible for a file of 114 bytes (more than 8 M terms and 1 per 2 bytes of the file)");
+  // Binary, pseudo-identity (form 9): the same rule.
+  op4test::Bytes h, c;
+  h.i(40000000).i(-50000000).i(9).i(2).text("PID     ");
+  c.i(40000001).i(1).i(2).f64(1.0);
+  CHECK(op4_error(op4test::record(h) + op4test::record(c)) ==
+        "fuzz.op4: matrix PID: byte offset 0: pseudo-identity matrix stored without terms: its 40000000 diagonal "
+        "terms are implausible for a file of 60 bytes (more than 8 M terms and 1 per 2 bytes of the file)");
+  // A plausible identity is still built.
+  const std::string small = "         3         3         8         2I3      1P,3E23.16\n"
+                            "         4         1         1\n 1.0000000000000000E+00\n";
+  const auto m = read_op4_buffer(small.data(), small.size(), "fuzz.op4");
+  REQUIRE(m.size() == 1);
+  CHECK(m[0].dense_real() == Eigen::MatrixXd::Identity(3, 3));
+}
