@@ -233,6 +233,23 @@ std::string implausible_size(std::int64_t ncol, std::int64_t nrow, std::int64_t 
          " bytes (more than 64 M columns and 4 per byte of the file)";
 }
 
+/// An identity (form 8) or pseudo-identity (form 9) stored without terms is built
+/// by complete_forms, about 32 bytes per diagonal term at its peak: as for the
+/// column count, a header asking for gigabytes from a small file is refused — when
+/// those bytes exceed both 256 MiB and 16 times the file. Returns the message, or
+/// "" when the expansion is plausible or not needed.
+std::string implausible_expansion(const Op4Matrix& m, const Op4ReadOptions& opt, std::size_t file_size) {
+  const bool identity = m.form == op4_form::Identity && m.rows == m.cols;
+  const bool pseudo = m.form == op4_form::PseudoIdentity;
+  if (!opt.expand_identity || !(identity || pseudo) || m.nonzeros() != 0) return "";
+  const auto n = static_cast<std::uint64_t>(std::min(m.rows, m.cols));
+  const std::uint64_t bytes = 32u * n;
+  if (bytes <= (256u << 20) || bytes <= 16u * static_cast<std::uint64_t>(file_size)) return "";
+  return op4_form::name(m.form) + " matrix stored without terms: its " + std::to_string(n) +
+         " diagonal terms are implausible for a file of " + std::to_string(file_size) +
+         " bytes (more than 8 M terms and 1 per 2 bytes of the file)";
+}
+
 std::string clean_name(std::string_view raw) {
   std::string s;
   for (char c : raw)
@@ -476,14 +493,16 @@ private:
         const std::size_t e = up.find_first_of("ED", k + 3);
         if (e != std::string::npos) {
           int w = 0;
-          for (std::size_t i = e + 1; i < up.size() && up[i] >= '0' && up[i] <= '9'; ++i) w = w * 10 + (up[i] - '0');
+          // At most 6 digits: a width beyond is no hint (and would overflow).
+          for (std::size_t i = e + 1; i < up.size() && up[i] >= '0' && up[i] <= '9' && w < 100000; ++i)
+            w = w * 10 + (up[i] - '0');
           m_declared_width = w;
         }
       }
     }
     const std::int64_t ncol = h[0], nrow_signed = h[1], form = h[2], type = h[3];
     m_context = "matrix " + (name.empty() ? std::string("(unnamed)") : name) + ": ";
-    if (ncol < 0 || nrow_signed == 0 || std::llabs(nrow_signed) > 2147483647 || ncol > 2147483647)
+    if (ncol < 0 || nrow_signed == 0 || nrow_signed < -2147483647 || nrow_signed > 2147483647 || ncol > 2147483647)
       fail("header gives " + std::to_string(ncol) + " columns and " + std::to_string(nrow_signed) + " rows", header_line);
     if (type < 1 || type > 4) fail("TYPE must be 1-4 (precision), got " + std::to_string(type), header_line);
     if (auto msg = implausible_size(ncol, std::llabs(nrow_signed), form, static_cast<std::size_t>(m_end - m_begin));
@@ -602,6 +621,8 @@ private:
     m.storage = sparse_seen ? (bigmat ? Op4Storage::BigMat : Op4Storage::Sparse)
                             : (dense_seen ? Op4Storage::Dense : (bigmat ? Op4Storage::BigMat : Op4Storage::Sparse));
     b.finish(m);
+    if (auto msg = implausible_expansion(m, m_opt, static_cast<std::size_t>(m_end - m_begin)); !msg.empty())
+      fail(msg, header_line);
     complete_forms(m, m_opt);
     return m;
   }
@@ -698,7 +719,7 @@ private:
                        type = word(h.p + 3 * m_wb);
     const std::string name = clean_name(std::string_view(reinterpret_cast<const char*>(h.p + 4 * m_wb), name_bytes));
     m_context = "matrix " + (name.empty() ? std::string("(unnamed)") : name) + ": ";
-    if (ncol < 0 || nrow_signed == 0 || std::llabs(nrow_signed) > 2147483647 || ncol > 2147483647)
+    if (ncol < 0 || nrow_signed == 0 || nrow_signed < -2147483647 || nrow_signed > 2147483647 || ncol > 2147483647)
       fail("header gives " + std::to_string(ncol) + " columns and " + std::to_string(nrow_signed) + " rows", h.offset);
     if (type < 1 || type > 4) fail("TYPE must be 1-4 (precision), got " + std::to_string(type), h.offset);
     if (auto msg = implausible_size(ncol, std::llabs(nrow_signed), form, m_size); !msg.empty()) fail(msg, h.offset);
@@ -816,6 +837,7 @@ private:
     m.storage = sparse_seen ? (bigmat ? Op4Storage::BigMat : Op4Storage::Sparse)
                             : (dense_seen ? Op4Storage::Dense : (bigmat ? Op4Storage::BigMat : Op4Storage::Sparse));
     b.finish(m);
+    if (auto msg = implausible_expansion(m, m_opt, m_size); !msg.empty()) fail(msg, h.offset);
     complete_forms(m, m_opt);
     return m;
   }

@@ -3,6 +3,7 @@
 /// Fixed-column typed field readers for universal files: the only place UFF
 /// field errors are raised. Internal to the UFF reader.
 #include <cstdint>
+#include <optional>
 #include <string>
 #include <string_view>
 #include <vector>
@@ -43,6 +44,16 @@ bool is_delimiter(std::string_view line);
 bool is_blank(std::string_view line);
 /// The line with trailing blanks (and CR) removed.
 std::string rtrim(std::string_view s);
+/// Position of the first byte of `line` that is not text (a control character
+/// other than tab, CR and form feed, or DEL); nullopt for a text line. Bytes of
+/// 0x80 and above pass: ID lines may hold Latin-1 or UTF-8.
+std::optional<std::size_t> first_non_text(std::string_view line);
+/// "0x1F": a byte as messages show it.
+std::string byte_hex(char c);
+/// `s` in double quotes as messages show it: bytes outside printable ASCII as
+/// \xNN, `"` and `\` escaped, at most `max_chars` characters then "...", so no raw
+/// byte of a damaged file reaches the terminal.
+std::string quoted(std::string_view s, std::size_t max_chars = 40);
 
 /// The kind of one fixed-column field.
 enum class Kind { Integer, IntegerOrBlank, Real, RealOrBlank, Text, Skip };
@@ -76,15 +87,22 @@ struct RecordContext {
 /// Reads the fields of one line in fixed columns. When a numeric field fails and
 /// the record has no text fields, the line is read in free format instead if it
 /// holds exactly as many blank-separated values as there are non-skip fields
-/// (blank-or-default fields may then be missing at the end). Otherwise throws
-/// the fixed-column error of the first bad field.
+/// (blank-or-default fields may then be missing at the end). When the trailing
+/// reals sit in equal columns of another width (1P E25.16 where E13.5 is the
+/// standard), they are read in those. Otherwise throws the error of the first
+/// bad field, in the columns its values were laid out in.
 std::vector<Value> read_fields(const RecordContext& ctx, const Line& line, const std::vector<FieldSpec>& specs,
                                int first_field_number = 1);
 
-/// Reads `count` reals that continue over lines, each line laid out as `widths`
-/// (e.g. 6 x 13 for 6E13.5, {13, 20, 13, 20} for 2(E13.5,E20.12)); a line may
-/// also hold blank-separated values in free format. `lines`/`pos` is the body
-/// being read; `pos` advances. `name` describes the values for messages.
+/// Reads the `count` reals of one record, which continue over lines, each line
+/// laid out as `widths` (e.g. 6 x 13 for 6E13.5, {13, 20, 13, 20} for
+/// 2(E13.5,E20.12)). The record's first line decides its layout: these columns;
+/// equal columns of another width w (a writer that widened them), 80/w to a
+/// line; or blank-separated values. In columns every line but the last is full,
+/// so a line that ends early is reported at that line and field; blank-separated
+/// values may stop at any line end but must then be continued by more of them.
+/// `lines`/`pos` is the body being read; `pos` advances. `name` describes the
+/// values for messages.
 std::vector<double> read_real_stream(const RecordContext& ctx, const std::vector<Line>& lines, std::size_t& pos,
                                      std::size_t count, const std::vector<int>& widths, const char* name);
 

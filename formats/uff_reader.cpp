@@ -1,7 +1,9 @@
 /// \file uff_reader.cpp
 /// Universal-file reader: frames datasets between delimiters, then parses the
 /// known ones record by record (layouts in uff.hpp).
+#include <algorithm>
 #include <cmath>
+#include <filesystem>
 #include <fstream>
 #include <sstream>
 
@@ -52,10 +54,16 @@ public:
   void finish(int record) {
     while (m_pos < m_b.body.size() && detail::is_blank(m_b.body[m_pos].text)) ++m_pos;
     if (m_pos < m_b.body.size())
-      ctx(record).fail(m_b.body[m_pos], "unexpected line \"" + detail::rtrim(m_b.body[m_pos].text) +
-                                            "\" after the last record");
+      ctx(record).fail(m_b.body[m_pos],
+                       "unexpected line " + detail::quoted(detail::rtrim(m_b.body[m_pos].text)) + " after the last record");
   }
   std::size_t& pos() { return m_pos; }
+  /// Characters on the lines not read yet.
+  std::uint64_t characters_left() const {
+    std::uint64_t n = 0;
+    for (std::size_t k = m_pos; k < m_b.body.size(); ++k) n += m_b.body[k].text.size();
+    return n;
+  }
   const std::vector<Line>& lines() const { return m_b.body; }
   SourceLocation where() const { return SourceLocation{m_file, m_b.header.number, {}}; }
 
@@ -83,12 +91,12 @@ Units164 parse_164(DatasetParser& p) {
   u.code = static_cast<int>(r1[0].i);
   u.description = std::string(formats::detail::trim(r1[1].s));
   u.temperature_mode = static_cast<int>(r1[2].i);
-  auto f = detail::read_real_stream(p.ctx(2), p.lines(), p.pos(), 4, {25, 25, 25},
-                                    "length, force, temperature factors and temperature offset");
+  auto f = detail::read_real_stream(p.ctx(2), p.lines(), p.pos(), 3, {25, 25, 25},
+                                    "length, force and temperature factors");
   u.length = f[0];
   u.force = f[1];
   u.temperature = f[2];
-  u.temperature_offset = f[3];
+  u.temperature_offset = detail::read_real_stream(p.ctx(3), p.lines(), p.pos(), 1, {25}, "temperature offset")[0];
   p.finish(3);
   return u;
 }
@@ -282,6 +290,12 @@ Function58 parse_58(DatasetParser& p) {
   if (f.ordinate_type != 2 && f.ordinate_type != 4 && f.ordinate_type != 5 && f.ordinate_type != 6)
     p.ctx(7).fail_field(l7, 1, "ordinate data type", "2, 4 (real) or 5, 6 (complex)", std::to_string(f.ordinate_type));
   if (n < 0) p.ctx(7).fail_field(l7, 2, "number of data values", "a count >= 0", std::to_string(n));
+  // Each value takes at least one character of the lines left: a larger count is a
+  // damaged record, not a reason to allocate.
+  if (static_cast<std::uint64_t>(n) > p.characters_left())
+    p.ctx(7).fail_field(l7, 2, "number of data values",
+                        "a count the dataset's remaining " + std::to_string(p.characters_left()) + " characters can hold",
+                        std::to_string(n));
   if (r7[2].i != 0 && r7[2].i != 1)
     p.ctx(7).fail_field(l7, 3, "abscissa spacing", "0 (uneven) or 1 (even)", std::to_string(r7[2].i));
 
@@ -331,35 +345,78 @@ std::size_t binary_byte_count(const std::string& file, const Line& header) {
   return static_cast<std::size_t>(v[5].i);
 }
 
+bool is_blank_text(std::string_view s) {
+  return std::all_of(s.begin(), s.end(), [](char c) { return c == ' ' || c == '\t' || c == '\r' || c == '\n' || c == '\f'; });
+}
+
+[[noreturn]] void not_text(const std::string& name, const Line& l, std::size_t column) {
+  throw ParseError(SourceLocation{name, 0, {}}, "not a universal file: byte " + detail::byte_hex(l.text[column]) +
+                                                    " at line " + std::to_string(l.number) + ", column " +
+                                                    std::to_string(column + 1) + " is not text");
+}
+
+/// A file that does not start with a dataset: when its first 64 KiB hold a byte
+/// that is not text, it is binary (an image, an archive, a binary export) and is
+/// called that instead of having its first line quoted.
+void refuse_binary(const std::string& text, const std::string& name) {
+  detail::Scanner sc(text);
+  while (!sc.at_end() && sc.offset() < (64u << 10)) {
+    const Line l = sc.next();
+    if (auto c = detail::first_non_text(l.text)) not_text(name, l, *c);
+  }
+}
+
 }  // namespace
 
 UffFile parse_uff(const std::string& text, const std::string& name) {
   UffFile out;
   out.path = name;
   detail::Scanner sc(text);
+  // Every line read as text must be text: a binary file (or a binary dataset not
+  // marked 'b') is said to be one, and none of its bytes is echoed. Until a
+  // delimiter and a dataset number have been read, nothing says this is a
+  // universal file at all.
+  bool framed = false;
+  auto next_text = [&](const char* where) {
+    Line l = sc.next();
+    if (auto c = detail::first_non_text(l.text)) {
+      if (!framed) not_text(name, l, *c);
+      throw ParseError(SourceLocation{name, l.number, {}},
+                       "byte " + detail::byte_hex(l.text[*c]) + " at column " + std::to_string(*c + 1) + " is not text (" + where + ")");
+    }
+    return l;
+  };
   while (!sc.at_end()) {
-    Line open = sc.next();
+    Line open = next_text("where a dataset delimiter is expected");
     if (detail::is_blank(open.text)) continue;
-    if (!detail::is_delimiter(open.text))
+    if (!detail::is_delimiter(open.text)) {
+      if (!framed) refuse_binary(text, name);
       throw ParseError(SourceLocation{name, open.number, {}},
-                       "expected the dataset delimiter \"    -1\" (-1 in columns 1-6), got \"" +
-                           detail::rtrim(open.text) + "\"");
-    if (sc.at_end()) break;  // a trailing lone delimiter
+                       "expected the dataset delimiter \"    -1\" (-1 in columns 1-6), got " +
+                           detail::quoted(detail::rtrim(open.text)));
+    }
+    // A trailing lone delimiter (maybe followed by blank lines) ends the file.
+    const auto only_blanks_left = [&] { return is_blank_text(std::string_view(text).substr(sc.offset())); };
+    if (only_blanks_left()) break;
     Block b;
-    b.header = sc.next();
+    b.header = next_text("where a dataset number is expected");
     // Some writers leave an empty "-1 / -1" pair: a delimiter where a dataset number
     // should be opens the dataset afresh.
-    while (detail::is_delimiter(b.header.text) && !sc.at_end()) b.header = sc.next();
+    while (detail::is_delimiter(b.header.text) && !only_blanks_left())
+      b.header = next_text("where a dataset number is expected");
     if (detail::is_delimiter(b.header.text)) break;
     {
       std::string_view num = b.header.text.substr(0, std::min<std::size_t>(6, b.header.text.size()));
       auto n = parse_integer(formats::detail::trim(num));
-      if (!n || *n <= 0)
+      if (!n || *n <= 0 || *n > 999999)
         throw ParseError(SourceLocation{name, b.header.number, {}},
-                         "expected a dataset number (I6, columns 1-6) after the delimiter, got \"" +
-                             detail::rtrim(b.header.text) + "\"");
+                         "expected a dataset number (I6, columns 1-6) after the delimiter, got " +
+                             detail::quoted(detail::rtrim(b.header.text)));
       b.number = static_cast<int>(*n);
     }
+    framed = true;
+    const std::string in_dataset = "dataset " + std::to_string(b.number) + " opened at line " +
+                                   std::to_string(b.header.number) + ", not marked binary";
     const bool binary = b.header.text.size() > 6 && (b.header.text[6] == 'b' || b.header.text[6] == 'B');
     b.body_begin = sc.offset();
     bool closed = false;
@@ -378,7 +435,7 @@ UffFile parse_uff(const std::string& text, const std::string& name) {
       sc.skip_bytes(nbytes);
     }
     while (!sc.at_end()) {
-      Line l = sc.next();
+      Line l = binary ? sc.next() : next_text(in_dataset.c_str());
       if (detail::is_delimiter(l.text)) {
         b.closing = l;
         b.body_end = l.begin;
@@ -418,10 +475,19 @@ UffFile parse_uff(const std::string& text, const std::string& name) {
       }
     }
   }
+  // A file with nothing in it is never what was meant (a failed export, the wrong file).
+  if (out.datasets.empty())
+    throw ParseError(SourceLocation{name, 0, {}},
+                     std::string(text.empty() ? "empty file" : "no dataset in the file") +
+                         ": a universal file holds datasets, each opened by a line \"    -1\" and its dataset "
+                         "number and closed by a line \"    -1\"");
   return out;
 }
 
 UffFile read_uff(const std::string& path) {
+  std::error_code ec;
+  if (std::filesystem::is_directory(path, ec))
+    throw ParseError(SourceLocation{path, 0, {}}, "is a directory, expected a universal file");
   std::ifstream in(path, std::ios::binary);
   if (!in) throw ParseError(SourceLocation{path, 0, {}}, "universal file not found or not readable");
   std::ostringstream ss;

@@ -222,7 +222,9 @@ std::vector<std::size_t> find_singular_dofs(const SparseMatrix& Kg, const Reduct
     auto it = by_grid.try_emplace(d.point).first;
     it->second[static_cast<std::size_t>(d.component - 1)] = static_cast<long>(a) + 1;  // 1-based, 0 = absent
   }
-  for (auto& [grid, idx] : by_grid) {
+  for (const auto& entry : by_grid) {
+    // Not a structured binding: C++17 lambdas cannot capture one (clang refuses, GCC allows).
+    const auto& idx = entry.second;
     for (int block = 0; block < 2; ++block) {
       std::vector<int> comps;
       for (int c = 0; c < 3; ++c)

@@ -319,8 +319,8 @@ TEST_CASE("UFF: errors name file, line, dataset, record, field and what was expe
              Catch::Contains("bad.unv:11: dataset 55 record 9 field 1 (node number): expected integer (I10, columns "
                              "1-10), got \"       1.5\""));
   CHECK_THAT(error_of(head + "         2         4         1         1\n  7.75000E+00  1.00000E+00  0.0  0.0\n"
-                             "         1\n  1.0 2.0\n    -1\n"),
-             Catch::Contains("bad.unv:13: dataset 55 record 10: dataset ended after 2 of 3 values (data at node)"));
+                             "         1\n    -1\n"),
+             Catch::Contains("bad.unv:12: dataset 55 record 10: dataset ended after 0 of 3 values (data at node)"));
   CHECK_THAT(error_of("    -1\n    55\nA\n"), Catch::Contains("bad.unv:3: dataset 55 (opened at line 2) has no closing delimiter"));
   CHECK_THAT(error_of("garbage\n"), Catch::Contains("bad.unv:1: expected the dataset delimiter"));
   CHECK_THAT(error_of("    -1\n  abc\n    -1\n"), Catch::Contains("bad.unv:2: expected a dataset number"));
@@ -369,4 +369,133 @@ TEST_CASE("UFF: Fortran exponents past 99 (no letter) and 3-digit exponents that
   CHECK(m.values(0, 0) == 1.5e-100);
   CHECK(m.values(0, 1) == 1.5e-100);
   CHECK(m.values(0, 2) == -2e100);
+}
+
+namespace {
+
+/// Dataset 55 up to record 8 (a real normal mode, 3 values per node): lines 1-10.
+const std::string kHead55 =
+    "    -1\n    55\nA\nB\nC\nD\nE\n         1         2         2         8         2         3\n"
+    "         2         4         1         1\n  7.75000E+00  1.00000E+00  1.20000E-02  0.00000E+00\n";
+
+/// True when `s` holds only printable ASCII: no byte of a damaged file is echoed.
+bool printable(const std::string& s) {
+  return std::all_of(s.begin(), s.end(), [](char c) { return c >= 0x20 && c < 0x7f; });
+}
+
+}  // namespace
+
+TEST_CASE("UFF: a binary file is called one; no raw byte reaches a message", "[uff][errors]") {
+  // A zip archive: text, then a control byte in column 3 of line 1.
+  std::string zip("PK\x03\x04\x14\x00\x00\x00\x08\x00", 10);
+  for (int i = 0; i < 300; ++i) zip += static_cast<char>((i * 37) & 0xff);
+  CHECK(error_of(zip) == "bad.unv: not a universal file: byte 0x03 at line 1, column 3 is not text");
+  // A PNG: its first line ("\x89PNG") holds no control byte, its second does.
+  const std::string png("\x89PNG\r\n\x1a\n\0\0\0\rIHDR\0\0\0\x10", 24);
+  CHECK(error_of(png) == "bad.unv: not a universal file: byte 0x1A at line 2, column 1 is not text");
+  // A control byte after a delimiter and a dataset number: the file is a universal
+  // file with a damaged (or unmarked binary) dataset, located by line and column.
+  CHECK(error_of(kHead55 + std::string("         1\n  1.0\0", 17)) ==
+        "bad.unv:12: byte 0x00 at column 6 is not text (dataset 55 opened at line 2, not marked binary)");
+  // Quoted text is escaped and shortened.
+  CHECK(error_of("    -1\n  5\xe9x\n    -1\n") ==
+        "bad.unv:2: expected a dataset number (I6, columns 1-6) after the delimiter, got \"  5\\xE9x\"");
+  const std::string long_line = "This is a text file with a long first line, not a universal file at all.\n";
+  CHECK(error_of(long_line) == "bad.unv:1: expected the dataset delimiter \"    -1\" (-1 in columns 1-6), got "
+                               "\"This is a text file with a long first li...\"");
+  for (const auto& text : {zip, png, long_line, std::string("    -1\n    82\n\xff\xfe\x01\n    -1\n")})
+    CHECK(printable(error_of(text)));
+  // Bytes of 0x80 and above are text in ID lines (a unit "\xb5m", UTF-8 names).
+  UffFile f = parse_uff("    -1\n   151\nmodel \xc2\xb5m\n    -1\n", "latin.unv");
+  CHECK(std::get<Header151>(f.datasets[0]).model_name() == "model \xc2\xb5m");
+}
+
+TEST_CASE("UFF: a line missing a value is blamed on that line, naming record, field and format", "[uff][errors]") {
+  // Standard columns (6E13.5): the line ends after two of its three values.
+  CHECK(error_of(kHead55 + "         1\n  1.00000E+00 -5.00000E-01\n         2\n"
+                           "  1.00000E+00  2.00000E+00  3.00000E+00\n    -1\n") ==
+        "bad.unv:12: dataset 55 record 10 field 3 (data at node): expected real (E13, columns 27-39), value 3 of "
+        "3, got \"\"");
+  // Record 8 holds 4 values: its one line ends after three.
+  CHECK(error_of("    -1\n    55\nA\nB\nC\nD\nE\n         1         2         2         8         2         3\n"
+                 "         2         4         1         1\n  7.75000E+00  1.00000E+00  1.20000E-02\n"
+                 "         1\n  1.00000E+00 -5.00000E-01  0.00000E+00\n    -1\n") ==
+        "bad.unv:10: dataset 55 record 8 field 4 (type-specific real): expected real (E13, columns 40-52), value 4 "
+        "of 4, got \"\"");
+  // Widened columns (ssid's extended 1P E25.16, three to a line): blamed in those.
+  CHECK(error_of(kHead55 + "         1\n   1.0000000000000000E+00  -5.0000000000000000E-01\n         2\n"
+                           "   1.0000000000000000E+00   2.0000000000000000E+00   3.0000000000000000E+00\n    -1\n") ==
+        "bad.unv:12: dataset 55 record 10 field 3 (data at node): expected real (E25, columns 51-75), value 3 of "
+        "3, got \"\"");
+  // 2411 coordinates (3D25.16) and 164 factors (3D25.17).
+  CHECK(error_of("    -1\n  2411\n         1         0         0         0\n"
+                 "   1.0000000000000000D+00   2.0000000000000000D+00\n         2         0         0         0\n"
+                 "   1.0000000000000000D+00   2.0000000000000000D+00   3.0000000000000000D+00\n    -1\n") ==
+        "bad.unv:4: dataset 2411 record 2 field 3 (node coordinates): expected real (E25, columns 51-75), value 3 "
+        "of 3, got \"\"");
+  CHECK(error_of("    -1\n   164\n         1SI                           2\n"
+                 "   1.0000000000000000D+00   1.0000000000000000D+00\n   2.7315000000000000D+02\n    -1\n") ==
+        "bad.unv:4: dataset 164 record 2 field 3 (length, force and temperature factors): expected real (E25, "
+        "columns 51-75), value 3 of 3, got \"\"");
+  // Dataset 15 written with widened reals (4I10, 3E25.16): Z missing.
+  CHECK(error_of("    -1\n    15\n         1         0         0         0   1.0000000000000000E+00   "
+                 "2.0000000000000000E+00\n    -1\n") ==
+        "bad.unv:3: dataset 15 record 1 field 7 (Z): expected real (E25, columns 91-115), got \"\"");
+  // Blank-separated values may continue on the next line, but only with more of them:
+  // where they stop short, that line is blamed.
+  CHECK(error_of(kHead55 + "         1\n  1.0 2.0\n    -1\n") ==
+        "bad.unv:12: dataset 55 record 10: 2 of the 3 values (data at node) by the end of this line; the dataset "
+        "ends after it");
+  CHECK(error_of(kHead55 + "         1\n  1.0 2.0\n         2\n  1.0 2.0 3.0\n    -1\n") ==
+        "bad.unv:12: dataset 55 record 10: 2 of the 3 values (data at node) by the end of this line; line 13 (\"  "
+        "       2\") does not continue them");
+  // A record's last line missing altogether: the next record's node number does not
+  // continue it; the line before is blamed.
+  CHECK(error_of("    -1\n    55\nA\nB\nC\nD\nE\n         1         2         2         8         2         3\n"
+                 "         2         4         1         1\n"
+                 "   7.7500000000000000E+00   1.0000000000000000E+00   1.2000000000000000E-02\n"
+                 "         1\n   1.0000000000000000E+00   2.0000000000000000E+00   3.0000000000000000E+00\n"
+                 "    -1\n") ==
+        "bad.unv:10: dataset 55 record 8: 3 of the 4 values (type-specific real) by the end of this line; line 11 "
+        "(\"         1\") does not continue them");
+  // ... and continue when they do.
+  UffFile f = parse_uff(kHead55 + "         1\n  1.0 2.0\n  3.0\n    -1\n", "free.unv");
+  CHECK(f.nodal_data()[0]->values(0, 2) == 3.0);
+  // A line with more values than the record needs.
+  CHECK(error_of(kHead55 + "         1\n  1.00000E+00  2.00000E+00  3.00000E+00  4.00000E+00\n    -1\n") ==
+        "bad.unv:12: dataset 55 record 10 field 4 (data at node): expected the end of the line: the record needs 3 "
+        "more value(s), got \"4.00000E+00\"");
+}
+
+TEST_CASE("UFF: a bad value is quoted in the columns its record was written in", "[uff][errors]") {
+  // Extended 1P E25.16: the E25 column, not 13 columns cut through two numbers.
+  CHECK(error_of(kHead55 + "         1\n   8.7154703714023962X-03  -2.1614874763479825E-04   "
+                           "3.9332540273438098E-02\n    -1\n") ==
+        "bad.unv:12: dataset 55 record 10 field 1 (data at node): expected real (E25, columns 1-25), value 1 of 3, "
+        "got \"   8.7154703714023962X-03\"");
+  CHECK(error_of("    -1\n    15\n         1         0         0         0   1.0000000000000000E+00   "
+                 "-2.000000000000000X+00   3.0000000000000000E+00\n    -1\n") ==
+        "bad.unv:3: dataset 15 record 1 field 6 (Y): expected real (E25, columns 66-90), got \"   "
+        "-2.000000000000000X+00\"");
+  // The second line of an extended record is read in the first line's columns.
+  CHECK(error_of("    -1\n    55\nA\nB\nC\nD\nE\n         1         2         2         8         2         3\n"
+                 "         2         4         1         1\n"
+                 "   7.7500000000000000E+00   1.0000000000000000E+00   1.2000000000000000E-02\n"
+                 "   0.0000000000000000E+0X\n    -1\n") ==
+        "bad.unv:11: dataset 55 record 8 field 1 (type-specific real): expected real (E25, columns 1-25), value 4 "
+        "of 4, got \"   0.0000000000000000E+0X\"");
+  // Standard columns stay E13.
+  CHECK(error_of(kHead55 + "         1\n  1.00000E+00  2.000X0E+00  3.00000E+00\n    -1\n") ==
+        "bad.unv:12: dataset 55 record 10 field 2 (data at node): expected real (E13, columns 14-26), value 2 of 3, "
+        "got \"  2.000X0E+00\"");
+}
+
+TEST_CASE("UFF: an empty file, or one without a dataset, is an error", "[uff][errors]") {
+  const std::string why = ": a universal file holds datasets, each opened by a line \"    -1\" and its dataset number "
+                          "and closed by a line \"    -1\"";
+  CHECK(error_of("") == "bad.unv: empty file" + why);
+  CHECK(error_of("\n   \n") == "bad.unv: no dataset in the file" + why);
+  CHECK(error_of("    -1\n") == "bad.unv: no dataset in the file" + why);
+  CHECK(error_of("    -1\n    -1\n") == "bad.unv: no dataset in the file" + why);
+  CHECK(error_of("    -1\n    -1\n\n  \n") == "bad.unv: no dataset in the file" + why);
 }
