@@ -86,11 +86,11 @@ TEST_CASE("ssid deck summary: resolve problems, all at once, on stderr and in JS
   CHECK(j["problems"].size() == 6);
 }
 
-TEST_CASE("ssid deck: bad input exits 1 with file:line on stderr and no result on stdout", "[cli][errors]") {
+TEST_CASE("ssid deck: bad input exits 2 with file:line on stderr and no result on stdout", "[cli][errors]") {
   const fs::path dir = scratch();
   std::ofstream(dir / "bad.bdf") << "GRID    1\nINCLUDE 'missing.bdf'\n";
   auto r = run_ssid("deck summary " + (dir / "bad.bdf").string());
-  CHECK(r.code == 1);
+  CHECK(r.code == 2);
   CHECK(r.out.empty());
   CHECK_THAT(r.err, Catch::Contains("bad.bdf:2") && Catch::Contains("missing.bdf"));
 
@@ -100,7 +100,7 @@ TEST_CASE("ssid deck: bad input exits 1 with file:line on stderr and no result o
   CHECK_THAT(f.err, Catch::Contains("field.bdf:2: CROD 10 field 4 (G1): expected integer, got \"1.5\""));
 
   auto w = run_ssid("deck write " + (dir / "nope.bdf").string() + " -o " + (dir / "o.bdf").string());
-  CHECK(w.code == 1);
+  CHECK(w.code == 2);
   CHECK(w.out.empty());
   CHECK_THAT(w.err, Catch::Contains("nope.bdf") && Catch::Contains("not found"));
 }

@@ -157,7 +157,7 @@ TEST_CASE("ssid estimate and update-deck: usage and input errors", "[cli][estima
   CHECK(run_ssid("estimate --help").code == 0);
   std::ofstream(dir / "junk.unv") << "junk\n";
   auto a = run_ssid("estimate " + nominal.string() + " " + (dir / "junk.unv").string());
-  CHECK(a.code == 1);
+  CHECK(a.code == 2);
   CHECK_THAT(a.err, Catch::Contains("junk.unv"));
   auto b = run_ssid("estimate " + nominal.string());
   CHECK(b.code == 1);

@@ -151,7 +151,7 @@ TEST_CASE("ssid op4: a bad file is an error naming the file and the place", "[cl
   const fs::path d = scratch();
   { std::ofstream(d / "bad.op4") << "       2       2       1       2K       1P,3E23.16\n       5       1       1\n 1.0E+00\n"; }
   auto r = run_ssid("op4 list " + (d / "bad.op4").string());
-  CHECK(r.code == 1);
+  CHECK(r.code == 2);
   CHECK(r.err == "ssid: error: " + (d / "bad.op4").string() + ":2: matrix K: column 5 out of range 1..2\n");
 }
 

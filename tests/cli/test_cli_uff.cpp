@@ -79,13 +79,13 @@ TEST_CASE("ssid uff list: datasets, nodes, modes, functions, JSON", "[cli][uff]"
   auto help = run_ssid("uff --help");
   CHECK(help.code == 0);
   auto bad = run_ssid("uff list " + (scratch() / "missing.unv").string());
-  CHECK(bad.code == 1);
+  CHECK(bad.code == 2);
   CHECK_THAT(bad.err, Catch::Contains("missing.unv") && Catch::Contains("not found"));
   std::ofstream(scratch() / "broken.unv") << "    -1\n    55\nA\nB\nC\nD\nE\n         1         2         2         8"
                                              "         2         3\n         2         4         1         1\n"
                                              "  7.7500X+00\n    -1\n";
   auto br = run_ssid("uff list " + (scratch() / "broken.unv").string());
-  CHECK(br.code == 1);
+  CHECK(br.code == 2);
   CHECK(br.out.empty());
   CHECK_THAT(br.err, Catch::Contains("broken.unv:10: dataset 55 record 8 field 1"));
 }
@@ -142,7 +142,7 @@ TEST_CASE("ssid correlate: a deck is solved first; one with nothing to solve is 
   CHECK_THAT(r.err, Catch::Contains("the analysis set is empty"));
   // A deck where the test universal file is expected.
   auto t = run_ssid("correlate " + kMixed + " " + (dir / "model.bdf").string());
-  CHECK(t.code == 1);
+  CHECK(t.code == 2);
   CHECK_THAT(t.err, Catch::Contains("model.bdf"));
   auto bad = run_ssid("correlate " + kMixed + " " + kMixed + " --mac cubed");
   CHECK(bad.code == 2);
