@@ -17,7 +17,7 @@ The convention (README.md, "Commands in the docs"):
   a synopsis placeholder such as [--opt] or "...") is an error.
 
 Each document gets a fresh scratch folder holding a copy of the committed samples/
-(git ls-files; the whole folder outside a git checkout) and links to
+(git ls-files, new files too; the whole folder outside a git checkout) and links to
 scripts/, bench/ and the build under test (as build/); `ssid` on PATH is the
 build's. Its commands run in that folder one after the other, each in its own
 `sh -c` (files persist between the commands of one document, shell variables and
@@ -192,10 +192,11 @@ def scratch_for(root, doc, source, build, ssid):
     # The samples git knows of (committed or new, not ignored): a file a script left in the tree
     # (samples/estimate/nominal.bdf) must not make a doc that names it pass here and fail
     # on a fresh clone.
-    listed = subprocess.run(["git", "-C", source, "ls-files", "-z", "--cached", "--others", "--exclude-standard", "samples"], capture_output=True)
+    listed = subprocess.run(["git", "-C", source, "ls-files", "-z", "--cached", "--others", "--exclude-standard",
+                             "samples"], capture_output=True)
     if listed.returncode == 0 and listed.stdout:
         for rel in listed.stdout.decode().split("\0"):
-            if rel:
+            if rel and os.path.isfile(os.path.join(source, rel)):  # not one deleted since the last commit
                 os.makedirs(os.path.join(d, os.path.dirname(rel)), exist_ok=True)
                 shutil.copy2(os.path.join(source, rel), os.path.join(d, rel))
     else:
