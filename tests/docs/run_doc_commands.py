@@ -290,7 +290,9 @@ def main():
                     code, err, out = r.returncode, r.stderr, r.stdout
                 except subprocess.TimeoutExpired as x:
                     code = f"timeout after {a.timeout:g} s"
-                    err = (x.stderr or b"").decode(errors="replace") if isinstance(x.stderr, bytes) else (x.stderr or "")
+                    err = x.stderr or ""
+                    if isinstance(err, bytes):  # TimeoutExpired keeps the raw bytes
+                        err = err.decode(errors="replace")
                     out = ""
                 dt = time.monotonic() - tc
                 if code != 0:
