@@ -30,7 +30,8 @@ compare() {
 
 for model in rod beam; do
   if "$ssid" truss mpi --model "$model" -o "$work/mpi_$model.bdf" >/dev/null 2>"$work/err"; then
-    compare "$src/samples/mpi_$model.bdf" "$work/mpi_$model.bdf" "ssid truss mpi --model $model -o samples/mpi_$model.bdf"
+    compare "$src/samples/mpi_$model.bdf" "$work/mpi_$model.bdf" \
+      "ssid truss mpi --model $model -o samples/mpi_$model.bdf"
   else
     failed=1
     echo "FAILED: ssid truss mpi --model $model:"; sed 's/^/    /' "$work/err"

@@ -16,7 +16,8 @@ The convention (README.md, "Commands in the docs"):
 * A sh block this script cannot run as written (a syntax error, a "$ " prompt,
   a synopsis placeholder such as [--opt] or "...") is an error.
 
-Each document gets a fresh scratch folder holding a copy of samples/ and links to
+Each document gets a fresh scratch folder holding a copy of the committed samples/
+(git ls-files, new files too; the whole folder outside a git checkout) and links to
 scripts/, bench/ and the build under test (as build/); `ssid` on PATH is the
 build's. Its commands run in that folder one after the other, each in its own
 `sh -c` (files persist between the commands of one document, shell variables and
@@ -188,7 +189,18 @@ def read_blocks(source, doc):
 def scratch_for(root, doc, source, build, ssid):
     d = os.path.join(root, re.sub(r"[^A-Za-z0-9_.-]", "_", doc))
     os.makedirs(d)
-    shutil.copytree(os.path.join(source, "samples"), os.path.join(d, "samples"), symlinks=True)
+    # The samples git knows of (committed or new, not ignored): a file a script left in the tree
+    # (samples/estimate/nominal.bdf) must not make a doc that names it pass here and fail
+    # on a fresh clone.
+    listed = subprocess.run(["git", "-C", source, "ls-files", "-z", "--cached", "--others", "--exclude-standard",
+                             "samples"], capture_output=True)
+    if listed.returncode == 0 and listed.stdout:
+        for rel in listed.stdout.decode().split("\0"):
+            if rel and os.path.isfile(os.path.join(source, rel)):  # not one deleted since the last commit
+                os.makedirs(os.path.join(d, os.path.dirname(rel)), exist_ok=True)
+                shutil.copy2(os.path.join(source, rel), os.path.join(d, rel))
+    else:
+        shutil.copytree(os.path.join(source, "samples"), os.path.join(d, "samples"), symlinks=True)
     for name in ("scripts", "bench"):
         os.symlink(os.path.join(source, name), os.path.join(d, name))
     os.symlink(build, os.path.join(d, "build"))
@@ -278,7 +290,9 @@ def main():
                     code, err, out = r.returncode, r.stderr, r.stdout
                 except subprocess.TimeoutExpired as x:
                     code = f"timeout after {a.timeout:g} s"
-                    err = (x.stderr or b"").decode(errors="replace") if isinstance(x.stderr, bytes) else (x.stderr or "")
+                    err = x.stderr or ""
+                    if isinstance(err, bytes):  # TimeoutExpired keeps the raw bytes
+                        err = err.decode(errors="replace")
                     out = ""
                 dt = time.monotonic() - tc
                 if code != 0:
