@@ -185,7 +185,7 @@ TEST_CASE("a card ssid cannot assemble: every command names the first one's file
   auto s = run_ssid("deck summary " + deck.string());
   CHECK(s.code == 0);
   CHECK_THAT(s.out, Catch::Contains("  CQUAD4    2  (kept verbatim)\n"));
-  for (const std::string cmd : {"modes " + deck.string(), "assemble " + deck.string() + " -o " + (dir / "q").string(),
+  for (const std::string& cmd : {"modes " + deck.string(), "assemble " + deck.string() + " -o " + (dir / "q").string(),
                                 "estimate " + deck.string() + " " + unv.string(),
                                 "correlate " + deck.string() + " " + unv.string(),
                                 "diagnose " + deck.string() + " " + unv.string()}) {
