@@ -39,7 +39,8 @@
 /// REPLACED BY THE FOLLOWING PBAR ENTRIES"), read in Simcenter/NX Nastran .f06
 /// files (docs/elements.md lists them):
 ///   ROD   K1 = K2 = 0.9                                   (NX, DIM1 = 1)
-///   TUBE  K1 = K2 = 0.5                                   (NX, r_o 0.2, r_i 0.195)
+///   TUBE  K1 = K2 = 0.5                                   (NX, r_o 0.2, r_i 0.195: a thin
+///         wall; whether NASTRAN lets K grow for thick walls is not known to us)
 ///   BOX   K1 = 2 (h − 2 t_y) t_z / A,  K2 = 2 (b − 2 t_z) t_y / A
 ///         (the walls parallel to the shear, corners excluded; NX, 6 × 1 × 0.1 × 0.1:
 ///         0.11765, 0.85294)
