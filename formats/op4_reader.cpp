@@ -68,7 +68,11 @@ public:
     m_n += v != T(0);
   }
   std::size_t size() const { return m_n; }
+  /// Drops the terms from position n on (n <= size()).
+  void truncate(std::size_t n) { m_n = n; }
   int* outer() { return m_outer; }
+  int* inner_data() { return m_inner; }
+  T* values_data() { return m_val; }
   const int* inner() const { return m_inner; }
   const T* values() const { return m_val; }
   /// Sets the final size; frees the unused reserve when it is large.
@@ -151,15 +155,29 @@ private:
   template <class T>
   void fill(Eigen::SparseMatrix<T>& out, CscTarget<T>& a) {
     if (!m_sorted) {
-      // Strings given out of row order (allowed by the format, never written by NASTRAN).
-      std::vector<Eigen::Triplet<T>> t;
-      t.reserve(a.size());
-      const int* outer = a.outer();
-      for (Eigen::Index c = 0; c < m_cols; ++c)
-        for (int k = outer[c]; k < outer[c + 1]; ++k) t.emplace_back(a.inner()[k], static_cast<int>(c), a.values()[k]);
-      out.resize(m_rows, m_cols);
-      out.setFromTriplets(t.begin(), t.end(), [](const T&, const T& b) { return b; });
-      return;
+      // Strings given out of row order (allowed by the format, never written by
+      // NASTRAN): each column sorted in place, a row given twice keeping its last
+      // value. Column by column, so the cost follows the terms and the columns,
+      // never the row count (a header may declare 2^31 rows).
+      int* outer = a.outer();
+      int* inner = a.inner_data();
+      T* val = a.values_data();
+      std::vector<std::pair<int, T>> col;
+      int kept = 0;
+      for (Eigen::Index c = 0; c < m_cols; ++c) {
+        col.clear();
+        for (int k = outer[c]; k < outer[c + 1]; ++k) col.emplace_back(inner[k], val[k]);
+        std::stable_sort(col.begin(), col.end(), [](const auto& x, const auto& y) { return x.first < y.first; });
+        outer[c] = kept;
+        for (std::size_t k = 0; k < col.size(); ++k) {
+          if (k + 1 < col.size() && col[k + 1].first == col[k].first) continue;  // a later value of the same row wins
+          inner[kept] = col[k].first;
+          val[kept] = col[k].second;
+          ++kept;
+        }
+      }
+      outer[m_cols] = kept;
+      a.truncate(static_cast<std::size_t>(kept));
     }
     out.swap(a.done());
   }
@@ -171,6 +189,23 @@ private:
   CscTarget<double> m_re;
   CscTarget<std::complex<double>> m_cx;
 };
+
+/// A compressed-column matrix from terms sorted by column, then row, built in
+/// O(columns + terms): setFromTriplets would also cost O(rows) for its transposed
+/// copy, and a header may declare 2^31 rows for a matrix of one column.
+template <class T>
+Eigen::SparseMatrix<T> from_sorted(Eigen::Index rows, Eigen::Index cols, const std::vector<Eigen::Triplet<T>>& t) {
+  Eigen::SparseMatrix<T> a(rows, cols);  // compressed, outer indices zero
+  a.resizeNonZeros(static_cast<Eigen::Index>(t.size()));
+  int* outer = a.outerIndexPtr();
+  for (const auto& e : t) ++outer[e.col() + 1];
+  for (Eigen::Index c = 0; c < cols; ++c) outer[c + 1] += outer[c];
+  for (std::size_t k = 0; k < t.size(); ++k) {
+    a.innerIndexPtr()[k] = t[k].row();
+    a.valuePtr()[k] = t[k].value();
+  }
+  return a;
+}
 
 /// Form-specific completion (documented in docs/op4.md).
 void complete_forms(Op4Matrix& m, const Op4ReadOptions& opt) {
@@ -199,8 +234,7 @@ void complete_forms(Op4Matrix& m, const Op4ReadOptions& opt) {
       using T = typename std::decay_t<decltype(a)>::Scalar;
       std::vector<Eigen::Triplet<T>> t;
       for (Eigen::Index k = 0; k < std::min(m.rows, m.cols); ++k) t.emplace_back(k, k, T(1));
-      a.resize(m.rows, m.cols);
-      a.setFromTriplets(t.begin(), t.end());
+      a = from_sorted(m.rows, m.cols, t);
     };
     if (m.is_complex()) ones(m.complex);
     else ones(m.real);
@@ -211,8 +245,7 @@ void complete_forms(Op4Matrix& m, const Op4ReadOptions& opt) {
       std::vector<Eigen::Triplet<T>> t;
       for (typename std::decay_t<decltype(a)>::InnerIterator it(a, 0); it; ++it)
         t.emplace_back(it.row(), it.row(), it.value());
-      a.resize(m.rows, m.rows);
-      a.setFromTriplets(t.begin(), t.end());
+      a = from_sorted(m.rows, m.rows, t);
     };
     if (m.is_complex()) diag(m.complex);
     else diag(m.real);
@@ -398,8 +431,8 @@ private:
       }
       if (fixed) return;
     }
-    fail(std::string("expected ") + what + " (" + std::to_string(n) + " integer" + (n > 1 ? "s" : "") + "), got \"" +
-         std::string(detail::trim(line)) + "\"");
+    fail(std::string("expected ") + what + " (" + std::to_string(n) + " integer" + (n > 1 ? "s" : "") + "), got " +
+         detail::quoted(detail::trim(line)));
   }
 
   /// Reads the numeric lines that follow into `values`; returns how many.
@@ -426,8 +459,8 @@ private:
         if (!q) {
           const char* t = p;
           while (t < e && *t != ' ') ++t;
-          fail("expected a number at column " + std::to_string(p - line.data() + 1) + ", got \"" +
-               std::string(p, static_cast<std::size_t>(t - p)) + "\"");
+          fail("expected a number at column " + std::to_string(p - line.data() + 1) + ", got " +
+               detail::quoted(std::string_view(p, static_cast<std::size_t>(t - p))));
         }
         values.push_back(v);
         p = q;
@@ -463,8 +496,7 @@ private:
           if (b < header.data() + j && *b == '+') ++b;
           auto r = std::from_chars(b, header.data() + j, h[f]);
           if (i == j || r.ec != std::errc() || r.ptr != header.data() + j)
-            fail("expected a matrix header (NCOL NROW FORM TYPE NAME), got \"" + std::string(detail::trim(header)) +
-                 "\"");
+            fail("expected a matrix header (NCOL NROW FORM TYPE NAME), got " + detail::quoted(detail::trim(header)));
           i = j;
         }
         rest = header.substr(i);
@@ -501,7 +533,7 @@ private:
       }
     }
     const std::int64_t ncol = h[0], nrow_signed = h[1], form = h[2], type = h[3];
-    m_context = "matrix " + (name.empty() ? std::string("(unnamed)") : name) + ": ";
+    m_context = "matrix " + (name.empty() ? std::string("(unnamed)") : detail::printable(name)) + ": ";
     if (ncol < 0 || nrow_signed == 0 || nrow_signed < -2147483647 || nrow_signed > 2147483647 || ncol > 2147483647)
       fail("header gives " + std::to_string(ncol) + " columns and " + std::to_string(nrow_signed) + " rows", header_line);
     if (type < 1 || type > 4) fail("TYPE must be 1-4 (precision), got " + std::to_string(type), header_line);
@@ -718,7 +750,7 @@ private:
     const std::int64_t ncol = word(h.p), nrow_signed = word(h.p + m_wb), form = word(h.p + 2 * m_wb),
                        type = word(h.p + 3 * m_wb);
     const std::string name = clean_name(std::string_view(reinterpret_cast<const char*>(h.p + 4 * m_wb), name_bytes));
-    m_context = "matrix " + (name.empty() ? std::string("(unnamed)") : name) + ": ";
+    m_context = "matrix " + (name.empty() ? std::string("(unnamed)") : detail::printable(name)) + ": ";
     if (ncol < 0 || nrow_signed == 0 || nrow_signed < -2147483647 || nrow_signed > 2147483647 || ncol > 2147483647)
       fail("header gives " + std::to_string(ncol) + " columns and " + std::to_string(nrow_signed) + " rows", h.offset);
     if (type < 1 || type > 4) fail("TYPE must be 1-4 (precision), got " + std::to_string(type), h.offset);

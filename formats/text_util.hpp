@@ -42,4 +42,39 @@ inline std::string expand_tabs(std::string_view s) {
   return r;
 }
 
+/// "0x1F": a byte as messages show it.
+inline std::string byte_hex(char c) {
+  static const char* digits = "0123456789ABCDEF";
+  const auto u = static_cast<unsigned char>(c);
+  return std::string("0x") + digits[u >> 4] + digits[u & 15];
+}
+
+/// `s` as a message shows text from a file: bytes outside printable ASCII as
+/// \xNN and `"`, `\` escaped, so no raw byte of a damaged file reaches the terminal.
+inline std::string printable(std::string_view s) {
+  static const char* digits = "0123456789ABCDEF";
+  std::string r;
+  for (char ch : s) {
+    const auto c = static_cast<unsigned char>(ch);
+    if (c == '"' || c == '\\') {
+      r += '\\';
+      r += ch;
+    } else if (c >= 0x20 && c < 0x7f) {
+      r += ch;
+    } else {
+      r += "\\x";
+      r += digits[c >> 4];
+      r += digits[c & 15];
+    }
+  }
+  return r;
+}
+
+/// `s` in double quotes as messages show it (printable), at most `max_chars`
+/// characters of it, then "...".
+inline std::string quoted(std::string_view s, std::size_t max_chars = 40) {
+  if (s.size() <= max_chars) return "\"" + printable(s) + "\"";
+  return "\"" + printable(s.substr(0, max_chars)) + "...\"";
+}
+
 }  // namespace ssid::formats::detail

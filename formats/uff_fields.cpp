@@ -52,37 +52,6 @@ std::optional<std::size_t> first_non_text(std::string_view line) {
   return std::nullopt;
 }
 
-std::string byte_hex(char c) {
-  static const char* digits = "0123456789ABCDEF";
-  const auto u = static_cast<unsigned char>(c);
-  return std::string("0x") + digits[u >> 4] + digits[u & 15];
-}
-
-std::string quoted(std::string_view s, std::size_t max_chars) {
-  static const char* digits = "0123456789ABCDEF";
-  std::string r = "\"";
-  std::size_t shown = 0;
-  for (std::size_t i = 0; i < s.size(); ++i) {
-    if (shown == max_chars) {
-      r += "...";
-      break;
-    }
-    const auto c = static_cast<unsigned char>(s[i]);
-    if (c == '"' || c == '\\') {
-      r += '\\';
-      r += static_cast<char>(c);
-    } else if (c >= 0x20 && c < 0x7f) {
-      r += static_cast<char>(c);
-    } else {
-      r += "\\x";
-      r += digits[c >> 4];
-      r += digits[c & 15];
-    }
-    ++shown;
-  }
-  return r + "\"";
-}
-
 void RecordContext::fail(const Line& line, const std::string& message) const {
   throw ParseError(at(line), "dataset " + std::to_string(dataset) + " record " + std::to_string(record) + ": " +
                                  message);

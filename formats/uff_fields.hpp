@@ -9,6 +9,7 @@
 #include <vector>
 
 #include "formats/parse_error.hpp"
+#include "formats/text_util.hpp"
 
 namespace ssid::formats::uff::detail {
 
@@ -48,12 +49,9 @@ std::string rtrim(std::string_view s);
 /// other than tab, CR and form feed, or DEL); nullopt for a text line. Bytes of
 /// 0x80 and above pass: ID lines may hold Latin-1 or UTF-8.
 std::optional<std::size_t> first_non_text(std::string_view line);
-/// "0x1F": a byte as messages show it.
-std::string byte_hex(char c);
-/// `s` in double quotes as messages show it: bytes outside printable ASCII as
-/// \xNN, `"` and `\` escaped, at most `max_chars` characters then "...", so no raw
-/// byte of a damaged file reaches the terminal.
-std::string quoted(std::string_view s, std::size_t max_chars = 40);
+/// Quoted text and bytes in messages: one way for every reader (text_util.hpp).
+using formats::detail::byte_hex;
+using formats::detail::quoted;
 
 /// The kind of one fixed-column field.
 enum class Kind { Integer, IntegerOrBlank, Real, RealOrBlank, Text, Skip };

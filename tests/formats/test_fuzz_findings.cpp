@@ -78,3 +78,37 @@ TEST_CASE("review during fuzzing: an identity stored without terms cannot make a
   REQUIRE(m.size() == 1);
   CHECK(m[0].dense_real() == Eigen::MatrixXd::Identity(3, 3));
 }
+
+TEST_CASE("fuzz finding op4-2: a matrix of 10^8 rows and one column took seconds and 1 GB", "[fuzz][op4]") {
+  // fuzz_op4 (second 12-minute run): a timeout (> 10 s). A pseudo-identity (form 9)
+  // of 1 column and 99 999 999 rows, stored without terms, was built through
+  // setFromTriplets, whose transposed copy costs O(rows); now O(columns + terms).
+  // The input also showed a matrix name with a raw byte (0xD2) in the message.
+  const std::string timeout("           1      99999999 9    3    \xff"
+                            "2       2KAA   E23.160\n       2       4      2\n 1       1    3       3    \xd2"
+                            "0\n       2     -  2      2\n 1       1    3       3             6 \xff ",
+                            180);
+  CHECK(op4_error(timeout) == "fuzz.op4:4: matrix \\xD20: expected a column record ICOL IROW NW (3 integers), got "
+                              "\"2     -  2      2\"");
+  // The largest row count a header may give, one column: built at once.
+  const std::string pid = "         1 2147483647         9         2PI       1P,3E23.16\n"
+                          "         2         1         1\n 1.0000000000000000E+00\n";
+  const auto p = read_op4_buffer(pid.data(), pid.size(), "fuzz.op4");
+  REQUIRE(p.size() == 1);
+  CHECK(p[0].real.rows() == 2147483647);
+  CHECK(p[0].real.nonZeros() == 1);
+  CHECK(p[0].real.coeff(0, 0) == 1.0);
+  // Strings out of row order in a column of 2e9 rows (BIGMAT): sorted column by
+  // column, a row given twice keeping its last value, without an O(rows) copy.
+  op4test::Bytes h, c, e;
+  h.i(1).i(-2000000000).i(2).i(2).text("BIG     ");
+  c.i(1).i(0).i(12).i(3).i(100).f64(1.5).i(3).i(5).f64(2.5).i(3).i(100).f64(7.0);
+  e.i(2).i(1).i(2).f64(0.0);
+  const std::string big = op4test::record(h) + op4test::record(c) + op4test::record(e);
+  const auto b = read_op4_buffer(big.data(), big.size(), "fuzz.op4");
+  REQUIRE(b.size() == 1);
+  CHECK(b[0].real.rows() == 2000000000);
+  CHECK(b[0].real.nonZeros() == 2);
+  CHECK(b[0].real.coeff(4, 0) == 2.5);
+  CHECK(b[0].real.coeff(99, 0) == 7.0);
+}
