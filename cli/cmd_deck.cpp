@@ -69,7 +69,7 @@ int deck_summary(const Args& args) {
   std::string report;
   for (const auto& p : problems) report += p.str() + "\n";
   std::cerr << report << std::flush;
-  return errors ? 1 : 0;
+  return errors ? 2 : 0;  // a deck with errors is bad input (cli/exit_codes.hpp)
 }
 
 int deck_write(const Args& args) {

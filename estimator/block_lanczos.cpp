@@ -190,8 +190,7 @@ BlockLanczosResult block_lanczos(const std::function<MatrixXd(const MatrixXd&)>&
       if (r <= o.tol * std::max(std::abs(theta(c)), 1e-300)) ++conv;
       else break;
     }
-    report(o.progress, "block Lanczos: basis " + std::to_string(k) + ", converged " + std::to_string(conv) + " of " +
-                           std::to_string(o.nev));
+    report(o.progress, "block Lanczos: modes converged", conv, o.nev, "basis " + std::to_string(k));
     const bool exhausted = kept == 0;  // span(V) is invariant: every Ritz pair is exact
     if (conv >= want && (conv >= o.nev || exhausted)) {
       res.converged = true;

@@ -2,6 +2,8 @@
 
 #include <stdexcept>
 
+#include "formats/parse_error.hpp"
+
 namespace ssid::estimator {
 
 formats::BulkModel resolved_bulk(const formats::Deck& deck, const std::string& who,
@@ -21,7 +23,7 @@ formats::BulkModel resolved_bulk(const formats::Deck& deck, const std::string& w
       }
     }
   if (count)
-    throw std::invalid_argument((who.empty() ? "" : who + ": ") + std::to_string(count) +
+    throw formats::InputError((who.empty() ? "" : who + ": ") + std::to_string(count) +
                                 " error(s) in the deck; nothing assembled:" + errors +
                                 (count > kShown ? "\n  ... and " + std::to_string(count - kShown) + " more" : ""));
   return model;

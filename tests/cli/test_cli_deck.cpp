@@ -68,7 +68,7 @@ TEST_CASE("ssid deck summary: typed counts of every card family, warnings do not
   CHECK(c["typed"]["SPC1"] == 2);
 }
 
-TEST_CASE("ssid deck summary: resolve problems, all at once, on stderr and in JSON; exit 1", "[cli][errors]") {
+TEST_CASE("ssid deck summary: resolve problems, all at once, on stderr and in JSON; exit 2 (bad input)", "[cli][errors]") {
   const fs::path dir = scratch();
   std::ofstream(dir / "refs.bdf") << "GRID    1               0.      0.      0.\n"
                                      "PBAR    3       1       1.\n"
@@ -76,7 +76,7 @@ TEST_CASE("ssid deck summary: resolve problems, all at once, on stderr and in JS
                                      "CROD    10      3       1       12\n";
   const fs::path json = dir / "refs.json";
   auto r = run_ssid("deck summary " + (dir / "refs.bdf").string() + " --json " + json.string());
-  CHECK(r.code == 1);
+  CHECK(r.code == 2);
   CHECK_THAT(r.out, Catch::Contains("problems: 6 (6 error(s), 0 warning(s)"));
   CHECK_THAT(r.err, Catch::Contains("refs.bdf:4: duplicate element 10 (CROD; first defined by CROD at"));
   CHECK_THAT(r.err, Catch::Contains("refs.bdf:3: GRID 12 required by CROD 10 does not exist"));
@@ -86,21 +86,21 @@ TEST_CASE("ssid deck summary: resolve problems, all at once, on stderr and in JS
   CHECK(j["problems"].size() == 6);
 }
 
-TEST_CASE("ssid deck: bad input exits 1 with file:line on stderr and no result on stdout", "[cli][errors]") {
+TEST_CASE("ssid deck: bad input exits 2 with file:line on stderr and no result on stdout", "[cli][errors]") {
   const fs::path dir = scratch();
   std::ofstream(dir / "bad.bdf") << "GRID    1\nINCLUDE 'missing.bdf'\n";
   auto r = run_ssid("deck summary " + (dir / "bad.bdf").string());
-  CHECK(r.code == 1);
+  CHECK(r.code == 2);
   CHECK(r.out.empty());
   CHECK_THAT(r.err, Catch::Contains("bad.bdf:2") && Catch::Contains("missing.bdf"));
 
   std::ofstream(dir / "field.bdf") << "$ comment\nCROD    10      1       1.5     2\n";
   auto f = run_ssid("deck summary " + (dir / "field.bdf").string());
-  CHECK(f.code == 1);
+  CHECK(f.code == 2);
   CHECK_THAT(f.err, Catch::Contains("field.bdf:2: CROD 10 field 4 (G1): expected integer, got \"1.5\""));
 
   auto w = run_ssid("deck write " + (dir / "nope.bdf").string() + " -o " + (dir / "o.bdf").string());
-  CHECK(w.code == 1);
+  CHECK(w.code == 2);
   CHECK(w.out.empty());
   CHECK_THAT(w.err, Catch::Contains("nope.bdf") && Catch::Contains("not found"));
 }

@@ -79,13 +79,13 @@ TEST_CASE("ssid uff list: datasets, nodes, modes, functions, JSON", "[cli][uff]"
   auto help = run_ssid("uff --help");
   CHECK(help.code == 0);
   auto bad = run_ssid("uff list " + (scratch() / "missing.unv").string());
-  CHECK(bad.code == 1);
+  CHECK(bad.code == 2);
   CHECK_THAT(bad.err, Catch::Contains("missing.unv") && Catch::Contains("not found"));
   std::ofstream(scratch() / "broken.unv") << "    -1\n    55\nA\nB\nC\nD\nE\n         1         2         2         8"
                                              "         2         3\n         2         4         1         1\n"
                                              "  7.7500X+00\n    -1\n";
   auto br = run_ssid("uff list " + (scratch() / "broken.unv").string());
-  CHECK(br.code == 1);
+  CHECK(br.code == 2);
   CHECK(br.out.empty());
   CHECK_THAT(br.err, Catch::Contains("broken.unv:10: dataset 55 record 8 field 1"));
 }
@@ -95,15 +95,16 @@ TEST_CASE("ssid correlate: pairing table, unpaired modes, JSON; position mapping
   write_pair(dir / "fe.unv", dir / "test.unv");
   // By id the test nodes (101..105) match nothing.
   auto none = run_ssid("correlate " + (dir / "fe.unv").string() + " " + (dir / "test.unv").string());
-  CHECK(none.code == 1);
+  CHECK(none.code == 2);
   CHECK_THAT(none.err, Catch::Contains("share no measured DOF"));
 
   const fs::path json = dir / "c.json";
   auto r = run_ssid("correlate " + (dir / "fe.unv").string() + " " + (dir / "test.unv").string() +
                     " --map position --tol 0.01 --json " + json.string());
   CHECK(r.code == 0);
-  CHECK_THAT(r.out, Catch::Contains("FEM Frequency/#") && Catch::Contains("compared at 15 common DOF(s)") &&
-                        Catch::Contains("10.00/1") && Catch::Contains("accepted pairs: 2 of 3 mutual-best"));
+  CHECK_THAT(r.out, Catch::Contains("FEM Frequency (Hz)/#") && Catch::Contains("compared at 15 common DOF(s)") &&
+                        Catch::Contains("10.00/1 ") && Catch::Contains("10.20/1 ") &&
+                        Catch::Contains("accepted pairs: 2 of 3 mutual-best"));
   auto j = nlohmann::json::parse(cli_slurp(json));
   REQUIRE(j["pairs"].size() == 3);
   CHECK(j["pairs"][0]["fe_mode"] == 1);
@@ -138,11 +139,11 @@ TEST_CASE("ssid correlate: a deck is solved first; one with nothing to solve is 
   const fs::path dir = scratch();
   std::ofstream(dir / "model.bdf") << "GRID    1               0.      0.      0.\n";
   auto r = run_ssid("correlate " + (dir / "model.bdf").string() + " " + kMixed);
-  CHECK(r.code == 1);
+  CHECK(r.code == 2);
   CHECK_THAT(r.err, Catch::Contains("the analysis set is empty"));
   // A deck where the test universal file is expected.
   auto t = run_ssid("correlate " + kMixed + " " + (dir / "model.bdf").string());
-  CHECK(t.code == 1);
+  CHECK(t.code == 2);
   CHECK_THAT(t.err, Catch::Contains("model.bdf"));
   auto bad = run_ssid("correlate " + kMixed + " " + kMixed + " --mac cubed");
   CHECK(bad.code == 2);
