@@ -10,7 +10,6 @@
 #include "cli/exit_codes.hpp"
 #include "cli/model_load.hpp"
 #include "cli/progress_lines.hpp"
-#include "estimator/dense_eigen.hpp"
 #include "estimator/eigen_table.hpp"
 #include "formats/parse_error.hpp"
 #include "translators/synthetic_modes.hpp"
@@ -72,7 +71,7 @@ int cmd_modes(const Args& args) {
       "--uff: extended (1P E25.16, exact round trip) or standard (E13.5 as test-lab software writes)")(
       "shapes", po::bool_switch(),
       "--json: also write each mode's shape on every grid DOF (g-set), with the convention stated in the JSON")(
-      "quiet,q", "no progress lines on stderr (the eigen-solver's phases on models above 200 DOFs)");
+      "quiet,q", "no progress lines on stderr (the eigen-solver's phases, from 2 s into the solve)");
   po::positional_options_description pos;
   pos.add("deck", 1);
   po::variables_map vm;
@@ -120,8 +119,8 @@ int cmd_modes(const Args& args) {
     return 2;
   }
   // The eigen-solver's phases on stderr (counts of converged modes, the time left)
-  // where it can take long: the sparse path, above the dense limit.
-  ProgressLines lines("ssid modes", vm.count("quiet") != 0 || n <= estimator::kDenseEigenLimit, 5.0);
+  // once a solve has taken 2 s: a quick one stays quiet.
+  ProgressLines lines("ssid modes", vm.count("quiet") != 0, 5.0, 2.0);
   eo.progress = lines.callback();
   const estimator::EigenResult r = solve_model(op, eo, a_set_dofs(model));
   for (const auto& w : r.warnings) std::cerr << "warning: " << w << "\n";

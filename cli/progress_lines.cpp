@@ -34,8 +34,8 @@ std::string duration_text(double seconds) {
   return std::to_string(s / 3600) + " h " + std::to_string(s % 3600 / 60) + " min";
 }
 
-ProgressLines::ProgressLines(std::string prefix, bool quiet, double min_interval_s)
-    : m_prefix(std::move(prefix)), m_quiet(quiet), m_min_interval(min_interval_s) {}
+ProgressLines::ProgressLines(std::string prefix, bool quiet, double min_interval_s, double silent_s)
+    : m_prefix(std::move(prefix)), m_quiet(quiet), m_min_interval(min_interval_s), m_silent(silent_s) {}
 
 estimator::Progress ProgressLines::callback() {
   return [this](const estimator::ProgressEvent& e) { on_event(e); };
@@ -43,11 +43,12 @@ estimator::Progress ProgressLines::callback() {
 
 std::string ProgressLines::line(const estimator::ProgressEvent& e, double elapsed_s) const {
   std::string s = m_prefix + ": " + e.phase;
-  if (!e.counted()) return s + (e.detail.empty() ? "" : ": " + e.detail);
-  s += e.total_is_bound ? " " + std::to_string(e.done) + " of at most " + std::to_string(e.total)
-                        : " " + std::to_string(e.done) + "/" + std::to_string(e.total);
+  if (!e.has_count()) return s + (e.detail.empty() ? "" : ": " + e.detail);
+  if (!e.counted()) s += " " + std::to_string(e.done);
+  else if (e.total_is_bound) s += " " + std::to_string(e.done) + " of at most " + std::to_string(e.total);
+  else s += " " + std::to_string(e.done) + "/" + std::to_string(e.total);
   std::string timing = duration_text(elapsed_s) + " elapsed";
-  if (e.done > 0 && e.done < e.total) {
+  if (e.counted() && e.done > 0 && e.done < e.total) {
     const double left = elapsed_s / static_cast<double>(e.done) * static_cast<double>(e.total - e.done);
     timing += std::string(", ") + (e.total_is_bound ? "at most " : "") + "~" + duration_text(left) + " left";
   }
@@ -61,8 +62,9 @@ void ProgressLines::on_event(const estimator::ProgressEvent& e) {
     m_phase = e.phase;
     m_phase_start = now;
   }
-  if (m_quiet || e.tick) return;
-  if (e.counted() && e.phase == m_printed_phase && e.done < e.total &&
+  if (m_quiet || e.tick || std::chrono::duration<double>(now - m_start).count() < m_silent) return;
+  const bool last_of_phase = e.counted() && e.done >= e.total;
+  if (e.has_count() && !last_of_phase && e.phase == m_printed_phase &&
       std::chrono::duration<double>(now - m_printed_at).count() < m_min_interval)
     return;
   const std::string text = line(e, std::chrono::duration<double>(now - m_phase_start).count());

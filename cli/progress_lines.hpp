@@ -36,8 +36,10 @@ class ProgressLines {
  public:
   /// `prefix` starts each line ("ssid diagnose"). Counted reports of one phase
   /// are printed at most every `min_interval_s` seconds (0: all), the last of
-  /// the phase always; other reports always; ticks never.
-  ProgressLines(std::string prefix, bool quiet, double min_interval_s);
+  /// the phase always; other reports always; ticks never. Nothing is printed in
+  /// the first `silent_s` seconds (a quick run stays quiet; a long one speaks
+  /// from then on).
+  ProgressLines(std::string prefix, bool quiet, double min_interval_s, double silent_s = 0.0);
   /// The library's callback: prints, and throws estimator::Interrupted
   /// ("interrupted (Ctrl-C)") once Ctrl-C was pressed. Refers to this object.
   estimator::Progress callback();
@@ -49,7 +51,8 @@ class ProgressLines {
   void on_event(const estimator::ProgressEvent& e);
   std::string m_prefix;
   bool m_quiet = false;
-  double m_min_interval = 0;
+  double m_min_interval = 0, m_silent = 0;
+  Clock::time_point m_start = Clock::now();
   std::string m_phase;             ///< the phase of the last report
   Clock::time_point m_phase_start;
   std::string m_printed_phase;     ///< the phase of the last line printed

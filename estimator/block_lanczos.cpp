@@ -1,6 +1,7 @@
 #include "estimator/block_lanczos.hpp"
 
 #include "estimator/dense_blas.hpp"
+#include "formats/parse_error.hpp"
 
 #include <Eigen/Eigenvalues>
 
@@ -148,7 +149,7 @@ BlockLanczosResult block_lanczos(const std::function<MatrixXd(const MatrixXd&)>&
   {
     MatrixXd W = S(random_block(n, static_cast<int>(b), rng)), MW;
     orthonormalise(W, MW, -1);
-    if (W.cols() == 0) throw std::invalid_argument("block_lanczos: M is zero");
+    if (W.cols() == 0) throw formats::InputError("block_lanczos: M is zero");
     V.leftCols(W.cols()) = W;
     if (keep_mv) MV.leftCols(W.cols()) = MW;
     m = W.cols();

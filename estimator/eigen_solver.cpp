@@ -47,7 +47,7 @@ class ShiftInvertOp {
   }
   void perform_op(const double* x, double* y) const {
     m_f.solve(x, y, 1);
-    if (++m_count % 50 == 0) report(m_progress, "Lanczos: " + std::to_string(m_count) + " solves");
+    if (++m_count % 50 == 0) report(m_progress, "Lanczos solves", m_count, -1);  // the total is not known
   }
   long count() const { return m_count; }
 
@@ -120,7 +120,7 @@ LanczosRun run_lanczos(const CholmodFactor& factor, const MassOp& mass, double s
   for (Eigen::Index i = 0; i < r.size(); ++i) r(i) = u(rng);
   mass.perform_op(r.data(), Mr.data());
   factor.solve(Mr.data(), v0.data(), 1);
-  if (!(v0.norm() > 0.0)) throw std::invalid_argument("EigenSolver: M is zero");
+  if (!(v0.norm() > 0.0)) throw formats::InputError("EigenSolver: M is zero: the model has no mass on its analysis DOFs");
   eigs.init(v0.data());
   eigs.compute(Spectra::SortRule::LargestMagn, o.maxit, o.tol, Spectra::SortRule::SmallestAlge);
   LanczosRun run;

@@ -5,6 +5,7 @@ namespace ssid::estimator {
 std::string ProgressEvent::text() const {
   std::string s = phase;
   if (counted()) s += " " + std::to_string(done) + "/" + std::to_string(total);
+  else if (has_count()) s += " " + std::to_string(done);
   if (!detail.empty()) s += (s.empty() ? "" : ": ") + detail;
   return s;
 }

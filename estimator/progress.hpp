@@ -21,7 +21,7 @@ namespace ssid::estimator {
 struct ProgressEvent {
   std::string phase;       ///< what is being done, e.g. "screening candidates"
   long done = -1;          ///< items of the phase done (−1: the phase is not counted)
-  long total = -1;         ///< items of the phase in all (with done ≥ 0)
+  long total = -1;         ///< items of the phase in all (≤ 0 with done ≥ 0: a count without a known end)
   bool total_is_bound = false;  ///< `total` is an upper bound (an iteration limit), not the count
   std::string detail;      ///< the item at hand or its outcome, e.g. "missing_mass at GRID 12"
   double fraction = -1.0;  ///< of the whole computation, in [0, 1]; < 0 when unknown
@@ -29,8 +29,11 @@ struct ProgressEvent {
   /// caller to stop the run (throw Interrupted) between reports far apart.
   bool tick = false;
 
+  /// Items done of a known total (the time left can be estimated).
   bool counted() const { return done >= 0 && total > 0; }
-  /// "phase", "phase 3/20", "phase 3/20: detail" or "phase: detail".
+  /// Items done, with or without a known total.
+  bool has_count() const { return done >= 0; }
+  /// "phase", "phase 3/20", "phase 3", "phase 3/20: detail" or "phase: detail".
   std::string text() const;
 };
 
@@ -47,7 +50,8 @@ class Interrupted : public std::runtime_error {
 /// Calls `p` when set, with a phase that is not counted.
 void report(const Progress& p, const std::string& phase, double fraction = -1.0);
 
-/// Calls `p` when set: item `done` of `total` of `phase` (done = 0 at the start).
+/// Calls `p` when set: item `done` of `total` of `phase` (done = 0 at the start;
+/// total ≤ 0 when not known).
 void report(const Progress& p, const std::string& phase, long done, long total, const std::string& detail = {},
             double fraction = -1.0);
 

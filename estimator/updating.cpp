@@ -236,7 +236,7 @@ UpdateResult update(const std::vector<Configuration>& configurations, const Para
 
   // Work in θ = D⁻¹ (r − r₀), D = diag(prior σ): all parameters of order one.
   const Eigen::VectorXd d = prior.cov.diagonal().array().sqrt();
-  if ((d.array() <= 0).any()) throw std::invalid_argument("update: every parameter needs a positive prior variance");
+  if ((d.array() <= 0).any()) throw formats::InputError("update: every parameter needs a positive prior variance");
   const Eigen::MatrixXd cov_theta = d.asDiagonal().inverse() * prior.cov * d.asDiagonal().inverse();
   const Eigen::VectorXd lo = ((prior.lower - prior.mean).array() / d.array()).matrix();
   const Eigen::VectorXd hi = ((prior.upper - prior.mean).array() / d.array()).matrix();

@@ -82,6 +82,8 @@ TEST_CASE("progress lines: counts, time elapsed and left, in words people read",
   // An iteration limit is a bound: so is the time left.
   CHECK(p.line(counted("cycle", 4, 21, "J = 12.5", true), 8.0) ==
         "ssid diagnose: cycle 4 of at most 21: J = 12.5 (8 s elapsed, at most ~34 s left)");
+  // A count without a known end: no time left.
+  CHECK(p.line(counted("Lanczos solves", 450, -1), 75.0) == "ssid diagnose: Lanczos solves 450, 1 min 15 s elapsed");
   ProgressEvent phase;
   phase.phase = "ordinary update of the deck's parameters";
   CHECK(p.line(phase, 3.0) == "ssid diagnose: ordinary update of the deck's parameters");
