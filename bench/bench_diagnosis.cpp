@@ -189,10 +189,10 @@ void beam() {
   }
   const auto t0 = std::chrono::steady_clock::now();
   const std::clock_t c0 = std::clock();
-  opt.progress = [&](const std::string& s, double) {
+  opt.progress = [&](const ssid::estimator::ProgressEvent& e) {
     std::fprintf(stderr, "  [wall %7.1f s, CPU %7.1f s] %s\n",
                  std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count(),
-                 static_cast<double>(std::clock() - c0) / CLOCKS_PER_SEC, s.c_str());
+                 static_cast<double>(std::clock() - c0) / CLOCKS_PER_SEC, e.text().c_str());
   };
   if (const char* n = std::getenv("SSID_BENCH_NELSON")) opt.problem.nelson_max_dofs = std::atoi(n);
   if (std::getenv("SSID_BENCH_CYCLES")) opt.problem.update_progress = opt.progress;  // every solve of every estimate

@@ -225,8 +225,8 @@ int main(int argc, char** argv) {
   }
   if (method == EigenMethod::Multilevel) {
     const double t_start = now_s();
-    o.progress = [t_start](const std::string& msg, double) {
-      std::fprintf(stderr, "  %7.1f s  %s\n", now_s() - t_start, msg.c_str());
+    o.progress = [t_start](const ssid::estimator::ProgressEvent& e) {
+      std::fprintf(stderr, "  %7.1f s  %s\n", now_s() - t_start, e.text().c_str());
     };
     EigenResult r;
     const auto tsolve = timed([&] { r = EigenSolver(o).solve(m.K, m.M); });

@@ -4,6 +4,9 @@
 #include <iostream>
 #include <stdexcept>
 
+#include "cli/exit_codes.hpp"
+#include "formats/parse_error.hpp"
+
 namespace ssid::cli {
 
 bool parse_options(const Args& args, const std::string& usage, po::options_description& desc,
@@ -12,14 +15,14 @@ bool parse_options(const Args& args, const std::string& usage, po::options_descr
   try {
     po::store(po::command_line_parser(args).options(desc).positional(pos).run(), vm);
     if (vm.count("help")) {
-      std::cout << "usage: " << usage << "\n\n" << desc << "\n";
-      exit_code = 0;
+      std::cout << "usage: " << usage << "\n\n" << desc << "\n" << kExitCodesHelp;
+      exit_code = kExitSuccess;
       return false;
     }
     po::notify(vm);
   } catch (const po::error& e) {
     std::cerr << "ssid: " << e.what() << "\nusage: " << usage << "\n(try --help)\n";
-    exit_code = 2;
+    exit_code = kExitBadInput;
     return false;
   }
   return true;
@@ -31,7 +34,7 @@ void write_json(const std::string& path, const nlohmann::json& j) {
     return;
   }
   std::ofstream o(path);
-  if (!o) throw std::runtime_error("cannot write " + path);
+  if (!o) throw formats::InputError("cannot write " + path);
   o << j.dump(2) << "\n";
 }
 

@@ -7,6 +7,7 @@
 
 #include "cli/cli_util.hpp"
 #include "cli/model_load.hpp"
+#include "formats/parse_error.hpp"
 #include "translators/operator_import.hpp"
 #include "translators/operator_set.hpp"
 
@@ -17,7 +18,7 @@ namespace {
 /// "LABEL=VALUE" or "ID=VALUE" → (parameter index, value).
 std::pair<std::size_t, double> parse_set(const std::string& s, const translators::FeModel& model) {
   const auto eq = s.find('=');
-  if (eq == std::string::npos) throw std::invalid_argument("--set \"" + s + "\": expected LABEL=VALUE or ID=VALUE");
+  if (eq == std::string::npos) throw formats::InputError("--set \"" + s + "\": expected LABEL=VALUE or ID=VALUE");
   const std::string name = s.substr(0, eq), val = s.substr(eq + 1);
   double v = 0;
   std::size_t used = 0;
@@ -26,11 +27,11 @@ std::pair<std::size_t, double> parse_set(const std::string& s, const translators
   } catch (const std::exception&) {
     used = 0;
   }
-  if (used == 0 || used != val.size()) throw std::invalid_argument("--set \"" + s + "\": \"" + val + "\" is not a number");
+  if (used == 0 || used != val.size()) throw formats::InputError("--set \"" + s + "\": \"" + val + "\" is not a number");
   const auto& ps = model.parameters();
   for (std::size_t j = 0; j < ps.size(); ++j)
     if (ps[j].label == name || std::to_string(ps[j].id) == name) return {j, v};
-  throw std::invalid_argument("--set \"" + s + "\": no DESVAR with label or id " + name);
+  throw formats::InputError("--set \"" + s + "\": no DESVAR with label or id " + name);
 }
 
 }  // namespace

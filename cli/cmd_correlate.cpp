@@ -10,6 +10,7 @@
 #include "cli/cli_util.hpp"
 #include "cli/model_load.hpp"
 #include "estimator/correlate.hpp"
+#include "formats/parse_error.hpp"
 #include "formats/uff.hpp"
 #include "translators/synthetic_modes.hpp"
 
@@ -51,12 +52,12 @@ int cmd_correlate(const Args& args) {
       "json", po::value<std::string>(), "write the results as JSON to this file ('-' for stdout)")(
       "mac", po::value<std::string>()->default_value("squared"),
       "MAC form: squared, or ns (the seed report's non-squared MAC)")(
-      "min-mac", po::value<double>()->default_value(0.9), "accept a mutual-best pair at this MAC or above")(
-      "max-freq-error", po::value<double>()->default_value(10.0),
+      "min-mac", po::value<double>()->default_value(0.9, "0.9"), "accept a mutual-best pair at this MAC or above")(
+      "max-freq-error", po::value<double>()->default_value(10.0, "10"),
       "accept a pair only within this frequency error (%)")(
       "map", po::value<std::string>()->default_value("id"),
       "test node to analysis node: id, position, or id-then-position (positions from 15/2411 in both files)")(
-      "tol", po::value<double>()->default_value(0.0), "distance tolerance for position mapping (model units)")(
+      "tol", po::value<double>()->default_value(0.0, "0"), "distance tolerance for position mapping (model units)")(
       "nmodes", po::value<int>(), "deck: solve the lowest N modes (default: the deck's EIGRL/EIGR)");
   po::positional_options_description pos;
   pos.add("fe", 1).add("test", 1);
@@ -106,9 +107,9 @@ int cmd_correlate(const Args& args) {
   translators::ModeSetReport fe_rep, test_rep;
   translators::ModeSet fe = from_deck ? translators::ModeSet{} : translators::modes_from_uff(fe_file, &fe_rep);
   translators::ModeSet test = translators::modes_from_uff(test_file, &test_rep);
-  if (!from_deck && fe.frequency_hz.empty()) throw std::runtime_error(fe_path + ": no real normal modes (dataset 55, analysis type 2)");
+  if (!from_deck && fe.frequency_hz.empty()) throw formats::InputError(fe_path + ": no real normal modes (dataset 55, analysis type 2)");
   if (test.frequency_hz.empty())
-    throw std::runtime_error(test_path + ": no real normal modes (dataset 55, analysis type 2)");
+    throw formats::InputError(test_path + ": no real normal modes (dataset 55, analysis type 2)");
   std::vector<std::string> problems;
   for (const auto& p : fe_rep.problems) problems.push_back(fe_path + ": " + p);
   for (const auto& p : test_rep.problems) problems.push_back(test_path + ": " + p);
@@ -146,7 +147,7 @@ int cmd_correlate(const Args& args) {
       if (nodes.empty())
         for (auto id : ids) nodes.push_back({id, Eigen::Vector3d::Zero(), 0});
     } else if (grids.empty() || nodes.empty()) {
-      throw std::runtime_error("--map " + map + " needs node positions (dataset 15 or 2411) in both files" +
+      throw formats::InputError("--map " + map + " needs node positions (dataset 15 or 2411) in both files" +
                                std::string(from_deck ? " (the test file has none)" : ""));
     }
     auto m = translators::map_test_nodes(nodes, grids, mo);
@@ -159,7 +160,7 @@ int cmd_correlate(const Args& args) {
       translators::SyntheticTestOptions so;
       for (const auto& match : m.matches) so.sensors.push_back(match.grid);
       for (const auto& d : test.dofs) so.rotations |= std::abs(d.direction) > 3;
-      if (so.sensors.empty()) throw std::runtime_error(test_path + ": no test node maps to a grid of " + fe_path);
+      if (so.sensors.empty()) throw formats::InputError(test_path + ": no test node maps to a grid of " + fe_path);
       translators::FeModeData fd;
       fd.shapes = fe_modes.modes;
       for (int i = 0; i < fe_modes.size(); ++i) {

@@ -10,7 +10,11 @@
 #include <sstream>
 
 #include "cli/cli_util.hpp"
+#include "cli/exit_codes.hpp"
+#include "cli/progress_lines.hpp"
 #include "estimator/diagnosis/diagnosis.hpp"
+#include "estimator/number_text.hpp"
+#include "formats/parse_error.hpp"
 #include "formats/uff.hpp"
 #include "translators/test_modes.hpp"
 
@@ -22,7 +26,7 @@ namespace dx = estimator::diagnosis;
 
 std::string read_text(const std::string& path) {
   std::ifstream in(path, std::ios::binary);
-  if (!in) throw std::runtime_error(path + ": cannot open");
+  if (!in) throw formats::InputError(path + ": cannot open");
   std::ostringstream s;
   s << in.rdbuf();
   return s.str();
@@ -35,7 +39,7 @@ dx::ConfigurationInput load_configuration(const std::string& deck, const std::st
   translators::ModeSetReport rep;
   c.measured = translators::modes_from_uff(formats::uff::read_uff(unv), &rep);
   for (const auto& p : rep.problems) std::cerr << "warning: " << unv << ": " << p << "\n";
-  if (c.measured.frequency_hz.empty()) throw std::runtime_error(unv + ": no real normal modes (dataset 55, analysis type 2)");
+  if (c.measured.frequency_hz.empty()) throw formats::InputError(unv + ": no real normal modes (dataset 55, analysis type 2)");
   return c;
 }
 
@@ -45,12 +49,6 @@ nlohmann::json location_json(const translators::extensions::Location& l) {
 
 nlohmann::json fit_json(const dx::Fit& f) {
   return {{"freq_rms_pct", f.freq_rms_pct}, {"mean_mac", f.mean_mac}, {"paired", f.paired}, {"measured", f.measured}};
-}
-
-std::string fx(double x, int d) {
-  std::ostringstream s;
-  s << std::fixed << std::setprecision(d) << x;
-  return s.str();
 }
 
 }  // namespace
@@ -70,7 +68,8 @@ int cmd_diagnose(const Args& args) {
       "prior-std", po::value<double>(), "prior standard deviation of the deck's parameters, relative (default 0.3)")(
       "shortlist", po::value<int>(), "candidates per kind re-estimated exactly (default 3)")(
       "margin", po::value<double>(), "decision margin in nats (default 3)")(
-      "hold-back", po::value<int>(), "hold back the N highest test modes and report their prediction");
+      "hold-back", po::value<int>(), "hold back the N highest test modes and report their prediction")(
+      "quiet,q", "no progress lines on stderr (phases, counts of candidates, the time left)");
   po::positional_options_description pos;
   pos.add("deck", 1).add("measured", 1);
   po::variables_map vm;
@@ -86,13 +85,13 @@ int cmd_diagnose(const Args& args) {
     try {
       s = nlohmann::json::parse(read_text(path));
     } catch (const nlohmann::json::parse_error& e) {
-      throw std::runtime_error(path + ": not valid JSON: " + e.what());
+      throw formats::InputError(path + ": not valid JSON: " + e.what());
     }
     static const std::set<std::string> known = {"frequency_std_pct", "shape_std_pct", "prior_rel_std", "kinds",
                                                 "shortlist", "decision_margin", "hold_back", "mass_prior_fraction",
                                                 "stiffness_prior_fraction", "configurations", "max_iterations"};
     for (auto it = s.begin(); it != s.end(); ++it)
-      if (!known.count(it.key())) throw std::runtime_error(path + ": unknown key \"" + it.key() + "\"");
+      if (!known.count(it.key())) throw formats::InputError(path + ": unknown key \"" + it.key() + "\"");
     try {
       if (s.count("frequency_std_pct")) opt.problem.frequency_std_pct = s["frequency_std_pct"].get<double>();
       if (s.count("shape_std_pct")) opt.problem.shape_std_pct = s["shape_std_pct"].get<double>();
@@ -108,7 +107,7 @@ int cmd_diagnose(const Args& args) {
       if (s.count("configurations"))
         for (const auto& c : s["configurations"]) extra.emplace_back(c.at("deck").get<std::string>(), c.at("measured").get<std::string>());
     } catch (const nlohmann::json::exception& e) {
-      throw std::runtime_error(path + ": " + e.what());
+      throw formats::InputError(path + ": " + e.what());
     }
   }
   if (vm.count("freq-std")) opt.problem.frequency_std_pct = vm["freq-std"].as<double>();
@@ -132,27 +131,39 @@ int cmd_diagnose(const Args& args) {
   for (const auto& k : opt.kinds)
     if (!kinds.count(k)) {
       print_error("unknown extension kind \"" + k + "\" (" + kind_list + ")");
-      return 2;
+      return kExitBadInput;
     }
   if (vm.count("also"))
     for (const auto& a : vm["also"].as<std::vector<std::string>>()) {
       const auto eq = a.find('=');
       if (eq == std::string::npos) {
         print_error("--also: expected DECK=MEASURED.unv, got \"" + a + "\"");
-        return 2;
+        return kExitBadInput;
       }
       extra.emplace_back(a.substr(0, eq), a.substr(eq + 1));
     }
-  const bool quiet_json = vm.count("json") && vm["json"].as<std::string>() == "-";
-  opt.progress = [quiet_json](const std::string& what, double) {
-    if (!quiet_json) std::cerr << "  " << what << "\n";
-  };
+  const std::string json_path = vm.count("json") ? vm["json"].as<std::string>() : "";
+  const bool quiet_json = json_path == "-";
+  // Candidates can number hundreds: their counts at most every 2 s.
+  ProgressLines lines("ssid diagnose", vm.count("quiet") != 0, 2.0);
+  opt.progress = lines.callback();
 
   std::vector<dx::ConfigurationInput> configs;
   configs.push_back(load_configuration(vm["deck"].as<std::string>(), vm["measured"].as<std::string>()));
   for (const auto& [d, m] : extra) configs.push_back(load_configuration(d, m));
 
-  const dx::Diagnosis dg = dx::diagnose(configs, opt);
+  const InterruptFlag interrupt;
+  dx::Diagnosis dg;
+  try {
+    dg = dx::diagnose(configs, opt);
+  } catch (const estimator::Interrupted& e) {
+    const std::string why = std::string(e.what()) + " before the ordinary update's first cycle was complete";
+    if (!json_path.empty())
+      write_json(json_path, {{"partial", true}, {"partial_reason", why}, {"cause", nullptr}, {"ranking", nlohmann::json::array()}});
+    print_error("diagnose: " + why + ": no diagnosis" +
+                (json_path.empty() || quiet_json ? "" : " (" + json_path + " is marked \"partial\": true)"));
+    return kExitInterrupted;
+  }
   const dx::Hypothesis& cause = dg.cause >= 0 ? dg.ranking[static_cast<std::size_t>(dg.cause)] : dg.nominal;
 
   // The extended, updated deck.
@@ -164,7 +175,7 @@ int cmd_diagnose(const Args& args) {
     deck_path = (dir / (stem + "_diagnosed.bdf")).string();
     std::ofstream out(deck_path, std::ios::binary);
     out << dg.updated_deck;
-    if (!out) throw std::runtime_error(deck_path + ": cannot write");
+    if (!out) throw formats::InputError(deck_path + ": cannot write");
   }
 
   nlohmann::json j;
@@ -239,54 +250,74 @@ int cmd_diagnose(const Args& args) {
   }
   j["notes"] = dg.notes;
   j["deck"] = deck_path.empty() ? nlohmann::json(nullptr) : nlohmann::json(deck_path);
+  // Not trustworthy: stopped early, or the cause's own estimate did not converge.
+  std::string untrusted = dg.partial_reason;
+  if (untrusted.empty() && cause.kind != "none" && !cause.converged)
+    untrusted = "the estimate of the cause (" + cause.kind + (cause.kind == "parameter" ? "" : " at " + cause.location.text) +
+                ") did not converge";
+  j["partial"] = !untrusted.empty();
+  if (!untrusted.empty()) j["partial_reason"] = untrusted;
+  auto exit_code = [&] {
+    if (untrusted.empty()) return static_cast<int>(kExitSuccess);
+    const std::string marked =
+        json_path.empty() || quiet_json ? "" : "; " + json_path + " is marked \"partial\": true";
+    print_error("diagnose: " + untrusted + ": " +
+                (dg.interrupted ? "the ranking holds the hypotheses tested so far"
+                                : "the diagnosis is not trustworthy (more cycles: \"max_iterations\" in --study)") +
+                marked);
+    return static_cast<int>(dg.interrupted ? kExitInterrupted : kExitUntrusted);
+  };
 
   if (quiet_json) {
     write_json("-", j);
-    return 0;
+    return exit_code();
   }
   std::cout << "ssid diagnose: " << configs.front().name << " against " << vm["measured"].as<std::string>();
   if (configs.size() > 1) std::cout << " (+" << configs.size() - 1 << " configuration(s))";
-  std::cout << "\n\n1. What the updated model gets wrong (after the ordinary update):\n";
+  std::cout << "\n";
+  if (!untrusted.empty()) std::cout << "PARTIAL RESULT (" << untrusted << ")\n";
+  std::cout << "\n1. What the updated model gets wrong (after the ordinary update):\n";
   for (const auto& f : dg.evidence.findings) std::cout << "   - " << f << "\n";
-  std::cout << "\n   test mode   test Hz   FE mode     FE Hz   error %    MAC   MEMS e^2\n";
+  // Frequencies to 7 significant digits: any error the error column shows is visible in them.
+  std::cout << "\n   test mode   test [Hz]  FE mode      FE [Hz]  error [%]    MAC   MEMS e^2\n";
   for (const auto& m : dg.evidence.modes) {
-    std::cout << "   " << std::setw(9) << m.test_id << std::setw(10) << fx(m.test_hz, 3);
-    if (m.fem) std::cout << std::setw(10) << m.fem << std::setw(10) << fx(m.fem_hz, 3) << std::setw(10) << fx(m.error_pct, 2)
-                         << std::setw(7) << fx(m.mac, 3);
-    else std::cout << std::setw(37) << "(no partner)";
-    std::cout << std::setw(11) << fx(m.mems_error, 3) << "\n";
+    std::cout << "   " << std::setw(9) << m.test_id << std::setw(12) << estimator::significant(m.test_hz, 7);
+    if (m.fem) std::cout << std::setw(9) << m.fem << std::setw(13) << estimator::significant(m.fem_hz, 7) << std::setw(11)
+                         << estimator::fixed(m.error_pct, 3) << std::setw(7) << estimator::fixed(m.mac, 3);
+    else std::cout << std::setw(40) << "(no partner)";
+    std::cout << std::setw(11) << estimator::fixed(m.mems_error, 3) << "\n";
   }
   std::cout << "\n2-3. Hypotheses tested (searched:";
   for (const auto& [k, n] : dg.searched) std::cout << " " << k << " " << n;
   std::cout << " locations)\n   score = Laplace log-evidence + unpaired-mode penalty - log(#locations)\n";
   std::cout << "   rank  kind               location                                  score [nats]  freq RMS %  mean MAC  paired\n";
   std::cout << "      -  none               deck as given                            " << std::setw(13)
-            << fx(dg.nominal.score, 1) << std::setw(12) << fx(dg.nominal.before.freq_rms_pct, 3) << std::setw(10)
-            << fx(dg.nominal.before.mean_mac, 4) << std::setw(8) << dg.nominal.before.paired << "\n";
+            << estimator::fixed(dg.nominal.score, 1) << std::setw(12) << estimator::fixed(dg.nominal.before.freq_rms_pct, 3) << std::setw(10)
+            << estimator::fixed(dg.nominal.before.mean_mac, 4) << std::setw(8) << dg.nominal.before.paired << "\n";
   for (std::size_t i = 0; i < dg.ranking.size() && i < 12; ++i) {
     const auto& h = dg.ranking[i];
     std::string loc = h.location.text;
     if (loc.size() > 40) loc = loc.substr(0, 37) + "...";
     std::cout << "   " << std::setw(4) << i + 1 << "  " << std::left << std::setw(19) << h.kind << std::setw(41) << loc
-              << std::right << std::setw(13) << fx(h.score, 1) << std::setw(12) << fx(h.after.freq_rms_pct, 3)
-              << std::setw(10) << fx(h.after.mean_mac, 4) << std::setw(8) << h.after.paired;
-    if (h.prediction_rms_pct >= 0) std::cout << "  held-back RMS " << fx(h.prediction_rms_pct, 2) << " %";
+              << std::right << std::setw(13) << estimator::fixed(h.score, 1) << std::setw(12) << estimator::fixed(h.after.freq_rms_pct, 3)
+              << std::setw(10) << estimator::fixed(h.after.mean_mac, 4) << std::setw(8) << h.after.paired;
+    if (h.prediction_rms_pct >= 0) std::cout << "  held-back RMS " << estimator::fixed(h.prediction_rms_pct, 2) << " %";
     std::cout << (static_cast<int>(i) == dg.cause ? "  <- cause" : "") << "\n";
   }
   std::cout << "\n4. Cause: " << dg.cause_kind << " — " << dg.summary << "\n";
   std::cout << "\n5. Gain:              before     after\n";
-  std::cout << "   freq RMS error %  " << std::setw(8) << fx(dg.nominal.before.freq_rms_pct, 3) << std::setw(10)
-            << fx(cause.after.freq_rms_pct, 3) << "\n";
-  std::cout << "   mean MAC          " << std::setw(8) << fx(dg.nominal.before.mean_mac, 4) << std::setw(10)
-            << fx(cause.after.mean_mac, 4) << "\n";
+  std::cout << "   freq RMS error %  " << std::setw(8) << estimator::fixed(dg.nominal.before.freq_rms_pct, 3) << std::setw(10)
+            << estimator::fixed(cause.after.freq_rms_pct, 3) << "\n";
+  std::cout << "   mean MAC          " << std::setw(8) << estimator::fixed(dg.nominal.before.mean_mac, 4) << std::setw(10)
+            << estimator::fixed(cause.after.mean_mac, 4) << "\n";
   std::cout << "   paired modes      " << std::setw(8) << dg.nominal.before.paired << std::setw(10) << cause.after.paired << " of "
             << cause.after.measured << "\n";
-  std::cout << "   log evidence      " << std::setw(8) << fx(dg.nominal.score, 1) << std::setw(10) << fx(cause.score, 1)
+  std::cout << "   log evidence      " << std::setw(8) << estimator::fixed(dg.nominal.score, 1) << std::setw(10) << estimator::fixed(cause.score, 1)
             << "\n";
   for (const auto& n : dg.notes) std::cout << "note: " << n << "\n";
   if (!deck_path.empty()) std::cout << "\nextended, updated deck: " << deck_path << "\n";
-  if (vm.count("json")) write_json(vm["json"].as<std::string>(), j);
-  return 0;
+  if (!json_path.empty()) write_json(json_path, j);
+  return exit_code();
 }
 
 }  // namespace ssid::cli

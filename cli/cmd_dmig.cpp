@@ -8,6 +8,7 @@
 #include "formats/dmig.hpp"
 #include "formats/matrix_market.hpp"
 #include "formats/op4.hpp"
+#include "formats/parse_error.hpp"
 #include "translators/dmig_assembly.hpp"
 
 namespace ssid::cli {
@@ -120,7 +121,7 @@ int dmig_dump(const Args& args) {
       }
     std::string have;
     for (const Dmig& m : mats) have += (have.empty() ? "" : ", ") + m.name;
-    throw std::runtime_error(path + ": no DMIG named " + name + " (the deck holds: " + (have.empty() ? "none" : have) +
+    throw formats::InputError(path + ": no DMIG named " + name + " (the deck holds: " + (have.empty() ? "none" : have) +
                              ")");
   }
   nlohmann::json j = nlohmann::json::array();
@@ -152,7 +153,7 @@ int dmig_convert(const Args& args) {
   for (const Dmig& m : all)
     if (!vm.count("name") || m.name == vm["name"].as<std::string>()) mats.push_back(&m);
   if (mats.empty())
-    throw std::runtime_error(path + (vm.count("name") ? ": no DMIG named " + vm["name"].as<std::string>() : ": no DMIG"));
+    throw formats::InputError(path + (vm.count("name") ? ": no DMIG named " + vm["name"].as<std::string>() : ": no DMIG"));
   std::vector<formats::Op4Matrix> op4;
   nlohmann::json dofs = nlohmann::json::array();
   for (const Dmig* m : mats) {

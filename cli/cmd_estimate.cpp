@@ -1,13 +1,17 @@
 /// \file cmd_estimate.cpp
 /// `ssid estimate` (SSID analogue), `ssid translate` (NASSID analogue: the
 /// problem file) and `ssid update-deck` (SD2NAS analogue). See docs/estimation.md.
+#include <cmath>
 #include <fstream>
 #include <iostream>
 #include <sstream>
 
 #include "cli/cli_util.hpp"
+#include "cli/exit_codes.hpp"
+#include "cli/progress_lines.hpp"
 #include "estimator/deck_study.hpp"
 #include "formats/deck_writer.hpp"
+#include "formats/parse_error.hpp"
 #include "formats/problem_file.hpp"
 #include "translators/assembly/deck_update.hpp"
 
@@ -29,18 +33,38 @@ estimator::EstimationProblem load_problem(const po::variables_map& vm, bool allo
   if (problem.empty() && allow_problem && !deck.empty() && is_problem_file(deck)) problem = deck;
   if (!problem.empty()) {
     if (vm.count("study"))
-      throw std::invalid_argument("--study applies to decks; " + problem + " is a problem file that holds its own settings");
+      throw formats::InputError("--study applies to decks; " + problem + " is a problem file that holds its own settings");
     if (vm.count("measured") || (!deck.empty() && deck != problem))
-      throw std::invalid_argument("give either a problem file (--problem) or DECK MEASURED.unv, not both");
+      throw formats::InputError("give either a problem file (--problem) or DECK MEASURED.unv, not both");
     return estimator::problem_from_file(formats::read_problem(problem));
   }
-  if (deck.empty()) throw std::invalid_argument("no deck: give DECK MEASURED.unv (or --problem FILE)");
-  if (is_problem_file(deck)) throw std::invalid_argument(deck + " is a problem file, not a deck");
+  if (deck.empty()) throw formats::InputError("no deck: give DECK MEASURED.unv (or --problem FILE)");
+  if (is_problem_file(deck)) throw formats::InputError(deck + " is a problem file, not a deck");
   const std::string measured = vm.count("measured") ? vm["measured"].as<std::string>() : "";
   const estimator::Study study = vm.count("study") ? estimator::read_study(vm["study"].as<std::string>()) : estimator::Study{};
   if (measured.empty() && study.configurations.empty())
-    throw std::invalid_argument("no measured modes: give MEASURED.unv after the deck (or configurations in --study)");
+    throw formats::InputError("no measured modes: give MEASURED.unv after the deck (or configurations in --study)");
   return estimator::prepare_problem(study, deck, measured);
+}
+
+/// The JSON of a run stopped before its first cycle: the parameters' prior, marked partial.
+nlohmann::json partial_problem_json(const estimator::EstimationProblem& problem, const std::string& why) {
+  nlohmann::json j;
+  if (!problem.title.empty()) j["title"] = problem.title;
+  j["converged"] = false;
+  j["partial"] = true;
+  j["partial_reason"] = why;
+  j["iterations"] = nlohmann::json::array();
+  j["parameters"] = nlohmann::json::array();
+  for (std::size_t k = 0; k < problem.prior.names.size(); ++k) {
+    const auto e = static_cast<Eigen::Index>(k);
+    nlohmann::json p = {{"name", problem.prior.names[k]},
+                        {"initial", problem.prior.mean(e)},
+                        {"prior_std", std::sqrt(problem.prior.cov(e, e))}};
+    if (k < problem.units.size()) p["unit"] = problem.units[k].unit;
+    j["parameters"].push_back(p);
+  }
+  return j;
 }
 
 }  // namespace
@@ -53,7 +77,7 @@ int cmd_estimate(const Args& args) {
       "json", po::value<std::string>(), "write the result as JSON to this file ('-' for stdout)")(
       "problem", po::value<std::string>(),
       "estimate from this problem file (ssid translate) instead of DECK MEASURED.unv: imported operators, Taylor model")(
-      "quiet,q", "no progress lines on stderr");
+      "quiet,q", "no progress lines on stderr (each cycle's J and frequency error, the time left)");
   po::positional_options_description pos;
   pos.add("deck", 1).add("measured", 1);
   po::variables_map vm;
@@ -63,26 +87,47 @@ int cmd_estimate(const Args& args) {
     return rc;
   if (!vm.count("deck") && !vm.count("problem")) {
     print_error("estimate: give DECK MEASURED.unv, or --problem FILE (ssid estimate --help)");
-    return 2;
+    return kExitBadInput;
   }
   estimator::EstimationProblem problem = load_problem(vm, true);
-  const bool quiet = vm.count("quiet") != 0;
-  estimator::Progress progress;
-  if (!quiet)
-    progress = [](const std::string& message, double) {
-      if (message.find(": J = ") != std::string::npos || message.rfind("recursive", 0) == 0)
-        std::cerr << "ssid estimate: " << message << "\n";
-    };
-  const estimator::EstimationResult result = estimator::run_problem(problem, progress);
-  const nlohmann::json j = estimator::result_json(problem, result);
   const std::string json_path = vm.count("json") ? vm["json"].as<std::string>() : "";
+  const std::string diagnose_args = vm.count("deck") && vm.count("measured")
+                                        ? vm["deck"].as<std::string>() + " " + vm["measured"].as<std::string>()
+                                        : "DECK MEASURED.unv";
+  // Every cycle gets its line (J and the frequency error): cycles take seconds on large models.
+  ProgressLines lines("ssid estimate", vm.count("quiet") != 0, 0.0);
+  const InterruptFlag interrupt;
+  estimator::EstimationResult result;
+  try {
+    result = estimator::run_problem(problem, lines.callback());
+  } catch (const estimator::Interrupted& e) {
+    // Stopped before any cycle was accepted: the JSON says so, with the prior.
+    const std::string why = std::string(e.what()) + " before the first cycle was complete";
+    if (!json_path.empty()) write_json(json_path, partial_problem_json(problem, why));
+    print_error("estimate: " + why + ": no estimate" +
+                (json_path.empty() || json_path == "-" ? "" : " (" + json_path + " is marked \"partial\": true)"));
+    return kExitInterrupted;
+  }
+  const nlohmann::json j = estimator::result_json(problem, result);
   if (json_path == "-") {
     write_json("-", j);
   } else {
     std::cout << estimator::format_summary(problem, result);
     if (!json_path.empty()) write_json(json_path, j);
   }
-  return 0;
+  if (!result.partial()) return kExitSuccess;
+  const std::string marked =
+      json_path.empty() || json_path == "-" ? "" : "; " + json_path + " holds it, marked \"partial\": true";
+  if (result.interrupted) {
+    print_error("estimate: " + result.partial_reason + ": the result is that of the last accepted cycle" + marked);
+    return kExitInterrupted;
+  }
+  print_error("estimate: " + result.partial_reason + ": the result is not trustworthy" + marked +
+              ". If the frequency error stays large or grows while J falls, the model form may be wrong (not only "
+              "its parameters): `ssid diagnose " + diagnose_args +
+              "` tests model-form extensions (docs/diagnosis.md); otherwise raise \"convergence\": "
+              "{\"max_iterations\"} in the study");
+  return kExitUntrusted;
 }
 
 int cmd_translate(const Args& args) {
@@ -126,7 +171,7 @@ int cmd_update_deck(const Args& args) {
   if (!parse_options(args, "ssid update-deck DECK RESULT.json -o NEW.bdf", desc, pos, vm, rc)) return rc;
   const std::string result_path = vm["result"].as<std::string>();
   std::ifstream in(result_path, std::ios::binary);
-  if (!in) throw std::invalid_argument(result_path + ": cannot open");
+  if (!in) throw formats::InputError(result_path + ": cannot open");
   std::stringstream ss;
   ss << in.rdbuf();
   const auto values = translators::parameter_values_from_json(ss.str(), result_path);

@@ -2,18 +2,50 @@
 /// `ssid modes DECK`: the real eigenvalue table as NASTRAN prints it, JSON, and
 /// the synthetic modal test (`--uff`): modes at sensors with reproducible noise.
 #include <fstream>
-#include <unordered_map>
-#include <chrono>
 #include <iostream>
+#include <unordered_map>
 #include <sstream>
 
 #include "cli/cli_util.hpp"
+#include "cli/exit_codes.hpp"
 #include "cli/model_load.hpp"
+#include "cli/progress_lines.hpp"
 #include "estimator/eigen_table.hpp"
+#include "formats/parse_error.hpp"
 #include "translators/synthetic_modes.hpp"
 #include "translators/weight_table.hpp"
 
 namespace ssid::cli {
+
+namespace {
+
+/// The mode shapes on the g-set into `j`: "shape_dofs" [[grid, component], ...]
+/// once, each mode's "shape" in that order, and the convention in words.
+void add_shapes(nlohmann::json& j, const translators::FeModel& model, const estimator::EigenResult& r,
+                estimator::ModeNormalization norm) {
+  const Eigen::MatrixXd g = model.expand(r.modes);
+  const auto& gset = model.geometry().gset();
+  nlohmann::json dofs = nlohmann::json::array();
+  for (std::size_t i = 0; i < gset.size(); ++i) dofs.push_back({gset.at(i).point, gset.at(i).component});
+  j["shape_dofs"] = dofs;
+  j["shape_convention"] = {
+      {"dofs", "every grid's components 1-6 (T1, T2, T3, R1, R2, R3) in the grid's displacement frame (GRID CD), "
+               "scalar points as component 0: the g-set, in the order of shape_dofs"},
+      {"values", "translations in the deck's length unit, rotations in radians; constrained DOFs 0, dependent DOFs "
+                 "from their constraints (u_g = T u_a)"},
+      {"normalization",
+       norm == estimator::ModeNormalization::Max
+           ? "MAX: the largest |component| of each shape is 1"
+           : "MASS: phi^T M phi = 1 with M the mass matrix as assembled (PARAM WTMASS applied), so that a value "
+             "is a displacement per square root of mass unit (m/sqrt(kg) in SI)"},
+      {"sign", "as the solver returned it (a shape and its negative are the same mode)"}};
+  for (int i = 0; i < r.size(); ++i) {
+    const Eigen::VectorXd c = g.col(i);
+    j["modes"][static_cast<std::size_t>(i)]["shape"] = std::vector<double>(c.data(), c.data() + c.size());
+  }
+}
+
+}  // namespace
 
 int cmd_modes(const Args& args) {
   po::options_description desc("ssid modes options");
@@ -25,8 +57,8 @@ int cmd_modes(const Args& args) {
       "sensor grids for --uff: ids and ranges, e.g. \"1,5,10:20\" (default: every grid)")(
       "sensor-file", po::value<std::string>(), "sensor grids for --uff, read from a file (same syntax, # comments)")(
       "rotations", po::bool_switch(), "--uff: also write rotations (components 4-6)")(
-      "noise-freq", po::value<double>()->default_value(0.0), "--uff: frequency noise, % (std of the relative error)")(
-      "noise-shape", po::value<double>()->default_value(0.0),
+      "noise-freq", po::value<double>()->default_value(0.0, "0"), "--uff: frequency noise, % (std of the relative error)")(
+      "noise-shape", po::value<double>()->default_value(0.0, "0"),
       "--uff: shape noise, % of each mode's largest sensor value (std)")(
       "seed", po::value<std::uint64_t>()->default_value(1), "--uff: noise seed (same seed, same file)")(
       "weight", po::value<std::int64_t>()->implicit_value(0),
@@ -36,13 +68,16 @@ int cmd_modes(const Args& args) {
       "lanczos, block-lanczos, or multilevel (LOBPCG with an aggregation multigrid preconditioner: no factor, "
       "for the largest models; lowest N modes only)")(
       "uff-precision", po::value<std::string>()->default_value("extended"),
-      "--uff: extended (1P E25.16, exact round trip) or standard (E13.5 as test-lab software writes)");
+      "--uff: extended (1P E25.16, exact round trip) or standard (E13.5 as test-lab software writes)")(
+      "shapes", po::bool_switch(),
+      "--json: also write each mode's shape on every grid DOF (g-set), with the convention stated in the JSON")(
+      "quiet,q", "no progress lines on stderr (the eigen-solver's phases, from 2 s into the solve)");
   po::positional_options_description pos;
   pos.add("deck", 1);
   po::variables_map vm;
   int rc = 0;
   if (!parse_options(args,
-                     "ssid modes DECK [--nmodes N] [--method M] [--json FILE] [--weight [GRID]] [--uff OUT.unv [--sensors GRIDS|--sensor-file F] "
+                     "ssid modes DECK [--nmodes N] [--method M] [--json FILE [--shapes]] [--weight [GRID]] [--uff OUT.unv [--sensors GRIDS|--sensor-file F] "
                      "[--noise-freq PCT --noise-shape PCT --seed N]]",
                      desc, pos, vm, rc))
     return rc;
@@ -55,6 +90,10 @@ int cmd_modes(const Args& args) {
                !vm["noise-shape"].defaulted() || !vm["seed"].defaulted() || vm["rotations"].as<bool>())) {
     print_error("--sensors, --sensor-file, --rotations, --noise-freq, --noise-shape and --seed need --uff OUT.unv");
     return 2;
+  }
+  if (vm["shapes"].as<bool>() && !vm.count("json")) {
+    print_error("--shapes adds the mode shapes to the JSON: give --json FILE too");
+    return kExitBadInput;
   }
   const std::string prec = vm["uff-precision"].as<std::string>();
   if (prec != "extended" && prec != "standard") {
@@ -79,16 +118,10 @@ int cmd_modes(const Args& args) {
     print_error("--method: expected auto, lanczos, block-lanczos or multilevel, got \"" + method + "\"");
     return 2;
   }
-  // Progress on stderr for the multilevel method, whose runs take minutes on
-  // million-DOF models: its phases, and its iterations at most every 5 s.
-  eo.progress = [last = std::chrono::steady_clock::time_point{}](const std::string& message, double) mutable {
-    const bool phase = message.rfind("multilevel", 0) == 0, iteration = message.rfind("LOBPCG", 0) == 0;
-    if (!phase && !iteration) return;
-    const auto now = std::chrono::steady_clock::now();
-    if (iteration && now - last < std::chrono::seconds(5)) return;
-    last = now;
-    std::cerr << "ssid modes: " << message << "\n";
-  };
+  // The eigen-solver's phases on stderr (counts of converged modes, the time left)
+  // once a solve has taken 2 s: a quick one stays quiet.
+  ProgressLines lines("ssid modes", vm.count("quiet") != 0, 5.0, 2.0);
+  eo.progress = lines.callback();
   const estimator::EigenResult r = solve_model(op, eo, a_set_dofs(model));
   for (const auto& w : r.warnings) std::cerr << "warning: " << w << "\n";
 
@@ -102,6 +135,12 @@ int cmd_modes(const Args& args) {
                           {"cycles", r.cycles(i)},
                           {"generalized_mass", r.generalized_mass(i)},
                           {"generalized_stiffness", r.generalized_stiffness(i)}});
+  if (vm["shapes"].as<bool>()) add_shapes(j, model, r, eo.norm);
+  // Modes missing from the band: the table is printed, but not to be trusted.
+  const std::string untrusted =
+      r.sturm_mismatch ? "the Sturm count disagrees with the modes found in the band: modes may be missing" : "";
+  j["partial"] = !untrusted.empty();
+  if (!untrusted.empty()) j["partial_reason"] = untrusted;
 
   const std::string json_path = vm.count("json") ? vm["json"].as<std::string>() : "";
   if (json_path != "-") {
@@ -141,11 +180,11 @@ int cmd_modes(const Args& args) {
     if (vm.count("sensor-file")) {
       const std::string f = vm["sensor-file"].as<std::string>();
       std::ifstream in(f);
-      if (!in) throw std::runtime_error(f + ": cannot open the sensor file");
+      if (!in) throw formats::InputError(f + ": cannot open the sensor file");
       std::stringstream ss;
       ss << in.rdbuf();
       so.sensors = translators::parse_sensor_list(ss.str(), grids, f);
-      if (so.sensors.empty()) throw std::runtime_error(f + ": no sensor grids in the file");
+      if (so.sensors.empty()) throw formats::InputError(f + ": no sensor grids in the file");
     }
     so.rotations = vm["rotations"].as<bool>();
     so.noise_freq_pct = vm["noise-freq"].as<double>();
@@ -166,7 +205,11 @@ int cmd_modes(const Args& args) {
               << " sensor DOF(s) on " << t.modes.dofs.size() / (so.rotations ? 6 : 3) << " grid(s); noise "
               << so.noise_freq_pct << " % frequency, " << so.noise_shape_pct << " % shape, seed " << so.seed << "\n";
   }
-  return 0;
+  if (!untrusted.empty()) {
+    print_error("modes: " + untrusted + " (the table above, and the JSON marked \"partial\": true)");
+    return kExitUntrusted;
+  }
+  return kExitSuccess;
 }
 
 }  // namespace ssid::cli

@@ -8,6 +8,7 @@
 #include "cli/matrix_json.hpp"
 #include "formats/matrix_market.hpp"
 #include "formats/op4.hpp"
+#include "formats/parse_error.hpp"
 #include "translators/dmig_assembly.hpp"
 
 #include <fstream>
@@ -96,7 +97,7 @@ std::vector<const Op4Matrix*> select(const std::vector<Op4Matrix>& mats, const p
   if (!name.empty() && out.empty()) {
     std::string have;
     for (const Op4Matrix& m : mats) have += (have.empty() ? "" : ", ") + m.name;
-    throw std::runtime_error(path + ": no matrix named " + name + " (the file holds: " + have + ")");
+    throw formats::InputError(path + ": no matrix named " + name + " (the file holds: " + have + ")");
   }
   return out;
 }
@@ -118,7 +119,7 @@ int op4_dump(const Args& args) {
   if (vm.count("name")) {
     const int k = vm.count("index") ? vm["index"].as<int>() : 1;
     if (k < 1 || k > static_cast<int>(chosen.size()))
-      throw std::runtime_error(path + ": --index " + std::to_string(k) + " but " + std::to_string(chosen.size()) +
+      throw formats::InputError(path + ": --index " + std::to_string(k) + " but " + std::to_string(chosen.size()) +
                                " matri" + (chosen.size() == 1 ? "x is" : "ces are") + " named " +
                                vm["name"].as<std::string>());
     write_matrix_json(vm["json"].as<std::string>(), matrix_json(*chosen[static_cast<std::size_t>(k - 1)]));
@@ -217,13 +218,13 @@ int op4_convert(const Args& args) {
 /// A DOF list [[grid, component], ...] from JSON.
 translators::DofMap dof_list(const nlohmann::json& j, const std::string& what) {
   translators::DofMap m;
-  if (!j.is_array()) throw std::runtime_error(what + ": expected a list of [grid, component]");
+  if (!j.is_array()) throw formats::InputError(what + ": expected a list of [grid, component]");
   for (const auto& d : j) {
     if (!d.is_array() || d.size() != 2 || !d[0].is_number_integer() || !d[1].is_number_integer())
-      throw std::runtime_error(what + ": expected [grid, component], got " + d.dump());
+      throw formats::InputError(what + ": expected [grid, component], got " + d.dump());
     const std::size_t before = m.size();
     m.add({d[0].get<std::int64_t>(), d[1].get<int>()});
-    if (m.size() == before) throw std::runtime_error(what + ": DOF " + d.dump() + " listed twice");
+    if (m.size() == before) throw formats::InputError(what + ": DOF " + d.dump() + " listed twice");
   }
   return m;
 }
@@ -250,7 +251,7 @@ int op4_to_dmig(const Args& args) {
   nlohmann::json dofs;
   if (vm.count("dofs")) {
     std::ifstream f(vm["dofs"].as<std::string>());
-    if (!f) throw std::runtime_error("cannot read " + vm["dofs"].as<std::string>());
+    if (!f) throw formats::InputError("cannot read " + vm["dofs"].as<std::string>());
     dofs = nlohmann::json::parse(f);
   }
   std::string text = "$ DMIG from " + in + " (ssid op4 to-dmig)\n";
@@ -265,7 +266,7 @@ int op4_to_dmig(const Args& args) {
           by_list = true;
           break;
         }
-      if (!by_list) throw std::runtime_error("--dofs has no entry for matrix " + m->name);
+      if (!by_list) throw formats::InputError("--dofs has no entry for matrix " + m->name);
     } else if (dofs.is_array()) {
       rows = cols = dof_list(dofs, "--dofs");
       by_list = true;
@@ -294,9 +295,9 @@ int op4_to_dmig(const Args& args) {
               << " terms\n";
   }
   std::ofstream f(out, std::ios::binary);
-  if (!f) throw std::runtime_error("cannot write " + out);
+  if (!f) throw formats::InputError("cannot write " + out);
   f << text;
-  if (!f) throw std::runtime_error("error writing " + out);
+  if (!f) throw formats::InputError("error writing " + out);
   std::cout << "wrote " << out << "\n";
   return 0;
 }

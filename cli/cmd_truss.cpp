@@ -6,6 +6,7 @@
 
 #include "cli/cli_util.hpp"
 #include "formats/deck_writer.hpp"
+#include "formats/parse_error.hpp"
 #include "translators/truss/configurations.hpp"
 #include "translators/truss/reference_modes.hpp"
 #include "translators/truss/truss_deck.hpp"
@@ -48,7 +49,8 @@ int truss_mpi(const Args& args) {
       "json", po::value<std::string>(), "write counts, mass, parameters (and modes) as JSON ('-' for stdout)")(
       "modes", po::value<int>()->default_value(0),
       "also compute this many modes with the generator's reference assembler and print them")(
-      "svg", po::value<std::string>(), "draw the truss (axonometric view, booms and tower labelled) to this SVG file");
+      "svg", po::value<std::string>(), "draw the truss (axonometric view, booms and tower labelled) to this SVG file")(
+      "quiet,q", "no progress line on stderr (before the reference eigen-solve of --modes)");
   po::positional_options_description pos;
   po::variables_map vm;
   int rc = 0;
@@ -82,7 +84,7 @@ int truss_mpi(const Args& args) {
   }
   if (vm.count("svg")) {
     std::ofstream svg(vm["svg"].as<std::string>());
-    if (!svg) throw std::runtime_error("cannot write " + vm["svg"].as<std::string>());
+    if (!svg) throw formats::InputError("cannot write " + vm["svg"].as<std::string>());
     svg << tr::render_svg(t);
     out << "wrote " << vm["svg"].as<std::string>() << "\n";
   }
@@ -97,8 +99,13 @@ int truss_mpi(const Args& args) {
 
   const int nmodes = vm["modes"].as<int>();
   if (nmodes > 0) {
+    if (!vm.count("quiet"))
+      std::cerr << "ssid truss: reference eigen-solve, the lowest " << nmodes << " modes of " << fe.dof_count()
+                << " DOFs\n";
     const tr::ReferenceModes m = tr::reference_modes(fe, nmodes);
-    if (!m.converged) throw std::runtime_error("reference eigen-solve did not converge");
+    if (!m.converged)
+      throw formats::NumericalError("the reference eigen-solve did not converge (" + std::to_string(nmodes) +
+                                    " modes of the " + model + " model): its frequencies are not trustworthy");
     out << "modes (generator's reference assembler, " << m.a_set_size << " independent DOF):\n";
     for (std::size_t k = 0; k < m.frequency_hz.size(); ++k) out << fmt::format("  {:3d} {:10.3f} Hz\n", k + 1, m.frequency_hz[k]);
     j["modes_hz"] = m.frequency_hz;

@@ -1,8 +1,9 @@
 #pragma once
 /// \file commands.hpp
 /// The subcommands of `ssid`. Each takes its arguments (after the subcommand
-/// name) and returns the process exit code: 0 success, 1 bad input or problems
-/// found, 2 usage error. Only the CLI prints; the libraries return values.
+/// name) and returns the process exit code of cli/exit_codes.hpp (errors it
+/// throws are mapped to theirs by main.cpp). Only the CLI prints; the libraries
+/// return values.
 #include <string>
 #include <vector>
 

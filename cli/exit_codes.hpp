@@ -12,4 +12,10 @@ enum ExitCode : int {
   kExitInterrupted = 130 ///< stopped by Ctrl-C (SIGINT); partial results are marked as partial
 };
 
+/// The epilogue of every command's --help (and of README's "Exit codes").
+inline constexpr const char* kExitCodesHelp =
+    "exit status: 0 success; 1 ssid failed (a bug: please report it); 2 bad input (an option, a file, a\n"
+    "model: the message names it; nothing was computed); 3 it ran, but the result is not trustworthy (not\n"
+    "converged, stopped early: JSON marked \"partial\": true); 130 interrupted by Ctrl-C (JSON marked partial)\n";
+
 }  // namespace ssid::cli

@@ -8,6 +8,7 @@
 #include "cli/cli_util.hpp"
 #include "cli/exit_codes.hpp"
 #include "estimator/allocation_policy.hpp"
+#include "estimator/progress.hpp"
 #include "formats/parse_error.hpp"
 
 namespace ssid::cli {
@@ -40,6 +41,7 @@ void print_usage(std::ostream& o) {
     std::string n = c.name;
     o << "  " << n << std::string(n.size() < 14 ? 14 - n.size() : 1, ' ') << c.summary << "\n";
   }
+  o << "\n" << ssid::cli::kExitCodesHelp;
   o << "\nenvironment:\n"
        "  SSID_HUGE_PAGE_HEAP=0  do not restart ssid with glibc's heap in transparent huge pages\n"
        "                         (it restarts once, with GLIBC_TUNABLES=glibc.malloc.hugetlb=1, unless\n"
@@ -80,6 +82,9 @@ int main(int argc, char** argv) {
     } catch (const ssid::formats::NumericalError& e) {
       ssid::cli::print_error(e.what());
       return ssid::cli::kExitUntrusted;
+    } catch (const ssid::estimator::Interrupted& e) {  // a command with nothing partial to write
+      ssid::cli::print_error(e.what());
+      return ssid::cli::kExitInterrupted;
     } catch (const std::exception& e) {
       ssid::cli::print_error(e.what());
       return ssid::cli::kExitFailure;

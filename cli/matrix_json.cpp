@@ -5,6 +5,8 @@
 #include <iostream>
 #include <stdexcept>
 
+#include "formats/parse_error.hpp"
+
 namespace ssid::cli {
 
 namespace {
@@ -111,9 +113,9 @@ void write_matrix_json(const std::string& path, const nlohmann::json& j) {
     return;
   }
   std::ofstream o(path, std::ios::binary);
-  if (!o) throw std::runtime_error("cannot write " + path);
+  if (!o) throw formats::InputError("cannot write " + path);
   o << text;
-  if (!o) throw std::runtime_error("error writing " + path);
+  if (!o) throw formats::InputError("error writing " + path);
 }
 
 }  // namespace ssid::cli

@@ -12,6 +12,7 @@
 
 #include "estimator/dense_eigen.hpp"
 #include "formats/bulk_model.hpp"
+#include "formats/parse_error.hpp"
 
 namespace ssid::cli {
 
@@ -71,7 +72,7 @@ estimator::EigenOptions requested_modes(const translators::FeModel& model, std::
     return s == "MAX" ? estimator::ModeNormalization::Max : estimator::ModeNormalization::Mass;
   };
   if (nmodes) {
-    if (*nmodes <= 0) throw std::invalid_argument("--nmodes: expected a positive number, got " + std::to_string(*nmodes));
+    if (*nmodes <= 0) throw formats::InputError("--nmodes: expected a positive number, got " + std::to_string(*nmodes));
     source = "--nmodes " + std::to_string(*nmodes);
     return estimator::eigrl_options(nan, nan, *nmodes);
   }
@@ -126,14 +127,14 @@ namespace {
   const auto k = msg.find(at);
   if (!where.empty() && k != std::string::npos) msg.insert(k + at.size(), where);
   else msg += where;
-  throw std::runtime_error("eigen-solve failed: " + msg);
+  estimator::throw_solve_failure(r, "eigen-solve failed: " + msg);
 }
 }  // namespace
 
 estimator::EigenResult solve_model(const translators::FeOperators& op, const estimator::EigenOptions& options,
                                    const std::vector<translators::Dof>& dofs) {
   const long n = op.K.rows();
-  if (n == 0) throw std::runtime_error("the analysis set is empty: every DOF is constrained");
+  if (n == 0) throw formats::InputError("the analysis set is empty: every DOF is constrained");
   if (n <= estimator::kDenseEigenLimit) {
     estimator::EigenResult r = estimator::solve_modes_dense(op.K, op.M, options);
     if (r.status == estimator::EigenResult::Status::NotPositiveDefinite) {
@@ -172,7 +173,7 @@ estimator::EigenResult solve_model(const translators::FeOperators& op, const est
   }
   if (!r.ok()) solve_failed(r, dofs);
   if (worst(r) > 1e-8)
-    throw std::runtime_error("eigen-solve: a mode has backward error " + std::to_string(worst(r)) +
+    throw formats::NumericalError("eigen-solve: a mode has backward error " + std::to_string(worst(r)) +
                              " (above 1e-8): the modes are not reliable");
   return r;
 }

@@ -1,6 +1,7 @@
 #include "estimator/block_lanczos.hpp"
 
 #include "estimator/dense_blas.hpp"
+#include "formats/parse_error.hpp"
 
 #include <Eigen/Eigenvalues>
 
@@ -148,7 +149,7 @@ BlockLanczosResult block_lanczos(const std::function<MatrixXd(const MatrixXd&)>&
   {
     MatrixXd W = S(random_block(n, static_cast<int>(b), rng)), MW;
     orthonormalise(W, MW, -1);
-    if (W.cols() == 0) throw std::invalid_argument("block_lanczos: M is zero");
+    if (W.cols() == 0) throw formats::InputError("block_lanczos: M is zero");
     V.leftCols(W.cols()) = W;
     if (keep_mv) MV.leftCols(W.cols()) = MW;
     m = W.cols();
@@ -190,8 +191,7 @@ BlockLanczosResult block_lanczos(const std::function<MatrixXd(const MatrixXd&)>&
       if (r <= o.tol * std::max(std::abs(theta(c)), 1e-300)) ++conv;
       else break;
     }
-    report(o.progress, "block Lanczos: basis " + std::to_string(k) + ", converged " + std::to_string(conv) + " of " +
-                           std::to_string(o.nev));
+    report(o.progress, "block Lanczos: modes converged", conv, o.nev, "basis " + std::to_string(k));
     const bool exhausted = kept == 0;  // span(V) is invariant: every Ritz pair is exact
     if (conv >= want && (conv >= o.nev || exhausted)) {
       res.converged = true;

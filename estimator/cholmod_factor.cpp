@@ -10,6 +10,8 @@
 #include <cstring>
 #include <stdexcept>
 
+#include "formats/parse_error.hpp"
+
 namespace ssid::estimator {
 
 namespace detail {
@@ -140,7 +142,7 @@ void CholmodFactor::analyze(const SparseMatrix& A) {
     analyze_grouped(s.n);
   } else {
     s.L = cholmod_l_analyze(&s.A, &s.cm);
-    if (!s.L) throw std::runtime_error("CHOLMOD analysis failed (status " + std::to_string(s.cm.status) + ")");
+    if (!s.L) throw formats::NumericalError("CHOLMOD analysis failed (status " + std::to_string(s.cm.status) + ")");
     m_lnz = s.cm.lnz;
     m_fl = s.cm.fl;
   }
@@ -297,7 +299,7 @@ void CholmodFactor::analyze_grouped(long n) {
   s.cm.nmethods = saved_nmethods;
   s.cm.method[0] = saved_method0;
   s.cm.postorder = saved_postorder;
-  if (!s.L) throw std::runtime_error("CHOLMOD analysis on DOF groups failed (status " + first_failure + ")");
+  if (!s.L) throw formats::NumericalError("CHOLMOD analysis on DOF groups failed (status " + first_failure + ")");
 }
 
 const CholmodFactor::SparseMatrix& CholmodFactor::analysed_lower(const SparseMatrix& A, SparseMatrix& storage, const char* who) {
@@ -372,7 +374,7 @@ void CholmodFactor::solve(const double* b, double* x, long ncols) const {
   B.dtype = CHOLMOD_DOUBLE;
   auto& cm = const_cast<cholmod_common&>(s.cm);
   if (!cholmod_l_solve2(CHOLMOD_A, s.L, &B, nullptr, &s.X, nullptr, &s.Y, &s.E, &cm))
-    throw std::runtime_error("CHOLMOD solve failed (status " + std::to_string(cm.status) + ")");
+    throw formats::NumericalError("CHOLMOD solve failed (status " + std::to_string(cm.status) + ")");
   std::memcpy(x, s.X->x, sizeof(double) * B.nzmax);
   s.solves += ncols;
 }
@@ -497,10 +499,10 @@ long count_negative_pivots(const Eigen::SparseMatrix<double>& A) {
   copy_pattern(low, s.p, s.i);
   s.A = sparse_header(s.n, s.p, s.i, low.valuePtr());
   s.L = cholmod_l_analyze(&s.A, &s.cm);
-  if (!s.L) throw std::runtime_error("CHOLMOD analysis failed (status " + std::to_string(s.cm.status) + ")");
+  if (!s.L) throw formats::NumericalError("CHOLMOD analysis failed (status " + std::to_string(s.cm.status) + ")");
   cholmod_l_factorize(&s.A, s.L, &s.cm);
   if (s.cm.status < CHOLMOD_OK)
-    throw std::runtime_error("CHOLMOD LDL' factorisation failed (status " + std::to_string(s.cm.status) + ")");
+    throw formats::NumericalError("CHOLMOD LDL' factorisation failed (status " + std::to_string(s.cm.status) + ")");
   if (s.L->minor < s.L->n) return -1;  // zero pivot
   const auto* p = static_cast<const SuiteSparse_long*>(s.L->p);
   const auto* x = static_cast<const double*>(s.L->x);

@@ -2,13 +2,15 @@
 
 #include <stdexcept>
 
+#include "formats/parse_error.hpp"
+
 namespace ssid::estimator {
 
 Correlation correlate(const translators::ModeSet& fe, const translators::ModeSet& test, const PairingOptions& options) {
   Correlation c;
   c.dofs = translators::common_dofs(test, fe);
   if (c.dofs.empty())
-    throw std::invalid_argument("the analysis and test mode sets share no measured DOF (node and direction): "
+    throw formats::InputError("the analysis and test mode sets share no measured DOF (node and direction): "
                                 "check the node numbering or map the test nodes by position");
   c.fe = translators::restrict_to(fe, c.dofs);
   c.test = translators::restrict_to(test, c.dofs);

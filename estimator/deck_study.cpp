@@ -12,7 +12,9 @@
 
 #include "estimator/correlation.hpp"
 #include "estimator/eigen_solver.hpp"
+#include "estimator/number_text.hpp"
 #include "formats/bulk_model.hpp"
+#include "formats/parse_error.hpp"
 #include "formats/uff.hpp"
 #include "translators/assembly/fe_model.hpp"
 #include "translators/test_modes.hpp"
@@ -38,7 +40,7 @@ class StudyReader {
   explicit StudyReader(std::string source) : m_source(std::move(source)) {}
 
   [[noreturn]] void fail(const std::string& path, const std::string& what) const {
-    throw std::invalid_argument(m_source + ": " + path + ": " + what);
+    throw formats::InputError(m_source + ": " + path + ": " + what);
   }
   static std::string shown(const json& v) {
     std::string s = v.dump();
@@ -104,12 +106,6 @@ std::string relative_to(const std::string& base_file, const std::string& path) {
   return folder_of(base_file) + path;
 }
 
-std::string fmt(double v, int precision = 6) {
-  std::ostringstream o;
-  o << std::setprecision(precision) << v;
-  return o.str();
-}
-
 bool contains(const std::vector<int>& v, int x) { return std::find(v.begin(), v.end(), x) != v.end(); }
 
 // ---------------------------------------------------------------------------
@@ -125,6 +121,14 @@ LoadedDeck load_deck(const std::string& path) {
   l.deck = std::make_shared<formats::Deck>(formats::read_deck(path));
   l.fe = translators::assemble_deck(*l.deck, path);
   return l;
+}
+
+/// Where the parameters' units come from, for the summary.
+std::string units_note(const translators::DeckUnits& du) {
+  if (du.source.empty())
+    return "deck units: the deck states no unit system (a comment \"$ units: SI\" would name them)";
+  if (du.si) return "SI, as the deck states (" + du.source + ": \"$ units: " + du.text + "\")";
+  return "deck units: the deck states \"" + du.text + "\" (" + du.source + "), which ssid does not name";
 }
 
 /// Default prior σ from XINIT and the DESVAR bounds (see the header).
@@ -146,9 +150,9 @@ OperatorModel::EigenSolve make_eigen_solve(const std::string& who, const std::st
   return [solver, who](const SparseMatrix& K, const SparseMatrix& M, int nmodes) {
     solver->options().nd = nmodes;
     EigenResult r = solver->solve(K, M);
-    if (!r.ok()) throw std::runtime_error(who + ": eigen-solve failed: " + r.message);
+    if (!r.ok()) throw_solve_failure(r, who + ": eigen-solve failed: " + r.message);
     if (r.size() < nmodes)
-      throw std::runtime_error(who + ": eigen-solve returned " + std::to_string(r.size()) + " of " +
+      throw formats::NumericalError(who + ": eigen-solve returned " + std::to_string(r.size()) + " of " +
                                std::to_string(nmodes) + " modes");
     return std::make_pair(Eigen::VectorXd(r.eigenvalues), Eigen::MatrixXd(r.modes));
   };
@@ -291,14 +295,14 @@ Study parse_study(const json& j, const std::string& source) {
 
 Study read_study(const std::string& path) {
   std::ifstream in(path, std::ios::binary);
-  if (!in) throw std::invalid_argument(path + ": cannot open the study file");
+  if (!in) throw formats::InputError(path + ": cannot open the study file");
   std::stringstream ss;
   ss << in.rdbuf();
   json j;
   try {
     j = json::parse(ss.str());
   } catch (const json::parse_error& e) {
-    throw std::invalid_argument(path + ": not valid JSON (byte " + std::to_string(e.byte) + "): " + e.what());
+    throw formats::InputError(path + ": not valid JSON (byte " + std::to_string(e.byte) + "): " + e.what());
   }
   return parse_study(j, path);
 }
@@ -325,9 +329,9 @@ EstimationProblem prepare_problem(const Study& study, const std::string& deck, c
     if (c.deck.empty()) c.deck = deck;
     if (c.measured.empty()) c.measured = measured;
     if (c.deck.empty())
-      throw std::invalid_argument(study.source + ": configuration '" + c.name + "' names no deck and none was given");
+      throw formats::InputError(study.source + ": configuration '" + c.name + "' names no deck and none was given");
     if (c.measured.empty())
-      throw std::invalid_argument(study.source + ": configuration '" + c.name +
+      throw formats::InputError(study.source + ": configuration '" + c.name +
                                   "' names no measured universal file and none was given");
   }
 
@@ -339,7 +343,7 @@ EstimationProblem prepare_problem(const Study& study, const std::string& deck, c
     const translators::FeModel& fe = *ld.fe;
     const auto& params = fe.parameters();
     if (params.empty())
-      throw std::invalid_argument(sc.deck + ": the deck has no DESVAR: nothing to estimate (add DESVAR and "
+      throw formats::InputError(sc.deck + ": the deck has no DESVAR: nothing to estimate (add DESVAR and "
                                   "DVPREL1/DVMREL1 cards for the parameters)");
 
     // Parameters: the study's list, or every DESVAR of the first deck.
@@ -350,7 +354,7 @@ EstimationProblem prepare_problem(const Study& study, const std::string& deck, c
         labels = study.parameters;
       for (const auto& [label, ps] : study.priors)
         if (std::find(labels.begin(), labels.end(), label) == labels.end())
-          throw std::invalid_argument(study.source + ": priors." + label + ": no such parameter is estimated (" +
+          throw formats::InputError(study.source + ": priors." + label + ": no such parameter is estimated (" +
                                       (study.parameters.empty() ? "the deck's DESVAR labels" : "study \"parameters\"") +
                                       " hold none of that name)");
     }
@@ -362,7 +366,7 @@ EstimationProblem prepare_problem(const Study& study, const std::string& deck, c
       if (found == params.size()) {
         std::string have;
         for (const auto& p : params) have += (have.empty() ? "" : ", ") + p.label;
-        throw std::invalid_argument(sc.deck + ": parameter '" + l + "' is no DESVAR label of this deck (it has: " +
+        throw formats::InputError(sc.deck + ": parameter '" + l + "' is no DESVAR label of this deck (it has: " +
                                     have + ")");
       }
       index.push_back(found);
@@ -384,18 +388,21 @@ EstimationProblem prepare_problem(const Study& study, const std::string& deck, c
           else if (it->second.std_pct) s = *it->second.std_pct / 100.0 * std::abs(mean);
           else if (it->second.mean) s = default_prior_std(mean, d.lower, d.upper);
           if (!(s > 0))
-            throw std::invalid_argument(study.source + ": priors." + labels[static_cast<std::size_t>(j)] +
+            throw formats::InputError(study.source + ": priors." + labels[static_cast<std::size_t>(j)] +
                                         ": the prior standard deviation is 0 (a std_pct of a zero mean?)");
         }
         if (mean < d.lower || mean > d.upper)
-          throw std::invalid_argument(study.source + ": prior mean " + fmt(mean) + " of " + d.label +
-                                      " lies outside its DESVAR bounds [" + fmt(d.lower) + ", " + fmt(d.upper) + "]");
+          throw formats::InputError(study.source + ": prior mean " + significant(mean, 6) + " of " + d.label +
+                                      " lies outside its DESVAR bounds [" + significant(d.lower, 6) + ", " + significant(d.upper, 6) + "]");
         problem.prior.mean(j) = mean;
         problem.prior.lower(j) = d.lower <= -1e19 ? -INFINITY : d.lower;
         problem.prior.upper(j) = d.upper >= 1e19 ? INFINITY : d.upper;
         sd(j) = s;
       }
       problem.prior.cov = sd.array().square().matrix().asDiagonal();
+      const translators::DeckUnits du = translators::deck_units(*ld.deck);
+      for (std::size_t j = 0; j < index.size(); ++j) problem.units.push_back(translators::parameter_unit(params[index[j]], du, fe.bulk()));
+      problem.units_note = units_note(du);
     }
 
     // Measured modes, test nodes onto grids.
@@ -411,7 +418,7 @@ EstimationProblem prepare_problem(const Study& study, const std::string& deck, c
       pc.notes.push_back(sc.measured + ": " + std::to_string(rep.complex_modes) +
                          " complex mode(s) read and not used (the update uses real normal modes)");
     if (set.frequency_hz.empty())
-      throw std::invalid_argument(sc.measured + ": no real normal modes (dataset 55, analysis type 2) to estimate from");
+      throw formats::InputError(sc.measured + ": no real normal modes (dataset 55, analysis type 2) to estimate from");
 
     std::vector<translators::GridPosition> grids;
     for (const auto& g : fe.geometry().grids()) grids.push_back({g.id, g.x, g.frame});
@@ -421,7 +428,7 @@ EstimationProblem prepare_problem(const Study& study, const std::string& deck, c
     for (const auto& d : set.dofs) shape_nodes.insert(d.node);
     if (nodes.empty()) {
       if (study.map_by != translators::MapBy::Id)
-        throw std::invalid_argument(sc.measured + ": mapping by position needs the test node positions (dataset 15 or 2411)");
+        throw formats::InputError(sc.measured + ": mapping by position needs the test node positions (dataset 15 or 2411)");
       for (auto id : shape_nodes) nodes.push_back({id, Eigen::Vector3d::Zero(), 0});
     }
     translators::NodeMapOptions mo;
@@ -431,7 +438,7 @@ EstimationProblem prepare_problem(const Study& study, const std::string& deck, c
     for (const auto& pr : mapping.problems) pc.notes.push_back(sc.measured + ": " + pr);
     const translators::Observation obs = translators::observe(set.dofs, mapping, grids);
     if (obs.rows.empty())
-      throw std::invalid_argument(sc.measured + ": none of the " + std::to_string(shape_nodes.size()) +
+      throw formats::InputError(sc.measured + ": none of the " + std::to_string(shape_nodes.size()) +
                                   " measured nodes maps to a grid of " + sc.deck +
                                   (study.map_by == translators::MapBy::Id
                                        ? " by id; map them by position (study \"mapping\": {\"by\": \"position\", "
@@ -487,7 +494,7 @@ EstimationProblem prepare_problem(const Study& study, const std::string& deck, c
         continue;
       }
       if (!(f > 0)) {
-        pc.notes.push_back(sc.measured + ": test mode " + std::to_string(number) + " has frequency " + fmt(f) +
+        pc.notes.push_back(sc.measured + ": test mode " + std::to_string(number) + " has frequency " + significant(f, 6) +
                            " Hz: left out (rigid-body or bad data)");
         continue;
       }
@@ -506,14 +513,14 @@ EstimationProblem prepare_problem(const Study& study, const std::string& deck, c
     }
     for (int n : sel.modes)
       if (!contains(set.numbers, n))
-        throw std::invalid_argument(study.source + ": modes.use: " + sc.measured + " has no mode " + std::to_string(n));
+        throw formats::InputError(study.source + ": modes.use: " + sc.measured + " has no mode " + std::to_string(n));
     if (!left_out.empty()) {
       std::string l;
       for (int n : left_out) l += " " + std::to_string(n);
       pc.notes.push_back(sc.measured + ": test modes left out by the mode selection:" + l);
     }
     if (pc.test.empty())
-      throw std::invalid_argument(who + ": no measured mode is left after the mode selection");
+      throw formats::InputError(who + ": no measured mode is left after the mode selection");
 
     // Analysis DOFs and the model.
     const auto& red = fe.reduction();
@@ -529,7 +536,7 @@ EstimationProblem prepare_problem(const Study& study, const std::string& deck, c
     if (nmodes < static_cast<int>(pc.test.size()))
       pc.notes.push_back("only " + std::to_string(nmodes) + " analysis modes for " + std::to_string(pc.test.size()) +
                          " test modes");
-    if (nmodes < 1) throw std::invalid_argument(sc.deck + ": the model has too few analysis DOFs (" + std::to_string(na) + ")");
+    if (nmodes < 1) throw formats::InputError(sc.deck + ": the model has too few analysis DOFs (" + std::to_string(na) + ")");
     pc.analysis_modes = nmodes;
 
     Eigen::VectorXd x_fixed = fe.initial_parameters();
@@ -617,7 +624,7 @@ EstimationProblem problem_from_file(const formats::ProblemFile& file) {
   problem.title = file.title;
   problem.operators = "taylor";
   const auto p = static_cast<Eigen::Index>(file.parameters.size());
-  if (p == 0) throw std::invalid_argument("problem file: no parameters");
+  if (p == 0) throw formats::InputError("problem file: no parameters");
   problem.prior.mean.resize(p);
   problem.prior.lower.resize(p);
   problem.prior.upper.resize(p);
@@ -671,7 +678,7 @@ EstimationProblem problem_from_file(const formats::ProblemFile& file) {
         for (std::size_t j = 0; j < params.size(); ++j)
           if (params[j].id == q.desvar) found = j;
         if (found == params.size())
-          throw std::invalid_argument(c.deck + ": no DESVAR " + std::to_string(q.desvar) + " (" + q.name +
+          throw formats::InputError(c.deck + ": no DESVAR " + std::to_string(q.desvar) + " (" + q.name +
                                       ") that the problem file's " + who + " needs");
         index.push_back(found);
       }
@@ -681,7 +688,7 @@ EstimationProblem problem_from_file(const formats::ProblemFile& file) {
         dofs.emplace_back(d.point, d.component);
       }
       if (dofs != c.dofs)
-        throw std::invalid_argument(c.deck + ": its analysis DOFs differ from those of the problem file's " + who +
+        throw formats::InputError(c.deck + ": its analysis DOFs differ from those of the problem file's " + who +
                                     " (the deck changed since the file was written?)");
       Eigen::VectorXd x_fixed = ld.fe->initial_parameters();
       for (std::size_t j = 0; j < index.size(); ++j)
@@ -720,18 +727,44 @@ EstimationResult run_problem(EstimationProblem& problem, const Progress& progres
   } else {
     ParameterPrior prior = problem.prior;
     for (std::size_t k = 0; k < nc; ++k) {
-      report(progress, "recursive stage " + std::to_string(k + 1) + " of " + std::to_string(nc) + ": '" +
-                           problem.configurations[k].name + "'");
-      UpdateResult r = update(std::vector<Configuration>{conf(k)}, prior, problem.options, progress);
+      UpdateResult r;
+      try {
+        report(progress, "recursive stage", static_cast<long>(k), static_cast<long>(nc),
+               "'" + problem.configurations[k].name + "'");
+        r = update(std::vector<Configuration>{conf(k)}, prior, problem.options, progress);
+      } catch (const Interrupted& ex) {
+        if (out.stages.empty()) throw;
+        out.interrupted = true;
+        out.partial_reason = std::string(ex.what()) + " before recursive stage " + std::to_string(k + 1) + " of " +
+                             std::to_string(nc) + " ('" + problem.configurations[k].name + "')";
+        break;
+      }
       for (auto& c : r.history)
         for (auto& q : c.pairs) q.config = static_cast<int>(k);
       for (auto& d : r.dropped) d.config = static_cast<int>(k);
       prior = posterior_as_prior(r, prior);
+      const bool stopped = !r.stopped.empty();
       out.stages.push_back(std::move(r));
+      if (stopped) break;  // later stages would start from a posterior that is not one
     }
     out.update = out.stages.back();
     out.update.final_solutions.clear();
   }
+  // Why the result is partial, if it is.
+  for (std::size_t s = 0; s < out.stages.size() && out.partial_reason.empty(); ++s) {
+    const UpdateResult& st = out.stages[s];
+    const std::string stage = out.stages.size() > 1 || nc > 1 ? "stage " + std::to_string(s + 1) + ": " : "";
+    if (!st.stopped.empty()) {
+      out.interrupted = st.interrupted;
+      out.partial_reason = stage + st.stopped + (st.interrupted ? " after " : " (after ") +
+                           std::to_string(st.history.size()) + (st.interrupted ? " cycle(s)" : " cycle(s))");
+    } else if (!st.converged) {
+      out.partial_reason = stage + "not converged after " + std::to_string(st.history.size()) + " cycle(s)";
+    }
+  }
+  if (out.partial_reason.empty() && problem.recursive && out.stages.size() < nc)
+    out.partial_reason = "recursive stages " + std::to_string(out.stages.size() + 1) + " to " + std::to_string(nc) +
+                         " not run";
   const auto& u = out.update;
   // Correlation of every configuration at the answer.
   for (std::size_t k = 0; k < nc; ++k) {
@@ -812,7 +845,9 @@ json result_json(const EstimationProblem& problem, const EstimationResult& r) {
   const auto& names = problem.prior.names;
   json j;
   if (!problem.title.empty()) j["title"] = problem.title;
-  j["converged"] = std::all_of(r.stages.begin(), r.stages.end(), [](const UpdateResult& s) { return s.converged; });
+  j["converged"] = !r.partial();
+  j["partial"] = r.partial();
+  if (r.partial()) j["partial_reason"] = r.partial_reason;
   j["operators"] = problem.operators;
   j["recursive"] = problem.recursive && problem.configurations.size() > 1;
   j["iterations"] = json::array();
@@ -845,7 +880,21 @@ json result_json(const EstimationProblem& problem, const EstimationResult& r) {
     p["std_ratio"] = u.identifiability.std_ratio.size() ? u.identifiability.std_ratio(e) : 1.0;
     p["lower"] = std::isfinite(problem.prior.lower(e)) ? json(problem.prior.lower(e)) : json(nullptr);
     p["upper"] = std::isfinite(problem.prior.upper(e)) ? json(problem.prior.upper(e)) : json(nullptr);
+    if (k < problem.units.size()) {
+      p["unit"] = problem.units[k].unit;
+      p["designs"] = problem.units[k].designs;
+    }
     j["parameters"].push_back(p);
+  }
+  if (!problem.units_note.empty()) j["units"] = problem.units_note;
+  {
+    const UpdateCycle& last = u.history.back();
+    j["frequency_rms_pct"] = last.freq_rms_pct;
+    j["objective"] = {{"J", last.objective},
+                      {"data_misfit", last.misfit},
+                      {"prior_term", last.objective - last.misfit},
+                      {"meaning", "J = sum of ((measured - predicted) / std)^2 over the measurements + the same for the "
+                                  "parameters' distance from their prior means (docs/updating.md, Eq. (7))"}};
   }
   j["posterior_covariance"] = matrix_json(u.posterior_cov);
 
@@ -916,32 +965,60 @@ json result_json(const EstimationProblem& problem, const EstimationResult& r) {
 std::string format_summary(const EstimationProblem& problem, const EstimationResult& r) {
   const auto& u = r.update;
   std::ostringstream o;
-  const bool converged = std::all_of(r.stages.begin(), r.stages.end(), [](const UpdateResult& s) { return s.converged; });
   std::size_t cycles = 0;
   for (const auto& s : r.stages) cycles += s.history.size();
-  o << (converged ? "converged" : "NOT converged") << " after " << cycles << " cycle(s)"
-    << (problem.recursive && problem.configurations.size() > 1 ? " (recursive, " + std::to_string(r.stages.size()) + " stages)" : "")
-    << "; operators " << problem.operators << "\n\n";
-  o << "parameter            initial        estimate     prior std   posterior std  change %\n";
+  const std::string how = problem.recursive && problem.configurations.size() > 1
+                              ? " (recursive, " + std::to_string(r.stages.size()) + " of " +
+                                    std::to_string(problem.configurations.size()) + " stages)"
+                              : "";
+  if (!r.partial()) o << "converged after " << cycles << " cycle(s)" << how;
+  else if (r.interrupted) o << "INTERRUPTED after " << cycles << " cycle(s)" << how;
+  else if (r.partial_reason.find("not converged") != std::string::npos)
+    o << "NOT converged after " << cycles << " cycle(s)" << how;
+  else o << "STOPPED after " << cycles << " cycle(s)" << how;
+  o << "; operators " << problem.operators << "\n";
+  if (r.partial())
+    o << "PARTIAL RESULT (" << r.partial_reason << "): the values below are those of the last accepted cycle, not an "
+      << "estimate to trust\n";
+  o << "\n";
+
+  // Parameters, with what each designs and its unit.
+  const bool with_units = problem.units.size() == problem.prior.names.size();
+  o << "parameter            initial        estimate     prior std   posterior std  change %";
+  if (with_units) o << "  unit            designs";
+  o << "\n";
   for (std::size_t k = 0; k < problem.prior.names.size(); ++k) {
     const auto e = static_cast<Eigen::Index>(k);
     const double ch = r.initial(e) != 0 ? (u.r(e) - r.initial(e)) / std::abs(r.initial(e)) * 100.0 : 0.0;
-    o << std::left << std::setw(16) << problem.prior.names[k] << std::right << std::setw(13) << fmt(r.initial(e))
-      << std::setw(16) << fmt(u.r(e), 8) << std::setw(14) << fmt(r.prior_std(e), 4) << std::setw(16)
-      << fmt(u.posterior_std(e), 4) << std::setw(10) << std::fixed << std::setprecision(2) << ch << "\n";
-    o.unsetf(std::ios::fixed);
+    o << std::left << std::setw(16) << problem.prior.names[k] << std::right << std::setw(13) << significant(r.initial(e), 6)
+      << std::setw(16) << significant(u.r(e), 8) << std::setw(14) << significant(r.prior_std(e), 4) << std::setw(16)
+      << significant(u.posterior_std(e), 4) << std::setw(10) << fixed(ch, 2);
+    if (with_units) {
+      const auto& pu = problem.units[k];
+      o << "  " << std::left << std::setw(15) << (pu.unit.empty() ? "?" : pu.unit) << " "
+        << (pu.designs.empty() ? "(designs no field)" : pu.designs) << std::right;
+    }
+    o << "\n";
   }
+  if (with_units)
+    o << "  units: " << problem.units_note
+      << "; a parameter has the unit of the fields it designs (DVPREL1/DVMREL1), or is a dimensionless scale "
+         "factor of them when its XINIT is 1 and no coefficient is 1\n";
+  else
+    o << "  units: those of the deck the problem file was made from\n";
+
+  // Pairs: frequencies to 7 significant digits, so that any error the error
+  // column shows (0.001 % resolution) is visible in the frequencies too.
   const auto pairs = final_pairs(problem, r);
   for (std::size_t k = 0; k < problem.configurations.size(); ++k) {
     const auto& c = problem.configurations[k];
     o << "\npairs" << (c.name.empty() ? "" : " of '" + c.name + "'") << " at the estimate (" << c.sensor_labels.size()
-      << " sensor DOFs):\n  FE mode   FE Hz      test mode  test Hz    error %   MAC\n";
+      << " sensor DOFs):\n  FE mode    FE [Hz]  test mode  test [Hz]  error [%]     MAC\n";
     for (const auto& q : pairs) {
       if (q.config != static_cast<int>(k)) continue;
-      o << "  " << std::setw(7) << q.fem + 1 << std::setw(11) << fmt(q.fem_hz, 6) << std::setw(11)
-        << c.test_numbers[static_cast<std::size_t>(q.test)] << std::setw(11) << fmt(q.test_hz, 6) << std::setw(10)
-        << std::fixed << std::setprecision(3) << q.error_pct << std::setw(9) << std::setprecision(4) << q.mac << "\n";
-      o.unsetf(std::ios::fixed);
+      o << "  " << std::setw(7) << q.fem + 1 << std::setw(11) << significant(q.fem_hz, 7) << std::setw(11)
+        << c.test_numbers[static_cast<std::size_t>(q.test)] << std::setw(11) << significant(q.test_hz, 7) << std::setw(11)
+        << fixed(q.error_pct, 3) << std::setw(8) << fixed(q.mac, 4) << "\n";
     }
     const auto ut = unpaired_test(problem, pairs, k), uf = unpaired_fe(problem, r, pairs, k);
     o << "  unpaired test modes:";
@@ -952,9 +1029,26 @@ std::string format_summary(const EstimationProblem& problem, const EstimationRes
     for (int n : uf) o << " " << n;
     o << "\n";
   }
+
+  // The fit: frequency error and the objective J, at the start and at the estimate.
+  const UpdateCycle& first = r.stages.front().history.front();
+  const UpdateCycle& last = u.history.back();
+  double largest = 0;
+  for (const auto& q : pairs) largest = std::max(largest, std::abs(q.error_pct));
+  o << "\nfrequency error, RMS over the pairs: " << fixed(last.freq_rms_pct, 3) << " % at the estimate ("
+    << last.pairs.size() << " pairs, largest " << fixed(largest, 3) << " %), " << fixed(first.freq_rms_pct, 3)
+    << " % at the start (" << first.pairs.size() << " pairs); mean MAC " << fixed(last.mean_mac, 3) << " (start "
+    << fixed(first.mean_mac, 3) << ")\n";
+  o << "objective J = " << significant(last.objective, 6) << " at the estimate (start " << significant(first.objective, 6)
+    << "): J = data misfit " << significant(last.misfit, 6) << " + prior term " << significant(last.objective - last.misfit, 4)
+    << ", where the data misfit is the sum of ((measured - predicted) / std)^2 over the " << u.measurements
+    << " measurements (frequencies and shape components) and the prior term the same for the parameters' "
+       "distance from their prior means (docs/updating.md, Eq. (7)); dimensionless, about the number of "
+       "measurements when the model fits within the measurement noise\n";
+
   const auto& id = u.identifiability;
   o << "\nidentifiability: rank " << id.rank << " of " << problem.prior.names.size() << " parameters, condition "
-    << fmt(id.condition, 4) << ", " << u.measurements << " measurements\n";
+    << significant(id.condition, 4) << ", " << u.measurements << " measurements\n";
   if (!r.uninformed.empty()) {
     o << "  not informed by the data (posterior std > " << problem.uninformed_ratio << " x prior std):";
     for (int k : r.uninformed) o << " " << problem.prior.names[static_cast<std::size_t>(k)];
@@ -962,7 +1056,7 @@ std::string format_summary(const EstimationProblem& problem, const EstimationRes
   }
   for (const auto& c : r.correlated)
     o << "  strongly correlated: " << problem.prior.names[static_cast<std::size_t>(c.a)] << " and "
-      << problem.prior.names[static_cast<std::size_t>(c.b)] << " (rho = " << fmt(c.rho, 3) << ")\n";
+      << problem.prior.names[static_cast<std::size_t>(c.b)] << " (rho = " << significant(c.rho, 3) << ")\n";
   std::vector<std::string> notes = problem.notes;
   for (const auto& c : problem.configurations) notes.insert(notes.end(), c.notes.begin(), c.notes.end());
   for (const auto& s : r.stages) notes.insert(notes.end(), s.notes.begin(), s.notes.end());

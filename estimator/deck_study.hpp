@@ -39,6 +39,7 @@
 #include "estimator/progress.hpp"
 #include "estimator/updating.hpp"
 #include "formats/problem_file.hpp"
+#include "translators/assembly/parameter_units.hpp"
 #include "translators/test_mapping.hpp"
 
 namespace ssid::estimator {
@@ -129,6 +130,11 @@ struct EstimationProblem {
   std::string title;
   ParameterPrior prior;
   std::vector<std::int64_t> desvar_ids;
+  /// Per parameter: what it designs and its unit (translators/assembly/parameter_units.hpp);
+  /// empty for a problem file, which carries no deck.
+  std::vector<translators::ParameterUnit> units;
+  /// Where the units come from: the deck's "$ units:" comment, or why they are "deck units".
+  std::string units_note;
   UpdateOptions options;
   bool recursive = false;
   double uninformed_ratio = 0.9, strong_correlation = 0.9;
@@ -166,13 +172,25 @@ struct EstimationResult {
   /// Per configuration at the answer: MAC (test × analysis), analysis frequencies (Hz).
   std::vector<Eigen::MatrixXd> mac;
   std::vector<Eigen::VectorXd> fe_hz;
+  /// Empty when the result is complete (every stage converged); otherwise why it
+  /// is partial: not converged within the iteration limit, stopped by a
+  /// numerical failure, or interrupted (then `interrupted`; recursive stages not
+  /// reached are missing from `stages`). A partial result is the last accepted
+  /// cycle's: usable to look at, not to trust.
+  std::string partial_reason;
+  bool interrupted = false;
+  bool partial() const { return !partial_reason.empty(); }
 };
 
-/// Runs the estimation (joint, or recursive), reporting a line per cycle.
+/// Runs the estimation (joint, or recursive), reporting each cycle (and each
+/// recursive stage) through `progress`. When `progress` throws Interrupted the
+/// result so far comes back marked partial (EstimationResult::partial_reason);
+/// before the first cycle was accepted, Interrupted passes to the caller.
 EstimationResult run_problem(EstimationProblem& problem, const Progress& progress = {});
 
-/// The result as JSON: {"converged", "iterations", "parameters", "correlation",
-/// "pairs", "unpaired_test", "unpaired_fe", "identifiability", "notes", ...}.
+/// The result as JSON: {"converged", "partial" (and "partial_reason" when
+/// true), "iterations", "parameters", "correlation", "pairs", "unpaired_test",
+/// "unpaired_fe", "identifiability", "notes", ...}.
 nlohmann::json result_json(const EstimationProblem& problem, const EstimationResult& result);
 
 /// A readable summary (parameters, pairs, identifiability, notes).

@@ -5,6 +5,8 @@
 #include <cmath>
 #include <stdexcept>
 
+#include "formats/parse_error.hpp"
+
 namespace ssid::estimator {
 
 EigenResult solve_modes_dense(const Eigen::SparseMatrix<double>& K, const Eigen::SparseMatrix<double>& M,
@@ -16,7 +18,7 @@ EigenResult solve_modes_dense(const Eigen::SparseMatrix<double>& K, const Eigen:
   const bool has_high = !std::isnan(o.f_high);
   const bool has_low = !std::isnan(o.f_low) && o.f_low > 0.0;
   if (has_high && has_low && o.f_low > o.f_high)
-    throw std::invalid_argument("solve_modes_dense: lower frequency " + std::to_string(o.f_low) + " Hz above upper " +
+    throw formats::InputError("solve_modes_dense: lower frequency " + std::to_string(o.f_low) + " Hz above upper " +
                                 std::to_string(o.f_high) + " Hz");
   EigenResult res;
   res.method = "dense";

@@ -2,6 +2,7 @@
 
 #include "estimator/block_lanczos.hpp"
 #include "estimator/multilevel/block_ops.hpp"
+#include "formats/parse_error.hpp"
 
 #include <Eigen/Eigenvalues>
 #include <Spectra/SymGEigsShiftSolver.h>
@@ -46,7 +47,7 @@ class ShiftInvertOp {
   }
   void perform_op(const double* x, double* y) const {
     m_f.solve(x, y, 1);
-    if (++m_count % 50 == 0) report(m_progress, "Lanczos: " + std::to_string(m_count) + " solves");
+    if (++m_count % 50 == 0) report(m_progress, "Lanczos solves", m_count, -1);  // the total is not known
   }
   long count() const { return m_count; }
 
@@ -119,7 +120,7 @@ LanczosRun run_lanczos(const CholmodFactor& factor, const MassOp& mass, double s
   for (Eigen::Index i = 0; i < r.size(); ++i) r(i) = u(rng);
   mass.perform_op(r.data(), Mr.data());
   factor.solve(Mr.data(), v0.data(), 1);
-  if (!(v0.norm() > 0.0)) throw std::invalid_argument("EigenSolver: M is zero");
+  if (!(v0.norm() > 0.0)) throw formats::InputError("EigenSolver: M is zero: the model has no mass on its analysis DOFs");
   eigs.init(v0.data());
   eigs.compute(Spectra::SortRule::LargestMagn, o.maxit, o.tol, Spectra::SortRule::SmallestAlge);
   LanczosRun run;
@@ -253,6 +254,11 @@ double automatic_shift(const SparseMatrix& K, const SparseMatrix& M) {
 
 double hz_to_eigenvalue(double f) { return (kTwoPi * f) * (kTwoPi * f); }
 double eigenvalue_to_hz(double lambda) { return std::sqrt(std::abs(lambda)) / kTwoPi; }
+void throw_solve_failure(const EigenResult& r, const std::string& message) {
+  if (r.status == EigenResult::Status::NotPositiveDefinite) throw formats::InputError(message);
+  throw formats::NumericalError(message);
+}
+
 double EigenResult::radians(int i) const { return std::sqrt(std::abs(eigenvalues(i))); }
 double EigenResult::cycles(int i) const { return radians(i) / kTwoPi; }
 
@@ -329,9 +335,9 @@ EigenResult EigenSolver::solve(const SparseMatrix& K, const SparseMatrix& M) {
   const bool has_high = !std::isnan(o.f_high);
   const bool has_low = !std::isnan(o.f_low) && o.f_low > 0.0;
   if (!has_high && o.nd <= 0)
-    throw std::invalid_argument("EigenSolver: nothing requested: give ND (number of modes) or an upper frequency");
+    throw formats::InputError("EigenSolver: nothing requested: give ND (number of modes) or an upper frequency");
   if (has_high && has_low && o.f_low > o.f_high)
-    throw std::invalid_argument("EigenSolver: lower frequency " + std::to_string(o.f_low) + " Hz above upper " +
+    throw formats::InputError("EigenSolver: lower frequency " + std::to_string(o.f_low) + " Hz above upper " +
                                 std::to_string(o.f_high) + " Hz");
   const double lam_lo = has_low ? hz_to_eigenvalue(o.f_low) : -std::numeric_limits<double>::infinity();
   const double lam_hi = has_high ? hz_to_eigenvalue(o.f_high) : std::numeric_limits<double>::infinity();
@@ -513,9 +519,11 @@ EigenResult EigenSolver::solve(const SparseMatrix& K, const SparseMatrix& M) {
     long below = 0;
     for (Eigen::Index i = 0; i < lambda.size(); ++i)
       if (lambda(i) < lam_hi) ++below;
-    if (below != res.sturm_count && !(o.nd > 0 && static_cast<long>(keep.size()) >= o.nd))
+    if (below != res.sturm_count && !(o.nd > 0 && static_cast<long>(keep.size()) >= o.nd)) {
+      res.sturm_mismatch = true;
       res.warnings.push_back("Sturm count says " + std::to_string(res.sturm_count) +
                              " eigenvalues lie below the upper bound, Lanczos found " + std::to_string(below));
+    }
   }
   if (o.nd > 0 && static_cast<long>(keep.size()) < o.nd && !has_high && res.ok())
     res.warnings.push_back("only " + std::to_string(keep.size()) + " of the " + std::to_string(o.nd) +

@@ -140,6 +140,9 @@ struct EigenResult {
   std::string message;    ///< what went wrong, with the DOF index where there is one
   long failed_dof = -1;   ///< index into K's rows for NotPositiveDefinite
   std::vector<std::string> warnings;
+  /// The Sturm count of the band disagrees with the eigenvalues found in it (a
+  /// warning says by how much): modes may be missing, the result is not trustworthy.
+  bool sturm_mismatch = false;
 
   Eigen::VectorXd eigenvalues;            ///< λ ascending, (rad/s)²
   Eigen::MatrixXd modes;                  ///< n x m, normalised per EigenOptions::norm
@@ -196,6 +199,13 @@ class EigenSolver {
 /// One-shot convenience: EigenSolver(options).solve(K, M).
 EigenResult solve_modes(const Eigen::SparseMatrix<double>& K, const Eigen::SparseMatrix<double>& M,
                         const EigenOptions& options = {});
+
+/// Throws the failure kind of a solve that did not succeed (`!r.ok()`), with
+/// `message` as its text: formats::InputError for NotPositiveDefinite (the model
+/// has a mechanism or negative stiffness: the input must change), and
+/// formats::NumericalError for the outcomes of the computation itself (near
+/// singular, not converged, factorisation failed).
+[[noreturn]] void throw_solve_failure(const EigenResult& r, const std::string& message);
 
 /// The automatic shift (EigenOptions::shift NaN): −1e-5 × Σ|K_ii| / Σ M_ii over
 /// the DOFs with mass; −1 when there is no mass or no stiffness there.

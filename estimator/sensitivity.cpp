@@ -4,6 +4,8 @@
 #include <Eigen/SparseLU>
 #include <stdexcept>
 
+#include "formats/parse_error.hpp"
+
 namespace ssid::estimator {
 
 double eigenvalue_derivative(const SparseMatrix& dK, const SparseMatrix& dM, double lambda,
@@ -29,7 +31,7 @@ Eigen::MatrixXd nelson_derivatives(const SparseMatrix& K, const SparseMatrix& M,
   lu.analyzePattern(A);
   lu.factorize(A);
   if (lu.info() != Eigen::Success)
-    throw std::runtime_error("Nelson's method: K - lambda M is singular with the pinned DOF (repeated eigenvalue?)");
+    throw formats::NumericalError("Nelson's method: K - lambda M is singular with the pinned DOF (repeated eigenvalue?)");
   const Eigen::VectorXd Mphi = M * phi;
   Eigen::MatrixXd out(n, static_cast<int>(dK.size()));
   for (std::size_t p = 0; p < dK.size(); ++p) {
@@ -37,7 +39,7 @@ Eigen::MatrixXd nelson_derivatives(const SparseMatrix& K, const SparseMatrix& M,
     Eigen::VectorXd rhs = -(dK[p] * phi - lambda * (dM[p] * phi) - dl * Mphi);
     rhs(k) = 0.0;
     Eigen::VectorXd v = lu.solve(rhs);
-    if (lu.info() != Eigen::Success) throw std::runtime_error("Nelson's method: solve failed");
+    if (lu.info() != Eigen::Success) throw formats::NumericalError("Nelson's method: solve failed");
     const double c = -Mphi.dot(v) - 0.5 * phi.dot(dM[p] * phi);
     out.col(static_cast<int>(p)) = v + c * phi;
   }

@@ -4,8 +4,12 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <optional>
 #include <stdexcept>
 #include <string>
+
+#include "estimator/number_text.hpp"
+#include "formats/parse_error.hpp"
 
 namespace ssid::estimator {
 
@@ -102,7 +106,7 @@ Residuals residuals(ModalModel& model, const std::vector<MeasuredMode>& test, co
     const ModeSensitivity s = with_T ? std::move(sens[used++]) : ModeSensitivity{Eigen::VectorXd::Zero(p), Eigen::MatrixXd()};
     if (use_f) {
       const double f = hz(fem.eigenvalues(pair.fem));
-      if (f <= 0) throw std::runtime_error("test mode " + std::to_string(t.id) + " is paired with a zero-frequency analysis mode");
+      if (f <= 0) throw formats::NumericalError("test mode " + std::to_string(t.id) + " is paired with a zero-frequency analysis mode");
       z.push_back(t.frequency_hz);
       u.push_back(f);
       sigma.push_back(t.frequency_std_hz);
@@ -232,7 +236,7 @@ UpdateResult update(const std::vector<Configuration>& configurations, const Para
 
   // Work in θ = D⁻¹ (r − r₀), D = diag(prior σ): all parameters of order one.
   const Eigen::VectorXd d = prior.cov.diagonal().array().sqrt();
-  if ((d.array() <= 0).any()) throw std::invalid_argument("update: every parameter needs a positive prior variance");
+  if ((d.array() <= 0).any()) throw formats::InputError("update: every parameter needs a positive prior variance");
   const Eigen::MatrixXd cov_theta = d.asDiagonal().inverse() * prior.cov * d.asDiagonal().inverse();
   const Eigen::VectorXd lo = ((prior.lower - prior.mean).array() / d.array()).matrix();
   const Eigen::VectorXd hi = ((prior.upper - prior.mean).array() / d.array()).matrix();
@@ -265,6 +269,21 @@ UpdateResult update(const std::vector<Configuration>& configurations, const Para
   double mu = 0;
   Eigen::MatrixXd T_accepted;
   Residuals res_accepted;
+  // A report counted in cycles done (cycle 0, the model at the start, is the
+  // first) of at most max_iterations + 1. A tick (a solve starting) shows
+  // nothing new; it lets the caller stop the run there.
+  auto report_cycle = [&](int done, const std::string& detail, bool tick = false) {
+    if (!progress) return;
+    ProgressEvent e;
+    e.phase = "cycle";
+    e.done = done;
+    e.total = options.max_iterations + 1;
+    e.total_is_bound = true;
+    e.detail = detail;
+    e.tick = tick;
+    e.fraction = static_cast<double>(e.done) / static_cast<double>(e.total);
+    progress(e);
+  };
   // A rejected trial: the next one is the accepted point's step with more
   // damping, and the trial's pairs, notes and dropped modes are undone.
   auto reject = [&](int cycle, const std::string& why, std::size_t notes_before, std::size_t dropped_before) {
@@ -273,165 +292,201 @@ UpdateResult update(const std::vector<Configuration>& configurations, const Para
     theta = bayes_step(theta_accepted, zero, cov_theta, res_accepted.z, res_accepted.u, T_accepted, res_accepted.sigma,
                        lo, hi, mu)
                 .r_next;
-    report(progress, "cycle " + std::to_string(cycle) + ": " + why + "; step damped (mu = " + std::to_string(mu) + ")");
+    report_cycle(cycle, "trial point rejected (" + why + "); step damped, mu = " + significant(mu, 3));
     pairs = pairs_accepted;
     tracking = tracking_accepted;
     result.notes.resize(notes_before);
     result.dropped.resize(dropped_before);
   };
-  for (int cycle = 0;;) {
-    const Eigen::VectorXd r = prior.mean + d.cwiseProduct(theta);
-    const std::size_t notes_before = result.notes.size(), dropped_before = result.dropped.size();
-    std::vector<Residuals> parts;
-    std::vector<ModalSolution> solutions;
-    UpdateCycle c;
-    c.cycle = cycle;
-    c.r = r;
-    bool unsolvable = false;
-    for (std::size_t k = 0; k < nc; ++k) {
-      const auto& conf = configurations[k];
-      report(progress, "cycle " + std::to_string(cycle) + ": solving" + label(k),
-             static_cast<double>(cycle) / static_cast<double>(options.max_iterations + 1));
-      ModalSolution fem;
-      try {
-        fem = conf.model->solve(r);
-      } catch (const std::exception& ex) {
-        // A trial point where the model cannot be solved (a designed area
-        // driven through zero, …) is a step too far, like one that raises J.
-        if (cycle == 0 || halvings >= max_halvings) throw;
-        reject(cycle, std::string("no solution at the trial point (") + ex.what() + ")", notes_before, dropped_before);
-        unsolvable = true;
-        break;
-      }
-      if (cycle == 0) {
-        pairs[k] = pair_for_update(conf.test, fem, options);
-        if (pairs[k].empty()) throw std::runtime_error("update: no test mode" + label(k) + " pairs with an analysis mode");
-        for (std::size_t i = 0; i < conf.test.size(); ++i)
-          if (std::none_of(pairs[k].begin(), pairs[k].end(), [&](const UpdatePair& q) { return q.test == static_cast<int>(i); }))
-            result.notes.push_back("test mode " + std::to_string(conf.test[i].id) + label(k) + " has no analysis partner");
-      } else {
-        std::vector<UpdatePair> previous;
-        Eigen::MatrixXd prev(tracking[k].rows(), static_cast<Eigen::Index>(pairs[k].size()));
-        for (std::size_t q = 0; q < pairs[k].size(); ++q) {
-          prev.col(static_cast<Eigen::Index>(q)) = tracking[k].col(pairs[k][q].fem);
-          previous.push_back(pairs[k][q]);
-          previous.back().fem = static_cast<int>(q);
-        }
-        pairs[k] = track_pairs(previous, prev, conf.test, fem, options, cycle, result.notes, result.dropped);
-        if (pairs[k].empty()) throw std::runtime_error("update: every test mode" + label(k) + " lost its analysis partner");
-      }
-      for (auto& q : pairs[k]) q.config = static_cast<int>(k);
-      tracking[k] = fem.tracking_shapes;
-      solutions.push_back(fem);
-      c.pairs.insert(c.pairs.end(), pairs[k].begin(), pairs[k].end());
-    }
-    if (unsolvable) continue;
-    // Trial point: accept when J did not grow with the same pairs. A step that
-    // loses pairs overshot too (a test mode whose partner the step moved away
-    // is data the step stopped fitting; J over fewer pairs is not comparable),
-    // so it is rejected as well, until max_halvings: then the pairs that remain
-    // are accepted (a partner that is really gone stays gone).
-    if (cycle > 0) {
-      bool same = true, lost = false;
+  // The posterior at an accepted cycle's r (the mode, once converged): what the
+  // result holds at the end, or when the iteration stops early.
+  struct Accepted {
+    Eigen::VectorXd r;
+    BayesStep step;
+    Eigen::VectorXd sigma;
+    Eigen::MatrixXd T_theta;
+    std::size_t notes = 0, dropped = 0;
+  };
+  std::optional<Accepted> accepted;
+  auto finish = [&](const Accepted& a) {
+    result.r = a.r;
+    result.posterior_cov = d.asDiagonal() * a.step.posterior_cov * d.asDiagonal();
+    result.posterior_std = result.posterior_cov.diagonal().array().sqrt();
+    // log det S* − log det S_rr is the same in θ and r: the D² factors cancel.
+    result.log_evidence = laplace_log_evidence(a.step.objective, a.sigma, cov_theta, a.step.posterior_cov);
+    result.identifiability = identifiability(a.T_theta, a.sigma, cov_theta, a.step.posterior_cov);
+    if (a.step.clipped) result.notes.push_back("a parameter bound is active at the solution");
+  };
+  // A stop before the end: the last accepted cycle's result, or (none yet) the exception.
+  auto stop_early = [&](const std::string& why, bool interrupted) {
+    result.notes.resize(accepted->notes);
+    result.dropped.resize(accepted->dropped);
+    finish(*accepted);
+    result.converged = false;
+    result.stopped = why;
+    result.interrupted = interrupted;
+    result.notes.push_back("stopped after " + std::to_string(result.history.size()) + " cycle(s): " + why);
+    return result;
+  };
+  try {
+    for (int cycle = 0;;) {
+      const Eigen::VectorXd r = prior.mean + d.cwiseProduct(theta);
+      const std::size_t notes_before = result.notes.size(), dropped_before = result.dropped.size();
+      std::vector<Residuals> parts;
+      std::vector<ModalSolution> solutions;
+      UpdateCycle c;
+      c.cycle = cycle;
+      c.r = r;
+      bool unsolvable = false;
       for (std::size_t k = 0; k < nc; ++k) {
-        lost = lost || pairs[k].size() < pairs_accepted[k].size();
-        same = same && pairs[k].size() == pairs_accepted[k].size();
-        for (std::size_t q = 0; same && q < pairs[k].size(); ++q) same = pairs[k][q].test == pairs_accepted[k][q].test;
-      }
-      if (lost && halvings < max_halvings) {
-        reject(cycle, "the step loses pairs", notes_before, dropped_before);
-        continue;
-      }
-      double J_trial = 0;
-      if (same) {
-        Residuals trial;
-        std::vector<double> z, u, sg;
-        for (std::size_t k = 0; k < nc; ++k) {
-          const Residuals part = residuals(*configurations[k].model, configurations[k].test, solutions[k], pairs[k], options, false);
-          z.insert(z.end(), part.z.data(), part.z.data() + part.z.size());
-          u.insert(u.end(), part.u.data(), part.u.data() + part.u.size());
-          sg.insert(sg.end(), part.sigma.data(), part.sigma.data() + part.sigma.size());
+        const auto& conf = configurations[k];
+        report_cycle(cycle, "solving" + label(k), true);
+        ModalSolution fem;
+        try {
+          fem = conf.model->solve(r);
+        } catch (const formats::InputError& ex) {
+          // A trial point where the model cannot be solved (a designed area
+          // driven through zero: an element or a factorisation refuses it, …) is
+          // a step too far, like one that raises J.
+          if (cycle == 0 || halvings >= max_halvings) throw;
+          reject(cycle, std::string("no solution at the trial point (") + ex.what() + ")", notes_before, dropped_before);
+          unsolvable = true;
+          break;
+        } catch (const formats::NumericalError& ex) {
+          if (cycle == 0 || halvings >= max_halvings) throw;
+          reject(cycle, std::string("no solution at the trial point (") + ex.what() + ")", notes_before, dropped_before);
+          unsolvable = true;
+          break;
         }
-        const auto len = static_cast<Eigen::Index>(z.size());
-        trial.z = Eigen::Map<Eigen::VectorXd>(z.data(), len);
-        trial.u = Eigen::Map<Eigen::VectorXd>(u.data(), len);
-        trial.sigma = Eigen::Map<Eigen::VectorXd>(sg.data(), len);
-        J_trial = objective(theta, trial);
+        if (cycle == 0) {
+          pairs[k] = pair_for_update(conf.test, fem, options);
+          if (pairs[k].empty()) throw formats::InputError("update: no test mode" + label(k) + " pairs with an analysis mode");
+          for (std::size_t i = 0; i < conf.test.size(); ++i)
+            if (std::none_of(pairs[k].begin(), pairs[k].end(), [&](const UpdatePair& q) { return q.test == static_cast<int>(i); }))
+              result.notes.push_back("test mode " + std::to_string(conf.test[i].id) + label(k) + " has no analysis partner");
+        } else {
+          std::vector<UpdatePair> previous;
+          Eigen::MatrixXd prev(tracking[k].rows(), static_cast<Eigen::Index>(pairs[k].size()));
+          for (std::size_t q = 0; q < pairs[k].size(); ++q) {
+            prev.col(static_cast<Eigen::Index>(q)) = tracking[k].col(pairs[k][q].fem);
+            previous.push_back(pairs[k][q]);
+            previous.back().fem = static_cast<int>(q);
+          }
+          pairs[k] = track_pairs(previous, prev, conf.test, fem, options, cycle, result.notes, result.dropped);
+          if (pairs[k].empty()) throw formats::NumericalError("update: every test mode" + label(k) + " lost its analysis partner");
+        }
+        for (auto& q : pairs[k]) q.config = static_cast<int>(k);
+        tracking[k] = fem.tracking_shapes;
+        solutions.push_back(fem);
+        c.pairs.insert(c.pairs.end(), pairs[k].begin(), pairs[k].end());
       }
-      // J equal within what the eigen-solve resolves (at the minimum) is not growth.
-      if (same && J_trial > J_accepted * (1 + 1e-9) && halvings < max_halvings) {
-        reject(cycle, "J = " + std::to_string(J_trial) + " > " + std::to_string(J_accepted), notes_before,
-               dropped_before);
-        continue;
+      if (unsolvable) continue;
+      // Trial point: accept when J did not grow with the same pairs. A step that
+      // loses pairs overshot too (a test mode whose partner the step moved away
+      // is data the step stopped fitting; J over fewer pairs is not comparable),
+      // so it is rejected as well, until max_halvings: then the pairs that remain
+      // are accepted (a partner that is really gone stays gone).
+      if (cycle > 0) {
+        bool same = true, lost = false;
+        for (std::size_t k = 0; k < nc; ++k) {
+          lost = lost || pairs[k].size() < pairs_accepted[k].size();
+          same = same && pairs[k].size() == pairs_accepted[k].size();
+          for (std::size_t q = 0; same && q < pairs[k].size(); ++q) same = pairs[k][q].test == pairs_accepted[k][q].test;
+        }
+        if (lost && halvings < max_halvings) {
+          reject(cycle, "the step loses pairs", notes_before, dropped_before);
+          continue;
+        }
+        double J_trial = 0;
+        if (same) {
+          Residuals trial;
+          std::vector<double> z, u, sg;
+          for (std::size_t k = 0; k < nc; ++k) {
+            const Residuals part = residuals(*configurations[k].model, configurations[k].test, solutions[k], pairs[k], options, false);
+            z.insert(z.end(), part.z.data(), part.z.data() + part.z.size());
+            u.insert(u.end(), part.u.data(), part.u.data() + part.u.size());
+            sg.insert(sg.end(), part.sigma.data(), part.sigma.data() + part.sigma.size());
+          }
+          const auto len = static_cast<Eigen::Index>(z.size());
+          trial.z = Eigen::Map<Eigen::VectorXd>(z.data(), len);
+          trial.u = Eigen::Map<Eigen::VectorXd>(u.data(), len);
+          trial.sigma = Eigen::Map<Eigen::VectorXd>(sg.data(), len);
+          J_trial = objective(theta, trial);
+        }
+        // J equal within what the eigen-solve resolves (at the minimum) is not growth.
+        if (same && J_trial > J_accepted * (1 + 1e-9) && halvings < max_halvings) {
+          reject(cycle, "J = " + significant(J_trial, 10) + " > " + significant(J_accepted, 10), notes_before,
+                 dropped_before);
+          continue;
+        }
       }
-    }
-    c.step_halvings = halvings;
-    if (halvings >= max_halvings) mu = 0;  // the damped steps ended at the accepted point: start afresh
-    halvings = 0;
-    for (std::size_t k = 0; k < nc; ++k)
-      parts.push_back(residuals(*configurations[k].model, configurations[k].test, solutions[k], pairs[k], options));
-    Residuals res;
-    Eigen::Index m = 0;
-    result.final_solutions = std::move(solutions);
-    for (const auto& part : parts) m += part.z.size();
-    res.z.resize(m);
-    res.u.resize(m);
-    res.sigma.resize(m);
-    res.T.resize(m, p);
-    Eigen::Index at = 0;
-    for (const auto& part : parts) {
-      const auto len = part.z.size();
-      res.z.segment(at, len) = part.z;
-      res.u.segment(at, len) = part.u;
-      res.sigma.segment(at, len) = part.sigma;
-      res.T.middleRows(at, len) = part.T;
-      at += len;
-    }
-    if (m == 0) throw std::runtime_error("update: no measurement with a positive standard deviation");
-    const Eigen::MatrixXd T_theta = res.T * d.asDiagonal();
-    // Convergence and the posterior come from the undamped step of Eq. (7); the
-    // next point from the damped one while the damping lasts.
-    const BayesStep step = bayes_step(theta, zero, cov_theta, res.z, res.u, T_theta, res.sigma, lo, hi);
-    mu = mu >= 0.1 ? mu / 10 : 0.0;
-    const Eigen::VectorXd theta_next =
-        mu > 0 ? bayes_step(theta, zero, cov_theta, res.z, res.u, T_theta, res.sigma, lo, hi, mu).r_next : step.r_next;
+      c.step_halvings = halvings;
+      if (halvings >= max_halvings) mu = 0;  // the damped steps ended at the accepted point: start afresh
+      halvings = 0;
+      for (std::size_t k = 0; k < nc; ++k)
+        parts.push_back(residuals(*configurations[k].model, configurations[k].test, solutions[k], pairs[k], options));
+      Residuals res;
+      Eigen::Index m = 0;
+      result.final_solutions = std::move(solutions);
+      for (const auto& part : parts) m += part.z.size();
+      res.z.resize(m);
+      res.u.resize(m);
+      res.sigma.resize(m);
+      res.T.resize(m, p);
+      Eigen::Index at = 0;
+      for (const auto& part : parts) {
+        const auto len = part.z.size();
+        res.z.segment(at, len) = part.z;
+        res.u.segment(at, len) = part.u;
+        res.sigma.segment(at, len) = part.sigma;
+        res.T.middleRows(at, len) = part.T;
+        at += len;
+      }
+      if (m == 0) throw formats::InputError("update: no measurement with a positive standard deviation");
+      const Eigen::MatrixXd T_theta = res.T * d.asDiagonal();
+      // Convergence and the posterior come from the undamped step of Eq. (7); the
+      // next point from the damped one while the damping lasts.
+      const BayesStep step = bayes_step(theta, zero, cov_theta, res.z, res.u, T_theta, res.sigma, lo, hi);
+      mu = mu >= 0.1 ? mu / 10 : 0.0;
+      const Eigen::VectorXd theta_next =
+          mu > 0 ? bayes_step(theta, zero, cov_theta, res.z, res.u, T_theta, res.sigma, lo, hi, mu).r_next : step.r_next;
 
-    c.objective = step.objective;
-    c.misfit = step.misfit;
-    c.clipped = step.clipped;
-    summarise(c);
-    result.history.push_back(c);
-    result.measurements = static_cast<int>(m);
-    report(progress,
-           "cycle " + std::to_string(cycle) + ": J = " + std::to_string(step.objective) + ", frequency RMS error " +
-               std::to_string(c.freq_rms_pct) + " %, " + std::to_string(c.pairs.size()) + " pairs",
-           static_cast<double>(cycle + 1) / static_cast<double>(options.max_iterations + 1));
+      c.objective = step.objective;
+      c.misfit = step.misfit;
+      c.clipped = step.clipped;
+      summarise(c);
+      result.history.push_back(c);
+      result.measurements = static_cast<int>(m);
+      accepted = Accepted{r, step, res.sigma, T_theta, result.notes.size(), result.dropped.size()};
+      report_cycle(cycle + 1, "J = " + significant(step.objective, 6) + " (data misfit " + significant(step.misfit, 6) +
+                              ", prior " + significant(step.objective - step.misfit, 4) + "), frequency RMS error " +
+                              significant(c.freq_rms_pct, 4) + " %, " + std::to_string(c.pairs.size()) + " pairs");
 
-    const double move = (step.r_next - theta).cwiseAbs().maxCoeff();
-    const bool last = cycle >= options.max_iterations;
-    if (move < options.tolerance || last) {
-      // The posterior is taken at this cycle's r (the mode, once converged).
-      result.converged = move < options.tolerance;
-      result.r = r;
-      result.posterior_cov = d.asDiagonal() * step.posterior_cov * d.asDiagonal();
-      result.posterior_std = result.posterior_cov.diagonal().array().sqrt();
-      // log det S* − log det S_rr is the same in θ and r: the D² factors cancel.
-      result.log_evidence = laplace_log_evidence(step.objective, res.sigma, cov_theta, step.posterior_cov);
-      result.identifiability = identifiability(T_theta, res.sigma, cov_theta, step.posterior_cov);
-      if (step.clipped) result.notes.push_back("a parameter bound is active at the solution");
-      if (!result.converged)
-        result.notes.push_back("not converged after " + std::to_string(options.max_iterations) +
-                               " cycles (last move " + std::to_string(move) + " prior standard deviations)");
-      return result;
+      const double move = (step.r_next - theta).cwiseAbs().maxCoeff();
+      const bool last = cycle >= options.max_iterations;
+      if (move < options.tolerance || last) {
+        finish(*accepted);
+        result.converged = move < options.tolerance;
+        if (!result.converged)
+          result.notes.push_back("not converged after " + std::to_string(result.history.size()) +
+                                 " cycle(s) (last move " + significant(move, 3) + " prior standard deviations)");
+        return result;
+      }
+      J_accepted = step.objective;
+      theta_accepted = theta;
+      pairs_accepted = pairs;
+      tracking_accepted = tracking;
+      T_accepted = T_theta;
+      res_accepted = res;
+      theta = theta_next;
+      ++cycle;
     }
-    J_accepted = step.objective;
-    theta_accepted = theta;
-    pairs_accepted = pairs;
-    tracking_accepted = tracking;
-    T_accepted = T_theta;
-    res_accepted = res;
-    theta = theta_next;
-    ++cycle;
+  } catch (const Interrupted& ex) {
+    if (!accepted) throw;
+    return stop_early(ex.what(), true);
+  } catch (const formats::NumericalError& ex) {
+    if (!accepted) throw;
+    return stop_early(ex.what(), false);
   }
 }
 

@@ -106,6 +106,12 @@ struct UpdateResult {
   double log_evidence = 0;        ///< Laplace approximation at r
   Identifiability identifiability;
   bool converged = false;
+  /// Empty when the iteration ran to its end (converged, or `max_iterations`
+  /// reached); otherwise why it stopped early: interrupted through the progress
+  /// callback (Interrupted), or a numerical failure after cycle 0. The result is
+  /// then the last accepted cycle's (its r, posterior and pairs).
+  std::string stopped;
+  bool interrupted = false;          ///< stopped by Interrupted (`stopped` holds its message)
   std::vector<UpdateCycle> history;  ///< cycle 0 is the initial model; the last one the final model
   std::vector<std::string> notes;    ///< modes that lost their partner, bounds hit, …
   int measurements = 0;              ///< length of z in the final cycle
@@ -127,7 +133,12 @@ struct Configuration {
   std::vector<MeasuredMode> test;
 };
 
-/// Estimates the parameters from all configurations together.
+/// Estimates the parameters from all configurations together. Reports each
+/// cycle through `progress` (phase "cycle", counted against the iteration limit,
+/// the detail giving J, the frequency error and the pairs). When `progress`
+/// throws Interrupted, or a cycle after the first fails with a NumericalError,
+/// the result of the last accepted cycle comes back with `stopped` set; before
+/// any cycle was accepted the exception passes.
 UpdateResult update(const std::vector<Configuration>& configurations, const ParameterPrior& prior,
                     const UpdateOptions& options = {}, const Progress& progress = {});
 

@@ -5,6 +5,7 @@
 #include <stdexcept>
 
 #include "formats/nastran_number.hpp"
+#include "formats/parse_error.hpp"
 
 namespace ssid::formats {
 
@@ -61,7 +62,7 @@ std::string format_card(const std::string& name, const std::vector<FieldValue>& 
         if (width == 16 && std::holds_alternative<double>(values[i])) {
           text[i] = format_real_rounded(std::get<double>(values[i]), 16);
         } else if (width == 16) {
-          throw std::invalid_argument(name + " field " + std::to_string(i + 1) + ": value '" + text[i] +
+          throw InputError(name + " field " + std::to_string(i + 1) + ": value '" + text[i] +
                                       "' does not fit in 16 characters");
         } else {
           ok = false;
@@ -127,14 +128,14 @@ void write_one(const Deck& deck, std::size_t file, const fs::path& out, std::vec
   for (const SourceFile& src : deck.files) {
     if (src.path.empty()) continue;
     if (fs::exists(src.path, ec) && fs::exists(out, ec) && fs::equivalent(src.path, out, ec))
-      throw std::runtime_error("refusing to overwrite input file " + src.path + " (choose another output path)");
+      throw InputError("refusing to overwrite input file " + src.path + " (choose another output path)");
   }
   if (out.has_parent_path()) fs::create_directories(out.parent_path(), ec);
   std::ofstream o(out, std::ios::binary);
-  if (!o) throw std::runtime_error("cannot write " + out.string());
+  if (!o) throw InputError("cannot write " + out.string());
   const std::string text = render_file(deck, file);
   o.write(text.data(), static_cast<std::streamsize>(text.size()));
-  if (!o) throw std::runtime_error("error writing " + out.string());
+  if (!o) throw InputError("error writing " + out.string());
   written.push_back(out.string());
   for (const Chunk& c : deck.files[file].chunks) {
     if (c.kind != Chunk::Kind::Include) continue;
@@ -142,7 +143,7 @@ void write_one(const Deck& deck, std::size_t file, const fs::path& out, std::vec
     fs::path name(child.include_name);
     if (name.is_absolute()) {
       if (file_has_changes(deck, c.index))
-        throw std::runtime_error("INCLUDE '" + child.include_name +
+        throw InputError("INCLUDE '" + child.include_name +
                                  "' has an absolute path and holds changed cards; it cannot be written beside " +
                                  out.string());
       continue;

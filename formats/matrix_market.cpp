@@ -7,6 +7,8 @@
 
 #include <fmt/format.h>
 
+#include "formats/parse_error.hpp"
+
 namespace ssid::formats {
 
 namespace {
@@ -29,7 +31,7 @@ template <class T>
 void write(std::string& out, const Eigen::SparseMatrix<T>& a, MtxSymmetry s, const std::string& comment,
            bool is_complex) {
   if (s == MtxSymmetry::Symmetric && !symmetric(a))
-    throw std::invalid_argument("MatrixMarket: symmetric output asked for a matrix that is not exactly symmetric (" +
+    throw InputError("MatrixMarket: symmetric output asked for a matrix that is not exactly symmetric (" +
                                 std::to_string(a.rows()) + " x " + std::to_string(a.cols()) + ")");
   Eigen::Index nnz = 0;
   for (Eigen::Index j = 0; j < a.outerSize(); ++j)
@@ -60,9 +62,9 @@ void write(std::string& out, const Eigen::SparseMatrix<T>& a, MtxSymmetry s, con
 
 void to_file(const std::string& path, const std::string& text) {
   std::ofstream f(path, std::ios::binary);
-  if (!f) throw std::runtime_error("cannot write " + path);
+  if (!f) throw InputError("cannot write " + path);
   f.write(text.data(), static_cast<std::streamsize>(text.size()));
-  if (!f) throw std::runtime_error("error writing " + path);
+  if (!f) throw InputError("error writing " + path);
 }
 
 }  // namespace

@@ -12,6 +12,7 @@
 #include <fmt/format.h>
 
 #include "formats/op4.hpp"
+#include "formats/parse_error.hpp"
 
 namespace ssid::formats {
 
@@ -43,7 +44,7 @@ public:
       const ssize_t w = ::write(m_fd, m_buf.data() + done, m_buf.size() - done);
       if (w < 0) {
         if (errno == EINTR) continue;
-        throw std::runtime_error("error writing " + m_path + ": " + std::strerror(errno));
+        throw InputError("error writing " + m_path + ": " + std::strerror(errno));
       }
       done += static_cast<std::size_t>(w);
     }
@@ -143,7 +144,7 @@ private:
   static double to_single(double v) {
     const float f = static_cast<float>(v);
     if (std::isinf(f) && std::isfinite(v))
-      throw std::invalid_argument("OP4 value " + fmt::format("{:.17g}", v) + " overflows single precision");
+      throw InputError("OP4 value " + fmt::format("{:.17g}", v) + " overflows single precision");
     return f;
   }
   /// Writes one number at p (bpn bytes).
@@ -190,7 +191,7 @@ private:
 
   // -- ASCII primitives
   void number_text(char* p, double v) {
-    if (!std::isfinite(v)) throw std::invalid_argument("OP4 ASCII cannot hold the value " + std::to_string(v));
+    if (!std::isfinite(v)) throw InputError("OP4 ASCII cannot hold the value " + std::to_string(v));
     if (m_l.single) v = to_single(v);
     if (fast_number_text(p, v)) return;
     char buf[64];
@@ -386,22 +387,22 @@ private:
 };
 
 void check_options(const Op4WriteOptions& o) {
-  if (o.marker_bytes != 4 && o.marker_bytes != 8) throw std::invalid_argument("OP4 record markers are 4 or 8 bytes");
-  if (o.word_bytes != 4 && o.word_bytes != 8) throw std::invalid_argument("OP4 words are 4 or 8 bytes");
-  if (o.precision < 0 || o.precision > 4) throw std::invalid_argument("OP4 precision must be 1-4 (0 keeps the matrix's)");
-  if (o.digits < 0 || o.digits > 30) throw std::invalid_argument("OP4 ASCII digits must be 1-30");
+  if (o.marker_bytes != 4 && o.marker_bytes != 8) throw InputError("OP4 record markers are 4 or 8 bytes");
+  if (o.word_bytes != 4 && o.word_bytes != 8) throw InputError("OP4 words are 4 or 8 bytes");
+  if (o.precision < 0 || o.precision > 4) throw InputError("OP4 precision must be 1-4 (0 keeps the matrix's)");
+  if (o.digits < 0 || o.digits > 30) throw InputError("OP4 ASCII digits must be 1-30");
 }
 
 void write_all(Sink& sink, const std::vector<Op4Matrix>& matrices, const Op4WriteOptions& o) {
   check_options(o);
   for (const Op4Matrix& m : matrices) {
-    if (m.name.empty()) throw std::invalid_argument("OP4 matrix without a name");
+    if (m.name.empty()) throw InputError("OP4 matrix without a name");
     if (m.name.size() > 8 && o.encoding == Op4Encoding::Binary)
-      throw std::invalid_argument("OP4 matrix name '" + m.name + "' is longer than the 8 characters a binary header holds");
+      throw InputError("OP4 matrix name '" + m.name + "' is longer than the 8 characters a binary header holds");
     const int type = o.precision ? o.precision : static_cast<int>(m.precision);
     const bool cx = type >= 3;
     if (m.is_complex() && !cx)
-      throw std::invalid_argument("OP4 matrix " + m.name + " is complex; precision " + std::to_string(type) +
+      throw InputError("OP4 matrix " + m.name + " is complex; precision " + std::to_string(type) +
                                   " would drop its imaginary part");
     Layout l;
     l.type = type;
@@ -439,7 +440,7 @@ std::string write_op4_string(const std::vector<Op4Matrix>& matrices, const Op4Wr
 void write_op4(const std::string& path, const std::vector<Op4Matrix>& matrices, const Op4WriteOptions& options) {
   check_options(options);
   const int fd = ::open(path.c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0644);
-  if (fd < 0) throw std::runtime_error("cannot write " + path + ": " + std::strerror(errno));
+  if (fd < 0) throw InputError("cannot write " + path + ": " + std::strerror(errno));
   try {
     Sink sink(fd, path);
     write_all(sink, matrices, options);
@@ -448,7 +449,7 @@ void write_op4(const std::string& path, const std::vector<Op4Matrix>& matrices, 
     ::close(fd);
     throw;
   }
-  if (::close(fd) != 0) throw std::runtime_error("error closing " + path + ": " + std::strerror(errno));
+  if (::close(fd) != 0) throw InputError("error closing " + path + ": " + std::strerror(errno));
 }
 
 }  // namespace ssid::formats

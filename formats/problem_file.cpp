@@ -6,6 +6,8 @@
 #include <sstream>
 #include <stdexcept>
 
+#include "formats/parse_error.hpp"
+
 namespace ssid::formats {
 
 namespace {
@@ -124,7 +126,7 @@ class Reader {
     return m;
   }
 
-  [[noreturn]] void fail(const std::string& message) const { throw std::runtime_error(m_path + ": " + message); }
+  [[noreturn]] void fail(const std::string& message) const { throw InputError(m_path + ": " + message); }
 
  private:
   std::string m_path;
@@ -222,36 +224,36 @@ void write_problem(const std::string& path, const ProblemFile& pf) {
   std::snprintf(len, sizeof len, "%020zu\n", text.size());
 
   std::ofstream out(path, std::ios::binary | std::ios::trunc);
-  if (!out) throw std::runtime_error(path + ": cannot open for writing");
+  if (!out) throw InputError(path + ": cannot open for writing");
   out << magic << len << text;
   w.write(out);
-  if (!out.flush()) throw std::runtime_error(path + ": write failed");
+  if (!out.flush()) throw InputError(path + ": write failed");
 }
 
 ProblemFile read_problem(const std::string& path) {
   if (!little_endian()) throw std::runtime_error("problem file: big-endian hosts are not supported");
   std::ifstream in(path, std::ios::binary);
-  if (!in) throw std::runtime_error(path + ": cannot open");
+  if (!in) throw InputError(path + ": cannot open");
   std::ostringstream ss;
   ss << in.rdbuf();
   std::string data = ss.str();
   const std::size_t nl = data.find('\n');
   if (nl == std::string::npos || data.compare(0, 9, "SSIDPROB ") != 0)
-    throw std::runtime_error(path + ": not an ssid problem file (no SSIDPROB line)");
+    throw InputError(path + ": not an ssid problem file (no SSIDPROB line)");
   const int version = std::atoi(data.substr(9, nl - 9).c_str());
   if (version != ProblemFile::version)
-    throw std::runtime_error(path + ": problem file version " + std::to_string(version) + ", this ssid reads version " +
+    throw InputError(path + ": problem file version " + std::to_string(version) + ", this ssid reads version " +
                              std::to_string(ProblemFile::version));
   const std::size_t nl2 = data.find('\n', nl + 1);
-  if (nl2 == std::string::npos) throw std::runtime_error(path + ": truncated header");
+  if (nl2 == std::string::npos) throw InputError(path + ": truncated header");
   const auto header_len = std::strtoull(data.substr(nl + 1, nl2 - nl - 1).c_str(), nullptr, 10);
   const std::size_t base = nl2 + 1 + header_len;
-  if (base > data.size()) throw std::runtime_error(path + ": truncated header (" + std::to_string(header_len) + " bytes announced)");
+  if (base > data.size()) throw InputError(path + ": truncated header (" + std::to_string(header_len) + " bytes announced)");
   json head;
   try {
     head = json::parse(data.begin() + static_cast<std::ptrdiff_t>(nl2 + 1), data.begin() + static_cast<std::ptrdiff_t>(base));
   } catch (const json::exception& e) {
-    throw std::runtime_error(path + ": header is not valid JSON: " + e.what());
+    throw InputError(path + ": header is not valid JSON: " + e.what());
   }
   Reader r(path, std::move(data), base);
   ProblemFile pf;
@@ -307,7 +309,7 @@ ProblemFile read_problem(const std::string& path) {
       pf.configurations.push_back(std::move(c));
     }
   } catch (const json::exception& e) {
-    throw std::runtime_error(path + ": header item missing or of the wrong type: " + e.what());
+    throw InputError(path + ": header item missing or of the wrong type: " + e.what());
   }
   if (const auto why = inconsistency(pf); !why.empty()) r.fail(why);
   return pf;

@@ -5,6 +5,7 @@
 #include <fstream>
 #include <stdexcept>
 
+#include "formats/parse_error.hpp"
 #include "formats/uff.hpp"
 
 namespace ssid::formats::uff {
@@ -208,9 +209,9 @@ std::string format_uff(const UffFile& file, Precision precision) {
 
 void write_uff(const UffFile& file, const std::string& path, Precision precision) {
   std::ofstream out(path, std::ios::binary);
-  if (!out) throw std::runtime_error("cannot write " + path);
+  if (!out) throw InputError("cannot write " + path);
   out << format_uff(file, precision);
-  if (!out) throw std::runtime_error("error writing " + path);
+  if (!out) throw InputError("error writing " + path);
 }
 
 }  // namespace ssid::formats::uff

@@ -6,6 +6,8 @@
 #include <set>
 #include <stdexcept>
 
+#include "formats/parse_error.hpp"
+
 namespace ssid::translators {
 
 using formats::Dmig;
@@ -55,12 +57,12 @@ Eigen::SparseMatrix<T> assemble(const Dmig& m, const DofMap& rows, const DofMap&
   for (const DmigEntry& x : e) {
     const auto r = rows.find({x.row.point, x.row.component});
     if (!r)
-      throw std::invalid_argument(where(m, x, deck) + "DMIG " + m.name + ": row DOF " + dof_text(x.row) +
+      throw formats::InputError(where(m, x, deck) + "DMIG " + m.name + ": row DOF " + dof_text(x.row) +
                                   " (grid/point, component) is not in the row DOF map (" +
                                   std::to_string(rows.size()) + " DOFs)");
     const auto c = cols.find({x.col.point, x.col.component});
     if (!c)
-      throw std::invalid_argument(where(m, x, deck) + "DMIG " + m.name + ": column DOF " + dof_text(x.col) +
+      throw formats::InputError(where(m, x, deck) + "DMIG " + m.name + ": column DOF " + dof_text(x.col) +
                                   " is not in the column DOF map (" + std::to_string(cols.size()) + " DOFs)");
     t.emplace_back(static_cast<int>(*r), static_cast<int>(*c), convert(x));
   }
@@ -74,7 +76,7 @@ Eigen::SparseMatrix<T> assemble(const Dmig& m, const DofMap& rows, const DofMap&
 SparseReal assemble_dmig_real(const Dmig& m, const DofMap& rows, const DofMap& cols, const formats::Deck* deck) {
   return assemble<double>(m, rows, cols, deck, [&](const DmigEntry& x) {
     if (x.value.imag() != 0.0)
-      throw std::invalid_argument(where(m, x, deck) + "DMIG " + m.name + " is complex (term at row " +
+      throw formats::InputError(where(m, x, deck) + "DMIG " + m.name + " is complex (term at row " +
                                   dof_text(x.row) + " column " + dof_text(x.col) +
                                   " has an imaginary part); assemble it as complex");
     return x.value.real();
@@ -100,20 +102,20 @@ template <class T>
 Dmig from_matrix(const Eigen::SparseMatrix<T>& a0, const DofMap& rows, const DofMap& cols, const DmigFromMatrix& o,
                  bool is_complex) {
   if (o.name.empty() || o.name.size() > 8)
-    throw std::invalid_argument("DMIG name must have 1 to 8 characters, got \"" + o.name + "\"");
+    throw formats::InputError("DMIG name must have 1 to 8 characters, got \"" + o.name + "\"");
   const bool by_number = o.ifo == formats::dmig_form::RectangularByColumnNumber;
   if (o.ifo != 1 && o.ifo != 2 && o.ifo != 6 && !by_number)
-    throw std::invalid_argument("DMIG " + o.name + ": IFO must be 1, 2, 6 or 9, got " + std::to_string(o.ifo));
+    throw formats::InputError("DMIG " + o.name + ": IFO must be 1, 2, 6 or 9, got " + std::to_string(o.ifo));
   if (static_cast<std::size_t>(a0.rows()) != rows.size() ||
       (!by_number && static_cast<std::size_t>(a0.cols()) != cols.size()))
-    throw std::invalid_argument("DMIG " + o.name + ": matrix is " + std::to_string(a0.rows()) + " x " +
+    throw formats::InputError("DMIG " + o.name + ": matrix is " + std::to_string(a0.rows()) + " x " +
                                 std::to_string(a0.cols()) + " but the DOF maps have " + std::to_string(rows.size()) +
                                 " rows and " + std::to_string(cols.size()) + " columns");
   Eigen::SparseMatrix<T> a = a0;
   a.makeCompressed();
   if (o.ifo == 1 || o.ifo == 6) {
     if (rows.dofs().size() != cols.dofs().size() || !std::equal(rows.dofs().begin(), rows.dofs().end(), cols.dofs().begin()))
-      throw std::invalid_argument("DMIG " + o.name + ": IFO " + std::to_string(o.ifo) +
+      throw formats::InputError("DMIG " + o.name + ": IFO " + std::to_string(o.ifo) +
                                   " needs the same DOF map for rows and columns");
   }
   if (o.ifo == 6) {
@@ -121,15 +123,15 @@ Dmig from_matrix(const Eigen::SparseMatrix<T>& a0, const DofMap& rows, const Dof
     Eigen::SparseMatrix<T> d = a - at;
     d.prune(T(0));
     if (d.nonZeros() != 0)
-      throw std::invalid_argument("DMIG " + o.name + ": IFO 6 (symmetric) but the matrix is not exactly symmetric");
+      throw formats::InputError("DMIG " + o.name + ": IFO 6 (symmetric) but the matrix is not exactly symmetric");
   }
   Dmig m;
   m.name = o.name;
   m.ifo = o.ifo;
   m.tin = o.tin ? o.tin : (is_complex ? 4 : 2);
-  if (m.tin < 1 || m.tin > 4) throw std::invalid_argument("DMIG " + o.name + ": TIN must be 1-4");
+  if (m.tin < 1 || m.tin > 4) throw formats::InputError("DMIG " + o.name + ": TIN must be 1-4");
   if (is_complex && (m.tin == 1 || m.tin == 2))  // a real matrix may be written as complex (B = 0)
-    throw std::invalid_argument("DMIG " + o.name + ": a complex matrix needs TIN 3 or 4");
+    throw formats::InputError("DMIG " + o.name + ": a complex matrix needs TIN 3 or 4");
   m.tout = o.tout;
   if (by_number) m.ncol = a.cols();
   for (Eigen::Index j = 0; j < a.outerSize(); ++j) {

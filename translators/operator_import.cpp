@@ -8,6 +8,7 @@
 #include <stdexcept>
 
 #include "formats/dmig.hpp"
+#include "formats/parse_error.hpp"
 #include "translators/dmig_assembly.hpp"
 
 namespace ssid::translators {
@@ -22,7 +23,7 @@ struct Reader {
   std::string spec;
   fs::path base;
   [[noreturn]] void fail(const std::string& where, const std::string& what) const {
-    throw std::runtime_error(spec + ": " + where + ": " + what);
+    throw formats::InputError(spec + ": " + where + ": " + what);
   }
   /// The DOF map of DMIG sources: the nominal K's DMIG DOFs, in increasing
   /// (point, component) order; every later DMIG is assembled on it.
@@ -41,7 +42,7 @@ struct Reader {
     if (it == dmig_files.end()) {
       try {
         it = dmig_files.emplace(path, formats::read_dmig_file(path)).first;
-      } catch (const std::exception& e) {
+      } catch (const formats::InputError& e) {  // the file's own error, placed in the spec
         fail(where, e.what());
       }
     }
@@ -53,7 +54,7 @@ struct Reader {
     try {
       if (!dmig_map) dmig_map = dmig_dofs(*pick).rows;
       return assemble_dmig_real(*pick, *dmig_map, *dmig_map);
-    } catch (const std::exception& e) {
+    } catch (const formats::InputError& e) {  // the file's own error, placed in the spec
       fail(where, path + ": DMIG " + name + ": " + e.what() +
                       (dmig_map ? " (DMIG sources share the DOFs of the nominal K)" : ""));
     }
@@ -73,7 +74,7 @@ struct Reader {
     std::vector<formats::Op4Matrix> mats;
     try {
       mats = formats::read_op4(path);
-    } catch (const std::exception& e) {
+    } catch (const formats::InputError& e) {  // the file's own error, placed in the spec
       fail(where, e.what());
     }
     const formats::Op4Matrix* pick = nullptr;
@@ -99,12 +100,12 @@ struct Reader {
 
 OperatorSet import_operators(const std::string& spec_path) {
   std::ifstream in(spec_path);
-  if (!in) throw std::runtime_error(spec_path + ": cannot open the import spec");
+  if (!in) throw formats::InputError(spec_path + ": cannot open the import spec");
   json spec;
   try {
     spec = json::parse(in);
   } catch (const json::exception& e) {
-    throw std::runtime_error(spec_path + ": not valid JSON: " + e.what());
+    throw formats::InputError(spec_path + ": not valid JSON: " + e.what());
   }
   Reader r;
   r.spec = spec_path;

@@ -5,6 +5,7 @@
 #include <nlohmann/json.hpp>
 #include <stdexcept>
 
+#include "formats/parse_error.hpp"
 #include "translators/assembly/fe_model.hpp"
 
 namespace ssid::translators {
@@ -75,7 +76,7 @@ void write_operator_set(const OperatorSet& s, const std::string& dir, const form
                                 " parameters");
   std::error_code ec;
   fs::create_directories(dir, ec);
-  if (ec) throw std::runtime_error(dir + ": cannot create the folder: " + ec.message());
+  if (ec) throw formats::InputError(dir + ": cannot create the folder: " + ec.message());
 
   json files, names;
   auto put = [&](const Eigen::SparseMatrix<double>& A, const std::string& file, const std::string& name) {
@@ -137,27 +138,27 @@ void write_operator_set(const OperatorSet& s, const std::string& dir, const form
   const std::string mp = (fs::path(dir) / "manifest.json").string();
   std::ofstream out(mp);
   out << m.dump(1) << "\n";
-  if (!out) throw std::runtime_error(mp + ": cannot write");
+  if (!out) throw formats::InputError(mp + ": cannot write");
 }
 
 OperatorSet read_operator_set(const std::string& manifest_path) {
   std::ifstream in(manifest_path);
-  if (!in) throw std::runtime_error(manifest_path + ": cannot open the manifest");
+  if (!in) throw formats::InputError(manifest_path + ": cannot open the manifest");
   json m;
   try {
     m = json::parse(in);
   } catch (const json::exception& e) {
-    throw std::runtime_error(manifest_path + ": not valid JSON: " + e.what());
+    throw formats::InputError(manifest_path + ": not valid JSON: " + e.what());
   }
   const fs::path base = fs::path(manifest_path).parent_path();
   auto need = [&](const json& j, const char* key) -> const json& {
-    if (!j.is_object() || !j.contains(key)) throw std::runtime_error(manifest_path + ": missing \"" + key + "\"");
+    if (!j.is_object() || !j.contains(key)) throw formats::InputError(manifest_path + ": missing \"" + key + "\"");
     return j.at(key);
   };
   OperatorSet s;
   try {
     if (need(m, "format").get<std::string>() != "ssid-operators")
-      throw std::runtime_error(manifest_path + ": \"format\" is not \"ssid-operators\"");
+      throw formats::InputError(manifest_path + ": \"format\" is not \"ssid-operators\"");
     s.source = m.value("source", "");
     s.set = m.value("set", "a");
     for (const auto& d : need(m, "dofs")) s.dofs.push_back({d.at(0).get<std::int64_t>(), d.at(1).get<int>()});
@@ -186,16 +187,16 @@ OperatorSet read_operator_set(const std::string& manifest_path) {
     }
     if (m.contains("notes")) s.notes = m["notes"].get<std::vector<std::string>>();
   } catch (const json::exception& e) {
-    throw std::runtime_error(manifest_path + ": unexpected content: " + e.what());
+    throw formats::InputError(manifest_path + ": unexpected content: " + e.what());
   }
   const std::size_t n = s.dofs.size();
   auto load = [&](const std::string& file) {
     const std::string p = (base / file).string();
     auto mats = formats::read_op4(p);
     if (mats.size() != 1 || mats[0].is_complex())
-      throw std::runtime_error(p + ": expected one real matrix, found " + std::to_string(mats.size()));
+      throw formats::InputError(p + ": expected one real matrix, found " + std::to_string(mats.size()));
     if (mats[0].rows != static_cast<Eigen::Index>(n) || mats[0].cols != static_cast<Eigen::Index>(n))
-      throw std::runtime_error(p + ": matrix " + mats[0].name + " is " + std::to_string(mats[0].rows) + " x " +
+      throw formats::InputError(p + ": matrix " + mats[0].name + " is " + std::to_string(mats[0].rows) + " x " +
                                std::to_string(mats[0].cols) + ", the manifest lists " + std::to_string(n) + " DOFs");
     return mats[0].real;
   };
@@ -204,7 +205,7 @@ OperatorSet read_operator_set(const std::string& manifest_path) {
   s.M = load(need(files, "M").get<std::string>());
   if (files.contains("dK") && !files["dK"].empty()) {
     if (files["dK"].size() != s.parameters.size() || files.value("dM", json::array()).size() != s.parameters.size())
-      throw std::runtime_error(manifest_path + ": \"files\" lists " + std::to_string(files["dK"].size()) + " dK and " +
+      throw formats::InputError(manifest_path + ": \"files\" lists " + std::to_string(files["dK"].size()) + " dK and " +
                                std::to_string(files.value("dM", json::array()).size()) + " dM for " +
                                std::to_string(s.parameters.size()) + " parameters");
     for (std::size_t j = 0; j < s.parameters.size(); ++j) {

@@ -6,6 +6,8 @@
 #include <unordered_map>
 #include <unordered_set>
 
+#include "formats/parse_error.hpp"
+
 namespace ssid::translators {
 
 double NormalDeviates::operator()() {
@@ -46,7 +48,7 @@ SyntheticTest synthetic_test(const FeModeData& fe, const DofMap& gset, const std
     throw std::invalid_argument("synthetic_test: " + std::to_string(fe.generalized_mass.size()) +
                                 " generalized masses for " + std::to_string(nm) + " modes");
   if (!(options.noise_freq_pct >= 0) || !(options.noise_shape_pct >= 0))
-    throw std::invalid_argument("synthetic_test: noise percentages must be zero or positive");
+    throw formats::InputError("synthetic_test: noise percentages must be zero or positive");
 
   std::unordered_map<std::int64_t, std::size_t> by_id;
   for (std::size_t i = 0; i < grids.size(); ++i) by_id.emplace(grids[i].id, i);
@@ -63,7 +65,7 @@ SyntheticTest synthetic_test(const FeModeData& fe, const DofMap& gset, const std
   std::vector<std::vector<std::pair<std::size_t, double>>> rows;
   for (auto id : sensors) {
     auto it = by_id.find(id);
-    if (it == by_id.end()) throw std::invalid_argument("sensor grid " + std::to_string(id) + " is not a grid of the model");
+    if (it == by_id.end()) throw formats::InputError("sensor grid " + std::to_string(id) + " is not a grid of the model");
     if (!seen.insert(id).second) continue;
     const GridPosition& g = grids[it->second];
     formats::uff::Node n;
@@ -78,7 +80,7 @@ SyntheticTest synthetic_test(const FeModeData& fe, const DofMap& gset, const std
         if (r == 0.0) continue;
         auto dof = gset.find({id, base + c + 1});
         if (!dof)
-          throw std::invalid_argument("sensor grid " + std::to_string(id) + " component " + std::to_string(base + c + 1) +
+          throw formats::InputError("sensor grid " + std::to_string(id) + " component " + std::to_string(base + c + 1) +
                                       " is not in the g-set");
         terms.emplace_back(*dof, r);
       }
@@ -154,11 +156,11 @@ std::vector<std::int64_t> parse_sensor_list(const std::string& text, const std::
       used = 0;
     }
     if (used != t.size() || t.empty())
-      throw std::invalid_argument(source + ": expected a grid id, \"A:B\" or \"A THRU B\", got \"" + t + "\"");
+      throw formats::InputError(source + ": expected a grid id, \"A:B\" or \"A THRU B\", got \"" + t + "\"");
     return static_cast<std::int64_t>(v);
   };
   auto range = [&](std::int64_t a, std::int64_t b, std::vector<std::int64_t>& out) {
-    if (b < a) throw std::invalid_argument(source + ": range " + std::to_string(a) + " to " + std::to_string(b) + " is empty");
+    if (b < a) throw formats::InputError(source + ": range " + std::to_string(a) + " to " + std::to_string(b) + " is empty");
     for (const auto& g : grids)
       if (g.id >= a && g.id <= b) out.push_back(g.id);
   };

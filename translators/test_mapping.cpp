@@ -9,6 +9,8 @@
 
 #include "formats/parse_error.hpp"
 
+#include "formats/parse_error.hpp"
+
 namespace ssid::translators {
 
 std::optional<std::int64_t> NodeMapping::grid_of(std::int64_t test_node) const {
@@ -28,7 +30,7 @@ std::string fmt_distance(double d) {
 NodeMapping map_test_nodes(const std::vector<TestNode>& nodes, const std::vector<GridPosition>& grids,
                            const NodeMapOptions& o) {
   if (o.by != MapBy::Id && !(o.tolerance > 0))
-    throw std::invalid_argument("mapping test nodes by position needs a tolerance > 0 (model length units)");
+    throw formats::InputError("mapping test nodes by position needs a tolerance > 0 (model length units)");
   std::unordered_map<std::int64_t, std::size_t> by_id;
   for (std::size_t g = 0; g < grids.size(); ++g) by_id.emplace(grids[g].id, g);
 
@@ -123,7 +125,7 @@ Observation observe(const std::vector<MeasuredDof>& measured, const NodeMapping&
   Observation obs;
   for (const auto& md : measured) {
     if (md.direction == 0 || md.direction < -6 || md.direction > 6)
-      throw std::invalid_argument("test node " + std::to_string(md.node) + ": direction " +
+      throw formats::InputError("test node " + std::to_string(md.node) + ": direction " +
                                   std::to_string(md.direction) + " is not one of ±1..±6");
     auto it = grid_of.find(md.node);
     if (it == grid_of.end() || !by_id.count(it->second)) {

@@ -7,6 +7,7 @@
 
 #include "estimator/eigen_solver.hpp"
 #include "formats/bulk_model.hpp"
+#include "formats/parse_error.hpp"
 #include "translators/test_mapping.hpp"
 
 namespace ssid::estimator::diagnosis {
@@ -48,7 +49,7 @@ DeckProblem make_deck_problem(const std::string& deck_text, const std::string& n
   for (const auto& p : mapping.problems) pb.problems.push_back(p);
   translators::require_mapped(measured.dofs, mapping, "", "the deck " + name);
   const translators::Observation obs = translators::observe(measured.dofs, mapping, grids);
-  if (obs.rows.empty()) throw std::runtime_error(name + ": no measured DOF lies on a grid of the model");
+  if (obs.rows.empty()) throw formats::InputError(name + ": no measured DOF lies on a grid of the model");
   for (const auto& row : obs.rows) pb.dofs.push_back(row.measured);
   const SparseMatrix Cg = translators::observation_matrix(obs, fe.geometry().gset());
   pb.sensors = (Cg * fe.reduction().T).pruned();
@@ -58,7 +59,7 @@ DeckProblem make_deck_problem(const std::string& deck_text, const std::string& n
   // Prior from the DESVARs.
   const auto& params = fe.parameters();
   const auto p = static_cast<Eigen::Index>(params.size());
-  if (p == 0) throw std::runtime_error(name + ": the deck has no DESVAR (nothing to estimate)");
+  if (p == 0) throw formats::InputError(name + ": the deck has no DESVAR (nothing to estimate)");
   pb.prior.mean.resize(p);
   pb.prior.cov = Eigen::MatrixXd::Zero(p, p);
   pb.prior.lower.resize(p);
@@ -73,7 +74,7 @@ DeckProblem make_deck_problem(const std::string& deck_text, const std::string& n
       sd = it->second.std;
       start = std::isnan(it->second.start) ? mean : it->second.start;
     }
-    if (!(sd > 0)) throw std::runtime_error(name + ": DESVAR " + d.label + " needs a positive prior standard deviation");
+    if (!(sd > 0)) throw formats::InputError(name + ": DESVAR " + d.label + " needs a positive prior standard deviation");
     pb.prior.mean(j) = mean;
     pb.prior.cov(j, j) = sd * sd;
     pb.prior.lower(j) = d.lower <= -1e20 ? -INFINITY : d.lower;
@@ -107,7 +108,7 @@ DeckProblem make_deck_problem(const std::string& deck_text, const std::string& n
       solver->options().nd = max_modes;
       r = solver->solve(K, M);
     }
-    if (!r.ok()) throw std::runtime_error(name + ": eigen-solve failed: " + r.message);
+    if (!r.ok()) throw_solve_failure(r, name + ": eigen-solve failed: " + r.message);
     return std::make_pair(r.eigenvalues, r.modes);
   };
   pb.model = std::make_unique<OperatorModel>(

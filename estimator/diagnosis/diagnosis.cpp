@@ -8,6 +8,7 @@
 
 #include "estimator/sensitivity.hpp"
 #include "formats/deck_writer.hpp"
+#include "formats/parse_error.hpp"
 
 namespace ssid::estimator::diagnosis {
 
@@ -89,7 +90,7 @@ class Engine {
       const auto& s = configs.front().measured;
       const std::size_t n = s.frequency_hz.size();
       if (static_cast<std::size_t>(options.hold_back) + 2 > n)
-        throw std::invalid_argument("diagnose: cannot hold back " + std::to_string(options.hold_back) + " of " +
+        throw formats::InputError("diagnose: cannot hold back " + std::to_string(options.hold_back) + " of " +
                                     std::to_string(n) + " test modes");
       std::vector<std::size_t> order(n);
       for (std::size_t i = 0; i < n; ++i) order[i] = i;
@@ -124,14 +125,20 @@ class Engine {
     std::vector<DeckProblem*> ptrs;
     for (auto& pb : pbs) ptrs.push_back(&pb);
     UpdateResult res = estimate(ptrs, m_opt.problem);
+    // A numerical failure after the first cycle fails the hypothesis, as one in
+    // the first; an interruption leaves it as far as it got (interrupted()).
+    if (!res.stopped.empty() && !res.interrupted) throw formats::NumericalError(res.stopped);
+    m_interrupted = res.interrupted;
     // Pairs are made in the first cycle; a mode the new parameters moved next
     // to its test partner only pairs when the estimate is restarted from there.
-    for (int again = 0; again < 2; ++again) {
+    for (int again = 0; again < 2 && !m_interrupted; ++again) {
       std::size_t more = 0;
       for (auto& pb : pbs) more += pair_for_update(pb.test, pb.model->solve(res.r), m_opt.problem.update).size();
       if (more <= res.history.back().pairs.size()) break;
       for (auto& pb : pbs) pb.start = res.r;
       UpdateResult next = estimate(ptrs, m_opt.problem);
+      if (!next.stopped.empty() && !next.interrupted) throw formats::NumericalError(next.stopped);
+      m_interrupted = next.interrupted;
       next.history.front() = res.history.front();  // "before" stays the model at its start
       res = std::move(next);
     }
@@ -181,6 +188,10 @@ class Engine {
   void warm_start(const std::vector<std::string>& names, const Eigen::VectorXd& r) {
     for (std::size_t j = 0; j < names.size(); ++j) m_warm[names[j]] = r(static_cast<Eigen::Index>(j));
   }
+  /// Where the estimates of the next hypotheses report their cycles.
+  void set_update_progress(Progress p) { m_opt.problem.update_progress = std::move(p); }
+  /// The last evaluate()'s estimate was interrupted (its hypothesis is as far as it got).
+  bool interrupted() const { return m_interrupted; }
   const UpdateResult& last() const { return m_last; }
   const Setup& setup() const { return m_setup; }
   const DiagnosisOptions& options() const { return m_opt; }
@@ -190,6 +201,7 @@ class Engine {
   Setup m_setup;
   UpdateResult m_last;
   std::map<std::string, double> m_warm;
+  bool m_interrupted = false;
 };
 
 /// First-order screening data at the updated parameters (first configuration).
@@ -330,18 +342,56 @@ Diagnosis diagnose(const std::vector<ConfigurationInput>& configurations, const 
   Engine engine(configurations, options);
   const auto& est = engine.setup().est;
   Diagnosis dg;
-  auto progress = [&](const std::string& msg, double f) { report(options.progress, msg, f); };
+  // An estimate's cycles, reported as items of `phase` (also to the caller's own
+  // update_progress, which sees every solve of every estimate).
+  auto forward_cycles = [&](const std::string& phase, long done, long total, const std::string& item, double f0,
+                            double f1) {
+    return [&options, phase, done, total, item, f0, f1](const ProgressEvent& e) {
+      if (options.problem.update_progress) options.problem.update_progress(e);
+      if (!options.progress) return;
+      ProgressEvent out = e;
+      out.fraction = e.fraction >= 0 ? f0 + (f1 - f0) * e.fraction : -1.0;
+      if (total >= 0) {  // a count of hypotheses: the cycle is a detail of the one at hand
+        out.phase = phase;
+        out.done = done;
+        out.total = total;
+        out.total_is_bound = false;
+        out.detail = item + ", cycle " + std::to_string(e.done) + (e.detail.empty() ? "" : ": " + e.detail);
+      } else {
+        out.phase = phase;
+      }
+      options.progress(out);
+    };
+  };
 
   // 1. The ordinary update and the evidence.
-  progress("ordinary update of the deck's parameters", 0.0);
+  report(options.progress, "ordinary update of the deck's parameters", 0.0);
+  engine.set_update_progress(forward_cycles("ordinary update: cycle", -1, -1, "", 0.0, 0.1));
   std::vector<std::string> base_texts;
   for (const auto& c : est) base_texts.push_back(c.deck_text);
   std::vector<DeckProblem> base;
   Hypothesis param = engine.evaluate("parameter", base_texts, {}, &base);
+  if (engine.interrupted()) {
+    dg.interrupted = true;
+    dg.partial_reason = engine.last().stopped + " during the ordinary update (after " +
+                        std::to_string(engine.last().history.size()) + " cycle(s)): no extension tested";
+  }
+  // Between the phases that stop with what they have: a report that is answered
+  // by Interrupted stops the diagnosis after this phase, with the update done.
+  auto between_phases = [&](const std::string& phase, double fraction) {
+    try {
+      report(options.progress, phase, fraction);
+    } catch (const Interrupted& ex) {
+      if (dg.interrupted) return;
+      dg.interrupted = true;
+      dg.partial_reason = std::string(ex.what()) + " after the ordinary update: no extension tested";
+    }
+  };
   const UpdateResult base_res = engine.last();
   engine.warm_start(param.names, base_res.r);
   param.description = "the deck's own parameters re-estimated";
   param.location.text = "deck parameters";
+  between_phases("evidence: what the updated model gets wrong", 0.1);
   dg.evidence = gather_evidence(base.front(), base_res.r, [&] {
     std::vector<UpdatePair> v;
     for (const auto& p : base_res.history.back().pairs)
@@ -350,6 +400,7 @@ Diagnosis diagnose(const std::vector<ConfigurationInput>& configurations, const 
   }());
 
   // The nominal model (no estimate): likelihood at the prior mean, pairs of cycle 0.
+  between_phases("the deck as given: its likelihood", 0.1);
   {
     Hypothesis& h = dg.nominal;
     h.kind = "none";
@@ -373,97 +424,133 @@ Diagnosis diagnose(const std::vector<ConfigurationInput>& configurations, const 
     h.score = ll + h.miss_penalty;
     h.deck_text = base_texts.front();
   }
-
-  // 2. Candidates and screening.
-  ext::ExtensionOptions eo = options.extension;
-  eo.unexplained_hz.clear();
-  for (const auto& u : dg.evidence.unpaired_test) eo.unexplained_hz.push_back(u.frequency_hz);
-  const auto& measured_hz = est.front().measured.frequency_hz;
-  eo.lowest_test_hz = *std::min_element(measured_hz.begin(), measured_hz.end());
-  eo.highest_test_hz = *std::max_element(measured_hz.begin(), measured_hz.end());
-  if (!(eo.total_mass > 0)) eo.total_mass = ext::total_mass(*base.front().fe);
-  const translators::FeModel& nominal = *base.front().fe;
-  progress("screening candidates", 0.1);
-  const Screen sc = prepare_screen(base.front(), base_res.r, base_res.history.back().pairs, options.problem);
-  const ModalSolution sol_star = base.front().model->solve(base_res.r);
-  eo.unexplained_neighbours = neighbours_of_unexplained(base.front(), sol_star, dg.evidence);
-  const auto kinds = ext::standard_extensions(eo);
-  std::map<std::int64_t, double> grid_weight;
-  for (const auto& g : dg.evidence.grid_misfit) grid_weight[g.grid] += g.share;
-  for (const auto& u : dg.evidence.unpaired_test)
-    for (const auto& g : u.moves) grid_weight[g.grid] += g.share;
-  const auto a_size = nominal.reduction().a_to_g.size();
-
-  struct Shortlisted { const ext::ModelExtension* kind; ext::Candidate cand; double screening; double look; };
-  std::vector<Shortlisted> shortlist;
-  for (const auto& kind : kinds) {
-    if (!options.kinds.empty() && std::find(options.kinds.begin(), options.kinds.end(), kind->kind()) == options.kinds.end())
-      continue;
-    std::vector<ext::Candidate> cands;
-    try {
-      cands = kind->candidates(nominal);
-    } catch (const std::exception& ex) {
-      dg.notes.push_back(kind->kind() + ": no candidates (" + ex.what() + ")");
-      continue;
-    }
-    if (cands.empty()) continue;
-    std::set<std::string> places;
-    for (const auto& c : cands) places.insert(c.location.text);
-    dg.searched[kind->kind()] = static_cast<int>(places.size());
-    const double look = std::log(static_cast<double>(places.size()));
-    std::vector<std::pair<double, std::size_t>> scored;
-    bool screened = false;
-    for (std::size_t i = 0; i < cands.size(); ++i) {
-      auto deriv = kind->screening(nominal, cands[i]);
-      if (deriv) {
-        screened = true;
-        const double sd = deriv->prior_std.at(0);
-        scored.push_back({screen_score(sc, *base.front().model, sol_star.eigenvalues, base.front().sensors, deriv->dK[0],
-                                       deriv->dM[0], sd),
-                          i});
-      } else if (!std::isnan(cands[i].priority)) {
-        scored.push_back({cands[i].priority, i});
-      } else {
-        double w = 0;
-        for (auto g : cands[i].location.grids)
-          if (auto it = grid_weight.find(g); it != grid_weight.end()) w += it->second;
-        scored.push_back({w, i});
-      }
-    }
-    std::stable_sort(scored.begin(), scored.end(), [](const auto& a, const auto& b) { return a.first > b.first; });
-    std::size_t n = static_cast<std::size_t>(options.shortlist);
-    if (!screened && cands.size() <= static_cast<std::size_t>(options.exhaustive_limit) && a_size < 3000) n = cands.size();
-    else if (!screened) n = static_cast<std::size_t>(2 * options.shortlist);
-    // Kinds with several candidates per place (start values): keep all starts of the chosen places.
-    for (std::size_t k = 0; k < std::min(n, scored.size()); ++k)
-      shortlist.push_back({kind.get(), cands[scored[k].second], screened ? scored[k].first : 0.0, look});
-  }
-
-  // 3. Exact re-estimation of the shortlist.
   dg.ranking.push_back(param);
-  for (std::size_t k = 0; k < shortlist.size(); ++k) {
-    const auto& s = shortlist[k];
-    progress("testing " + s.kind->kind() + " at " + s.cand.location.text,
-             0.15 + 0.8 * static_cast<double>(k) / static_cast<double>(shortlist.size()));
-    try {
-      std::vector<std::string> texts;
-      std::vector<ext::NewParameter> added;
-      std::string description;
-      for (const auto& c : est) {
-        ext::ExtendedDeck xd = s.kind->apply(c.deck_text, c.name, nominal, s.cand);
-        texts.push_back(xd.text);
-        added = xd.parameters;
-        description = xd.description;
+
+  // Phases 2 and 3 stop at an interruption; the decision is then made among the
+  // hypotheses tested so far. `stage` says where, for the partial reason.
+  std::string stage;
+  try {
+    if (dg.interrupted) throw Interrupted(dg.partial_reason);
+    // 2. Candidates and screening.
+    stage = "while listing the candidates";
+    ext::ExtensionOptions eo = options.extension;
+    eo.unexplained_hz.clear();
+    for (const auto& u : dg.evidence.unpaired_test) eo.unexplained_hz.push_back(u.frequency_hz);
+    const auto& measured_hz = est.front().measured.frequency_hz;
+    eo.lowest_test_hz = *std::min_element(measured_hz.begin(), measured_hz.end());
+    eo.highest_test_hz = *std::max_element(measured_hz.begin(), measured_hz.end());
+    if (!(eo.total_mass > 0)) eo.total_mass = ext::total_mass(*base.front().fe);
+    const translators::FeModel& nominal = *base.front().fe;
+    report(options.progress, "screening: sensitivities of the " + std::to_string(base_res.history.back().pairs.size()) +
+                                 " paired modes at the updated parameters",
+           0.1);
+    const Screen sc = prepare_screen(base.front(), base_res.r, base_res.history.back().pairs, options.problem);
+    const ModalSolution sol_star = base.front().model->solve(base_res.r);
+    eo.unexplained_neighbours = neighbours_of_unexplained(base.front(), sol_star, dg.evidence);
+    std::vector<std::unique_ptr<ext::ModelExtension>> kinds;
+    for (auto& kind : ext::standard_extensions(eo))
+      if (options.kinds.empty() || std::find(options.kinds.begin(), options.kinds.end(), kind->kind()) != options.kinds.end())
+        kinds.push_back(std::move(kind));
+    std::map<std::int64_t, double> grid_weight;
+    for (const auto& g : dg.evidence.grid_misfit) grid_weight[g.grid] += g.share;
+    for (const auto& u : dg.evidence.unpaired_test)
+      for (const auto& g : u.moves) grid_weight[g.grid] += g.share;
+    const auto a_size = nominal.reduction().a_to_g.size();
+
+    // Every kind's candidates first, so that the screening is counted over all of them.
+    std::vector<std::vector<ext::Candidate>> cands(kinds.size());
+    for (std::size_t q = 0; q < kinds.size(); ++q) {
+      report(options.progress, "listing candidates", static_cast<long>(q), static_cast<long>(kinds.size()),
+             kinds[q]->kind(), 0.1);
+      try {
+        cands[q] = kinds[q]->candidates(nominal);
+      } catch (const formats::InputError& ex) {  // a deck this kind cannot extend (e.g. cards in an INCLUDE)
+        dg.notes.push_back(kinds[q]->kind() + ": no candidates (" + ex.what() + ")");
       }
-      Hypothesis h = engine.evaluate(s.kind->kind(), texts, added);
-      h.location = s.cand.location;
-      h.description = description;
-      h.screening = s.screening;
-      h.look_elsewhere = s.look;
-      h.score -= h.look_elsewhere;
-      dg.ranking.push_back(std::move(h));
-    } catch (const std::exception& ex) {
-      dg.notes.push_back(s.kind->kind() + " at " + s.cand.location.text + ": not tested (" + ex.what() + ")");
+    }
+    long total = 0, screened_so_far = 0;
+    for (std::size_t q = 0; q < kinds.size(); ++q) total += static_cast<long>(cands[q].size());
+    stage = "while screening the candidates";
+
+    struct Shortlisted { const ext::ModelExtension* kind; ext::Candidate cand; double screening; double look; };
+    std::vector<Shortlisted> shortlist;
+    for (std::size_t q = 0; q < kinds.size(); ++q) {
+      const auto& kind = kinds[q];
+      if (cands[q].empty()) continue;
+      std::set<std::string> places;
+      for (const auto& c : cands[q]) places.insert(c.location.text);
+      dg.searched[kind->kind()] = static_cast<int>(places.size());
+      const double look = std::log(static_cast<double>(places.size()));
+      std::vector<std::pair<double, std::size_t>> scored;
+      bool screened = false;
+      for (std::size_t i = 0; i < cands[q].size(); ++i, ++screened_so_far) {
+        report(options.progress, "screening candidates", screened_so_far, total, kind->kind(),
+               0.1 + 0.05 * static_cast<double>(screened_so_far) / static_cast<double>(total));
+        auto deriv = kind->screening(nominal, cands[q][i]);
+        if (deriv) {
+          screened = true;
+          const double sd = deriv->prior_std.at(0);
+          scored.push_back({screen_score(sc, *base.front().model, sol_star.eigenvalues, base.front().sensors, deriv->dK[0],
+                                         deriv->dM[0], sd),
+                            i});
+        } else if (!std::isnan(cands[q][i].priority)) {
+          scored.push_back({cands[q][i].priority, i});
+        } else {
+          double w = 0;
+          for (auto g : cands[q][i].location.grids)
+            if (auto it = grid_weight.find(g); it != grid_weight.end()) w += it->second;
+          scored.push_back({w, i});
+        }
+      }
+      std::stable_sort(scored.begin(), scored.end(), [](const auto& a, const auto& b) { return a.first > b.first; });
+      std::size_t n = static_cast<std::size_t>(options.shortlist);
+      if (!screened && cands[q].size() <= static_cast<std::size_t>(options.exhaustive_limit) && a_size < 3000) n = cands[q].size();
+      else if (!screened) n = static_cast<std::size_t>(2 * options.shortlist);
+      // Kinds with several candidates per place (start values): keep all starts of the chosen places.
+      for (std::size_t k = 0; k < std::min(n, scored.size()); ++k)
+        shortlist.push_back({kind.get(), cands[q][scored[k].second], screened ? scored[k].first : 0.0, look});
+    }
+    report(options.progress, "screening candidates", total, total, "", 0.15);
+
+    // 3. Exact re-estimation of the shortlist.
+    const auto n_short = static_cast<long>(shortlist.size());
+    for (std::size_t k = 0; k < shortlist.size(); ++k) {
+      const auto& s = shortlist[k];
+      const std::string item = s.kind->kind() + " at " + s.cand.location.text;
+      const double f0 = 0.15 + 0.8 * static_cast<double>(k) / static_cast<double>(n_short),
+                   f1 = 0.15 + 0.8 * static_cast<double>(k + 1) / static_cast<double>(n_short);
+      stage = "while testing candidates (" + std::to_string(k) + " of " + std::to_string(n_short) + " tested)";
+      report(options.progress, "testing candidates", static_cast<long>(k), n_short, item, f0);
+      engine.set_update_progress(forward_cycles("testing candidates", static_cast<long>(k), n_short, item, f0, f1));
+      try {
+        std::vector<std::string> texts;
+        std::vector<ext::NewParameter> added;
+        std::string description;
+        for (const auto& c : est) {
+          ext::ExtendedDeck xd = s.kind->apply(c.deck_text, c.name, nominal, s.cand);
+          texts.push_back(xd.text);
+          added = xd.parameters;
+          description = xd.description;
+        }
+        Hypothesis h = engine.evaluate(s.kind->kind(), texts, added);
+        if (engine.interrupted()) throw Interrupted(engine.last().stopped);  // half-estimated: not ranked
+        h.location = s.cand.location;
+        h.description = description;
+        h.screening = s.screening;
+        h.look_elsewhere = s.look;
+        h.score -= h.look_elsewhere;
+        dg.ranking.push_back(std::move(h));
+      } catch (const formats::InputError& ex) {  // the extended deck cannot be built or solved
+        dg.notes.push_back(item + ": not tested (" + ex.what() + ")");
+      } catch (const formats::NumericalError& ex) {  // its estimate failed
+        dg.notes.push_back(item + ": not tested (" + ex.what() + ")");
+      }
+    }
+    if (n_short > 0) report(options.progress, "testing candidates", n_short, n_short, "", 0.95);
+  } catch (const Interrupted& ex) {
+    if (!dg.interrupted) {
+      dg.interrupted = true;
+      dg.partial_reason = std::string(ex.what()) + " " + stage;
     }
   }
   // Same place tried from several starts: keep its best.
@@ -517,7 +604,7 @@ Diagnosis diagnose(const std::vector<ConfigurationInput>& configurations, const 
                  " nats above the ordinary update";
   }
   dg.updated_deck = deck_at(C.deck_text, est.front().name, C.estimate);
-  progress("done", 1.0);
+  if (!dg.interrupted) report(options.progress, "done", 1.0);
   return dg;
 }
 

@@ -53,6 +53,9 @@ struct DiagnosisOptions {
   double decision_margin = 3.0;    ///< nats
   double miss_frequency_pct = 10.0;
   int hold_back = 0;               ///< highest test modes of the first configuration held back for prediction
+  /// Reports of the phases, counted where they are lists (candidates listed per
+  /// kind, screened, re-estimated; the ordinary update's cycles). Throwing
+  /// Interrupted from it stops the diagnosis with what it has (Diagnosis::partial_reason).
   Progress progress;
 };
 
@@ -93,8 +96,20 @@ struct Diagnosis {
   std::vector<std::string> notes;
   /// The chosen deck with DESVARs and designed fields at the estimate.
   std::string updated_deck;
+  /// Empty when every phase ran; otherwise why the diagnosis is partial
+  /// (interrupted: which phase, how far): the ranking then holds the hypotheses
+  /// tested so far, and the cause is chosen among them.
+  std::string partial_reason;
+  bool interrupted = false;
+  bool partial() const { return !partial_reason.empty(); }
 };
 
+/// Runs the phases of the file comment. Bad input (decks, test data) throws
+/// formats::InputError; a failed ordinary update formats::NumericalError; a
+/// candidate that fails either way is left out with a note. Interrupted thrown
+/// by `options.progress` (or by `options.problem.update_progress`) returns the
+/// diagnosis so far, marked partial, once the ordinary update has a cycle;
+/// before that it passes to the caller.
 Diagnosis diagnose(const std::vector<ConfigurationInput>& configurations, const DiagnosisOptions& options);
 
 /// The deck text with every DESVAR at `x` and every field a DVPREL1/DVMREL1

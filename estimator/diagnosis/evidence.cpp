@@ -32,21 +32,6 @@ std::vector<GridShare> shares(const std::vector<translators::MeasuredDof>& dofs,
 
 double hz(double lambda) { return std::sqrt(std::max(lambda, 0.0)) / (2.0 * M_PI); }
 
-std::string fixed(double x, int digits) {
-  std::ostringstream s;
-  s.setf(std::ios::fixed);
-  s.precision(digits);
-  s << x;
-  return s.str();
-}
-
-std::string significant(double x, int digits) {
-  std::ostringstream s;
-  s.precision(digits);
-  s << x;
-  return s.str();
-}
-
 Evidence gather_evidence(DeckProblem& pb, const Eigen::VectorXd& r, const std::vector<UpdatePair>& pairs) {
   const ModalSolution sol = pb.model->solve(r);
   Evidence ev;

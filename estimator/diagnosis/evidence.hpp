@@ -17,6 +17,7 @@
 #include <vector>
 
 #include "estimator/diagnosis/deck_problem.hpp"
+#include "estimator/number_text.hpp"
 
 namespace ssid::estimator::diagnosis {
 
@@ -63,9 +64,5 @@ Evidence gather_evidence(DeckProblem& problem, const Eigen::VectorXd& r, const s
 /// Frequency in Hz of an eigenvalue λ = ω² (0 for λ ≤ 0). Shared by the
 /// evidence and the diagnosis report.
 double hz(double lambda);
-/// `x` with `digits` decimals, for the report lines.
-std::string fixed(double x, int digits);
-/// `x` with `digits` significant digits (estimates of any scale: kg, m⁴).
-std::string significant(double x, int digits);
 
 }  // namespace ssid::estimator::diagnosis

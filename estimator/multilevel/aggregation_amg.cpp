@@ -1,6 +1,7 @@
 #include "estimator/multilevel/aggregation_amg.hpp"
 
 #include "estimator/dense_blas.hpp"
+#include "formats/parse_error.hpp"
 
 #include <Eigen/Cholesky>
 #include <Eigen/QR>
@@ -332,7 +333,7 @@ AggregationAmg::AggregationAmg(const SparseMatrix& A, const std::vector<long>& g
   m_times.coarse_factor = since(t);
   m_times.coarse_analysis = m_coarse.last_analyze_seconds();
   if (!fs.ok() && fs.code != FactorStatus::Code::NearSingular)
-    throw std::runtime_error("AggregationAmg: the coarse matrix (" + std::to_string(nc) +
+    throw formats::NumericalError("AggregationAmg: the coarse matrix (" + std::to_string(nc) +
                              " DOFs) cannot be factorised: " + fs.message);
   m_double.Prow = &m_Prow;
   if (m_options.single_precision) {

@@ -9,6 +9,9 @@
 #include <string>
 #include <vector>
 
+#include "estimator/number_text.hpp"
+#include "formats/parse_error.hpp"
+
 namespace ssid::estimator::multilevel {
 
 namespace {
@@ -218,7 +221,7 @@ LobpcgResult lobpcg_largest(const SparseMatrix& A, const SparseMatrix& M, const 
     MatrixXd C;
     VectorXd mu;
     if (!rayleigh_ritz(gram_symmetric(X, AX), mass.gram_symmetric(X, MX), b, mu, C))
-      throw std::runtime_error("lobpcg: the first Rayleigh-Ritz step failed");
+      throw formats::NumericalError("lobpcg: the first Rayleigh-Ritz step failed");
     times_dense_into(X, C, 0.0, Ra), X.swap(Ra);
     times_dense_into(AX, C, 0.0, Ra), AX.swap(Ra);
     if (!mass.diagonal) times_dense_into(MX, C, 0.0, Ra), MX.swap(Ra);
@@ -258,9 +261,9 @@ LobpcgResult lobpcg_largest(const SparseMatrix& A, const SparseMatrix& M, const 
         if (!lock) active.push_back(j);
       }
     }
-    report(o.progress,
-           "LOBPCG iteration " + std::to_string(res.iterations) + ": " + std::to_string(wanted_done) + " of " +
-               std::to_string(o.nev) + " converged, largest residual " + std::to_string(rel.head(o.nev).maxCoeff()),
+    report(o.progress, "LOBPCG: modes converged", wanted_done, o.nev,
+           "iteration " + std::to_string(res.iterations) + ", largest residual " +
+               significant(rel.head(o.nev).maxCoeff(), 3),
            static_cast<double>(wanted_done) / o.nev);
     if (wanted_done == o.nev) {
       res.converged = true;

@@ -187,7 +187,7 @@ MultilevelRun multilevel_lowest(const SparseMatrix& K_in, const SparseMatrix& M_
   bo.nev = static_cast<int>(std::min<long>(r + b_it, run.coarse_size - 1));
   bo.tol = 1e-5;  // a start for LOBPCG, not an answer
   bo.keep_mass_basis = true;  // Mc is a consistent (dense-ish) mass matrix; the coarse basis is small
-  bo.progress = [&progress](const std::string& msg, double) { report(progress, "coarse modes: " + msg, 0.1); };
+  bo.progress = [&progress](const ProgressEvent& e) { report(progress, "coarse modes: " + e.text(), 0.1); };
   BlockLanczosResult coarse;
   double solve_seconds = 0.0;
   try {

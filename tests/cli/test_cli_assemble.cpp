@@ -106,7 +106,7 @@ TEST_CASE("ssid assemble: OP4 operators and manifest; derivatives equal central 
   CHECK(s3.parameters[3].value == 900);
   CHECK(rel(s3.K, fe.operators(x3, false).K) == 0.0);
   auto bad = run_ssid("assemble " + kDeck + " -o " + d3.string() + " --set NOPE=1");
-  CHECK(bad.code == 1);
+  CHECK(bad.code == 2);
   CHECK_THAT(bad.err, Catch::Contains("no DESVAR with label or id NOPE"));
 }
 
@@ -172,7 +172,7 @@ TEST_CASE("ssid assemble --import: perturbed exports rebuild the analytic operat
   spec["parameters"][0]["plus"]["K"] = "nominal/missing.op4";
   std::ofstream(dir / "bad.json") << spec.dump(1);
   auto b = run_ssid("assemble --import " + (dir / "bad.json").string() + " -o " + (dir / "bad").string());
-  CHECK(b.code == 1);
+  CHECK(b.code == 2);
   CHECK_THAT(b.err, Catch::Contains("bad.json: parameter 1 (ROUT) plus K"));
 }
 

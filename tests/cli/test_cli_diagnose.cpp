@@ -69,7 +69,7 @@ TEST_CASE("ssid diagnose: hidden mass found, JSON layout, extended deck written"
 
 TEST_CASE("ssid diagnose: bad input is refused with a clear message", "[cli][diagnose][errors]") {
   const auto missing = run_ssid("diagnose /nonexistent/deck.bdf /nonexistent/test.unv");
-  CHECK(missing.code == 1);
+  CHECK(missing.code == 2);
   CHECK(missing.err.find("/nonexistent/deck.bdf") != std::string::npos);
   const auto kind = run_ssid("diagnose a.bdf b.unv --kinds gravity");
   CHECK(kind.code == 2);
@@ -77,11 +77,11 @@ TEST_CASE("ssid diagnose: bad input is refused with a clear message", "[cli][dia
   const fs::path study = fs::temp_directory_path() / ("ssid_diag_study_" + std::to_string(::getpid()) + ".json");
   std::ofstream(study) << R"({"kinds": ["missing_mass"], "shortlist": 2, "frequency_std": 0.3})";
   const auto bad = run_ssid("diagnose a.bdf b.unv --study " + study.string());
-  CHECK(bad.code == 1);
+  CHECK(bad.code == 2);
   CHECK(bad.err.find("unknown key \"frequency_std\"") != std::string::npos);
   std::ofstream(study) << "{\"kinds\": [";
   const auto broken = run_ssid("diagnose a.bdf b.unv --study " + study.string());
-  CHECK(broken.code == 1);
+  CHECK(broken.code == 2);
   CHECK(broken.err.find("not valid JSON") != std::string::npos);
   fs::remove(study);
   const auto help = run_ssid("diagnose --help");

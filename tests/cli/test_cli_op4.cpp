@@ -72,7 +72,7 @@ TEST_CASE("ssid op4 dump: 1-based triplets, one matrix by name or all as a list"
   CHECK(all[1]["precision"] == 3);
   CHECK(all[1]["entries"] == kBhhEntries);
   r = run_ssid("op4 dump " + kOp4 + " --name NOPE --json -");
-  CHECK(r.code == 1);
+  CHECK(r.code == 2);
   CHECK(r.err.find("no matrix named NOPE (the file holds: KAA, BHH)") != std::string::npos);
   r = run_ssid("op4 dump " + kOp4);
   CHECK(r.code == 2);  // --json is required
@@ -108,7 +108,7 @@ TEST_CASE("ssid op4 convert: every encoding/storage/precision choice keeps the v
     CHECK(all[1]["entries"] == kBhhEntries);  // single-precision values of the sample are exact
   }
   auto r = run_ssid("op4 convert " + kOp4 + " " + (d / "x.op4").string() + " --precision 2");
-  CHECK(r.code == 1);
+  CHECK(r.code == 2);
   CHECK(r.err.find("complex") != std::string::npos);
   r = run_ssid("op4 convert " + kOp4 + " " + (d / "x.op4").string() + " --ascii --binary");
   CHECK(r.code == 2);
@@ -195,7 +195,7 @@ TEST_CASE("ssid dmig list and dump: complete matrices on their own DOFs", "[cli]
   CHECK(all[2]["entries"] == json::parse("[[1,2,1.25,0.0]]"));
   CHECK(all[2]["col_dofs"] == json::parse("[[1,0],[2,0],[3,0]]"));
   r = run_ssid("dmig dump " + kDmig + " --name NOPE --json -");
-  CHECK(r.code == 1);
+  CHECK(r.code == 2);
   CHECK(r.err.find("no DMIG named NOPE (the deck holds: KAAX, BAAX, MCOL)") != std::string::npos);
 }
 

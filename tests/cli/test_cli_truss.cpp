@@ -77,7 +77,7 @@ TEST_CASE("ssid truss: bad input gives a clear error and a non-zero exit", "[cli
   CHECK(a.code == 2);
   CHECK_THAT(a.err, Catch::Contains("rod or beam"));
   auto b = run_ssid("truss mpi --config nonsense -o " + (scratch() / "n.bdf").string());
-  CHECK(b.code == 1);
+  CHECK(b.code == 2);
   CHECK_THAT(b.err, Catch::Contains("unknown configuration 'nonsense'"));
   CHECK(b.out.empty());
   auto c = run_ssid("truss mpi");

@@ -264,8 +264,8 @@ TEST_CASE("Pairing reproduces the reconciliation paper's Table 4 (MPI FEM / Test
   std::istringstream lines(table);
   std::string header;
   std::getline(lines, header);
-  CHECK(header.rfind("FEM Frequency/#", 0) == 0);
-  CHECK_THAT(header, Catch::Contains("Test Set 1 Frequency/#") && Catch::Contains("Maximum FEM MAC") &&
+  CHECK(header.rfind("FEM Frequency (Hz)/#", 0) == 0);
+  CHECK_THAT(header, Catch::Contains("Test Set 1 Frequency (Hz)/#") && Catch::Contains("Maximum FEM MAC") &&
                          Catch::Contains("Maximum Test MAC") && Catch::Contains("Frequency Error(%)"));
   const char* expected[] = {
       "7.86/1 7.75/1 0.9984 0.9984 1.42(*)",       "11.68/2 11.65/2 0.9966 0.9966 0.26(*)",

@@ -11,6 +11,7 @@
 
 #include "estimate_test_data.hpp"
 #include "estimator/deck_study.hpp"
+#include "formats/parse_error.hpp"
 #include "formats/problem_file.hpp"
 #include "translators/assembly/deck_update.hpp"
 
@@ -92,7 +93,7 @@ TEST_CASE("study file: defaults, every section, and errors naming the key", "[es
   auto error_of = [](const std::string& text) {
     try {
       parse_study(json::parse(text), "s.json");
-    } catch (const std::invalid_argument& e) {
+    } catch (const ssid::formats::InputError& e) {  // bad input: exit 2 in the CLI
       return std::string(e.what());
     }
     return std::string("no error");

@@ -7,6 +7,7 @@
 
 #include "estimator/modal_model.hpp"
 #include "estimator/updating.hpp"
+#include "formats/parse_error.hpp"
 
 using namespace ssid::estimator;
 
@@ -301,4 +302,90 @@ TEST_CASE("a second configuration makes an unidentifiable parameter identifiable
   const auto second = update(loaded, frequencies_of(3.0), posterior_as_prior(one, prior));
   CHECK(second.r(0) == Approx(both.r(0)).epsilon(1e-2));
   CHECK(second.r(1) == Approx(both.r(1)).epsilon(1e-2));
+}
+
+namespace {
+
+/// A model whose solves fail (a NumericalError, as a non-converged eigen-solve
+/// throws) from the `fail_from`-th on.
+class FailingModel : public ModalModel {
+ public:
+  FailingModel(OperatorModel& inner, int fail_from) : m_inner(inner), m_fail_from(fail_from) {}
+  int parameter_count() const override { return m_inner.parameter_count(); }
+  ModalSolution solve(const Eigen::VectorXd& r) override {
+    if (++m_solves >= m_fail_from) throw ssid::formats::NumericalError("eigen-solve did not converge");
+    return m_inner.solve(r);
+  }
+  ModeSensitivity sensitivity(int i, bool shapes) override { return m_inner.sensitivity(i, shapes); }
+
+ private:
+  OperatorModel& m_inner;
+  int m_fail_from = 0, m_solves = 0;
+};
+
+}  // namespace
+
+TEST_CASE("an interruption returns the last accepted cycle, as the same run stopped there by its limit",
+          "[estimator][updating][progress]") {
+  const Eigen::VectorXd truth = (Eigen::VectorXd(3) << 1.25, 0.8, 1.1).finished();
+  const SparseMatrix S = sensors({0, 1, 2, 3, 5, 7});
+  const auto test = measure(truth, S, 4, 0.1, 1e-3);
+  const ParameterPrior prior = prior_of(Eigen::VectorXd::Ones(3), 0.5);
+  // Reference: two cycles after the start by the iteration limit (not converged).
+  OperatorModel ref_model(chain, dense_solve, S, 8);
+  UpdateOptions two;
+  two.max_iterations = 2;
+  const UpdateResult ref = update(ref_model, test, prior, two);
+  REQUIRE(!ref.converged);
+  REQUIRE(ref.history.size() == 3);
+  REQUIRE(ref.stopped.empty());
+
+  // Interrupted at the report of the third cycle done (it was accepted).
+  OperatorModel model(chain, dense_solve, S, 8);
+  std::vector<std::string> reports;
+  const Progress stop_at_third = [&](const ProgressEvent& e) {
+    CHECK(e.phase == "cycle");
+    CHECK(e.total == 21);
+    CHECK(e.total_is_bound);
+    if (!e.tick) reports.push_back(e.text());
+    if (!e.tick && e.done == 3) throw Interrupted("interrupted (test)");
+  };
+  const UpdateResult res = update(model, test, prior, {}, stop_at_third);
+  CHECK(res.interrupted);
+  CHECK(res.stopped == "interrupted (test)");
+  CHECK(!res.converged);
+  REQUIRE(res.history.size() == 3);
+  CHECK(res.notes.back() == "stopped after 3 cycle(s): interrupted (test)");
+  CHECK(res.r == ref.r);
+  CHECK(res.r == res.history.back().r);
+  CHECK(res.posterior_cov == ref.posterior_cov);
+  CHECK(res.log_evidence == ref.log_evidence);
+  REQUIRE(reports.size() >= 3);
+  CHECK_THAT(reports.front(), Catch::StartsWith("cycle 1/21: J = "));
+
+  // Interrupted before any cycle was accepted: nothing to return, the exception passes.
+  OperatorModel model2(chain, dense_solve, S, 8);
+  const Progress stop_at_once = [](const ProgressEvent&) { throw Interrupted("interrupted (test)"); };
+  CHECK_THROWS_AS(update(model2, test, prior, {}, stop_at_once), Interrupted);
+}
+
+TEST_CASE("a numerical failure after the first cycle returns the last accepted one, marked stopped",
+          "[estimator][updating]") {
+  const Eigen::VectorXd truth = (Eigen::VectorXd(3) << 1.25, 0.8, 1.1).finished();
+  const SparseMatrix S = sensors({0, 1, 2, 3, 5, 7});
+  const auto test = measure(truth, S, 4, 0.1, 1e-3);
+  const ParameterPrior prior = prior_of(Eigen::VectorXd::Ones(3), 0.5);
+  OperatorModel inner(chain, dense_solve, S, 8);
+  // Solves 1 and 2 (cycles 0 and 1) succeed; every later one fails, damped retries included.
+  FailingModel model(inner, 3);
+  const UpdateResult res = update(model, test, prior);
+  CHECK(res.stopped == "eigen-solve did not converge");
+  CHECK(!res.interrupted);
+  CHECK(!res.converged);
+  REQUIRE(res.history.size() == 2);
+  CHECK(res.r == res.history.back().r);
+  CHECK(res.posterior_std.size() == 3);
+  // Failing in cycle 0 leaves nothing: the failure passes.
+  FailingModel at_once(inner, 1);
+  CHECK_THROWS_AS(update(at_once, test, prior), ssid::formats::NumericalError);
 }

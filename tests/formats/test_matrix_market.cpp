@@ -2,6 +2,7 @@
 #include <catch2/catch.hpp>
 
 #include "formats/matrix_market.hpp"
+#include "formats/parse_error.hpp"
 
 using namespace ssid::formats;
 
@@ -42,5 +43,5 @@ TEST_CASE("MatrixMarket: symmetric writes the lower triangle; a non-symmetric ma
   d(0, 2) = 1e-17;
   a = d.sparseView(0.0, 0.0);
   CHECK_FALSE(is_exactly_symmetric(a));
-  CHECK_THROWS_AS(matrix_market_string(a, MtxSymmetry::Symmetric), std::invalid_argument);
+  CHECK_THROWS_AS(matrix_market_string(a, MtxSymmetry::Symmetric), ssid::formats::InputError);
 }

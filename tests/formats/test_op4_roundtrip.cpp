@@ -145,7 +145,7 @@ TEST_CASE("extreme doubles survive ASCII exactly (3-digit exponents written as F
   }
   // Single precision cannot hold 1e250: refused rather than written as infinity.
   o.precision = 1;
-  CHECK_THROWS_AS(write_op4_string({Op4Matrix::from_real("X", a)}, o), std::invalid_argument);
+  CHECK_THROWS_AS(write_op4_string({Op4Matrix::from_real("X", a)}, o), ssid::formats::InputError);
 }
 
 TEST_CASE("precision conversion on write; complex to real is refused", "[op4]") {
@@ -161,7 +161,7 @@ TEST_CASE("precision conversion on write; complex to real is refused", "[op4]") 
   CHECK(read_op4_buffer(t4.data(), t4.size(), "p4.op4").at(0).dense_complex() == m.dense_complex());
   const Op4Matrix c = expected(sample(5, 4, 3), 4);
   o.precision = 2;
-  CHECK_THROWS_AS(write_op4_string({c}, o), std::invalid_argument);
+  CHECK_THROWS_AS(write_op4_string({c}, o), ssid::formats::InputError);
 }
 
 TEST_CASE("sparse storage of 65536 or more rows is written as BIGMAT; long strings are split", "[op4]") {

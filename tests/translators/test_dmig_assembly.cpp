@@ -2,6 +2,7 @@
 #include <catch2/catch.hpp>
 
 #include "formats/deck.hpp"
+#include "formats/parse_error.hpp"
 #include "translators/dmig_assembly.hpp"
 
 using namespace ssid::formats;
@@ -52,7 +53,7 @@ TEST_CASE("DMIG assembly: symmetric matrix on a caller's DOF map (any order, ext
   try {
     assemble_dmig_real(v[0], small, small, &d);
     FAIL("no error");
-  } catch (const std::invalid_argument& e) {
+  } catch (const ssid::formats::InputError& e) {
     CHECK(std::string(e.what()) ==
           "k.bdf:5: DMIG KSYM: row DOF (20,0) (grid/point, component) is not in the row DOF map (2 DOFs)");
   }
@@ -71,7 +72,7 @@ TEST_CASE("DMIG assembly: complex polar rectangular; real assembly of a complex 
   Eigen::MatrixXcd b = assemble_dmig_dense_complex(v[0], own.rows, own.cols);
   CHECK(b(0, 0) == std::complex<double>(0.0, 2.0));
   CHECK(b(1, 0) == std::complex<double>(-1.5, 0.0));
-  CHECK_THROWS_AS(assemble_dmig_real(v[0], own.rows, own.cols), std::invalid_argument);
+  CHECK_THROWS_AS(assemble_dmig_real(v[0], own.rows, own.cols), ssid::formats::InputError);
 }
 
 TEST_CASE("matrix -> DMIG -> cards -> DMIG -> matrix is exact (IFO 6 upper triangle, 2 complex, 9)", "[dmig]") {
@@ -98,7 +99,7 @@ TEST_CASE("matrix -> DMIG -> cards -> DMIG -> matrix is exact (IFO 6 upper trian
   Eigen::MatrixXd ns = s;
   ns(0, 1) += 1.0;
   SparseReal nss = ns.sparseView();
-  CHECK_THROWS_AS(dmig_from_matrix(nss, dofs, dofs, {"K", 6, 0, 0}), std::invalid_argument);
+  CHECK_THROWS_AS(dmig_from_matrix(nss, dofs, dofs, {"K", 6, 0, 0}), ssid::formats::InputError);
 
   // Complex rectangular on different row/column maps.
   DofMap cols;

@@ -7,6 +7,7 @@
 #include <stdexcept>
 
 #include "formats/bulk_model.hpp"
+#include "formats/parse_error.hpp"
 #include "translators/assembly/fe_model.hpp"
 
 namespace ssid::translators {
@@ -45,14 +46,14 @@ DeckUpdateReport update_deck(formats::Deck& deck, const std::map<std::string, do
     if (j == params.size()) {
       std::string labels;
       for (const auto& p : params) labels += (labels.empty() ? "" : ", ") + p.label;
-      throw std::invalid_argument("parameter '" + name + "' is not a DESVAR label of " + deck.files.front().path +
+      throw formats::InputError("parameter '" + name + "' is not a DESVAR label of " + deck.files.front().path +
                                   " (its DESVARs: " + (labels.empty() ? "none" : labels) + ")");
     }
     const auto& p = params[j];
     if (!std::isfinite(value))
-      throw std::invalid_argument("parameter '" + name + "': the value is not a finite number");
+      throw formats::InputError("parameter '" + name + "': the value is not a finite number");
     if (value < p.lower || value > p.upper)
-      throw std::invalid_argument("parameter '" + name + "' = " + number(value) + " lies outside its DESVAR " +
+      throw formats::InputError("parameter '" + name + "' = " + number(value) + " lies outside its DESVAR " +
                                   std::to_string(p.id) + " bounds [" + number(p.lower) + ", " + number(p.upper) + "]");
     x(static_cast<Eigen::Index>(j)) = value;
     if (value != p.initial)
@@ -108,25 +109,25 @@ std::map<std::string, double> parameter_values_from_json(const std::string& text
   try {
     j = nlohmann::json::parse(text);
   } catch (const nlohmann::json::parse_error& e) {
-    throw std::invalid_argument(source + ": not valid JSON: " + e.what());
+    throw formats::InputError(source + ": not valid JSON: " + e.what());
   }
   if (!j.is_object() || !j.contains("parameters") || !j["parameters"].is_array())
-    throw std::invalid_argument(source + ": expected an object with a \"parameters\" array of {\"name\", \"estimate\"}");
+    throw formats::InputError(source + ": expected an object with a \"parameters\" array of {\"name\", \"estimate\"}");
   std::map<std::string, double> out;
   std::size_t k = 0;
   for (const auto& p : j["parameters"]) {
     const std::string where = source + ": parameters[" + std::to_string(k++) + "]";
     if (!p.is_object() || !p.contains("name") || !p["name"].is_string())
-      throw std::invalid_argument(where + ": expected an object with a string \"name\"");
+      throw formats::InputError(where + ": expected an object with a string \"name\"");
     if (!p.contains("estimate") || !p["estimate"].is_number())
-      throw std::invalid_argument(where + " (" + p["name"].get<std::string>() + "): expected a number \"estimate\"");
+      throw formats::InputError(where + " (" + p["name"].get<std::string>() + "): expected a number \"estimate\"");
     const std::string name = p["name"].get<std::string>();
     for (const auto& [other, v] : out)
       if (to_upper(other) == to_upper(name))
-        throw std::invalid_argument(where + ": parameter '" + name + "' is given twice");
+        throw formats::InputError(where + ": parameter '" + name + "' is given twice");
     out[name] = p["estimate"].get<double>();
   }
-  if (out.empty()) throw std::invalid_argument(source + ": \"parameters\" is empty: nothing to update");
+  if (out.empty()) throw formats::InputError(source + ": \"parameters\" is empty: nothing to update");
   return out;
 }
 

@@ -303,9 +303,9 @@ FeModel::FeModel(const Deck& deck, BulkModel model, AssemblyOptions options) : m
   std::map<std::int64_t, std::size_t> desvar_index;
   for (const auto& d : m.desvars) {
     desvar_index[d.id] = m_parameters.size();
-    m_parameters.push_back({d.id, d.label, d.xinit, d.xlb, d.xub, {}});
+    m_parameters.push_back({d.id, d.label, d.xinit, d.xlb, d.xub, {}, {}});
   }
-  auto relate = [&](ValueKey key, double c0, std::optional<double> lo, double hi,
+  auto relate = [&](ValueKey key, const std::string& type, double c0, std::optional<double> lo, double hi,
                     const std::vector<std::pair<std::int64_t, double>>& terms, const std::string& who) {
     Relation rel{std::move(key), c0, lo, hi, {}, who};
     for (const auto& [dvid, coef] : terms) {
@@ -316,6 +316,7 @@ FeModel::FeModel(const Deck& deck, BulkModel model, AssemblyOptions options) : m
       s << (rel.key.owner == ValueOwner::Material ? "MAT1 " : "") << rel.key.id << " " << rel.key.name << " ("
         << who.substr(who.find(": ") + 2) << ", coefficient " << coef << ")";
       m_parameters[it->second].designs.push_back(s.str());
+      m_parameters[it->second].fields.push_back({type, rel.key.id, rel.key.name, coef});
     }
     try {
       (void)get_value(m_model, rel.key);
@@ -344,12 +345,12 @@ FeModel::FeModel(const Deck& deck, BulkModel model, AssemblyOptions options) : m
         throw ModelError(who + ": TYPE " + type + " but property " + std::to_string(d.pid) +
                          (actual.empty() ? " does not exist" : " is a " + actual));
     }
-    relate({element ? ValueOwner::Element : ValueOwner::Property, d.pid, name}, d.c0, d.pmin, d.pmax, d.terms, who);
+    relate({element ? ValueOwner::Element : ValueOwner::Property, d.pid, name}, type, d.c0, d.pmin, d.pmax, d.terms, who);
   }
   for (const auto& d : m.dvmrel1s) {
     const auto who = card_label(deck, d.card);
     if (upper(d.type) != "MAT1") throw ModelError(who + ": only MAT1 materials are designed (TYPE " + d.type + ")");
-    relate({ValueOwner::Material, d.mid, upper(d.mpname)}, d.c0, d.mpmin, d.mpmax, d.terms, who);
+    relate({ValueOwner::Material, d.mid, upper(d.mpname)}, "MAT1", d.c0, d.mpmin, d.mpmax, d.terms, who);
   }
 
   // Constraint sets at the nominal design; AUTOSPC from the stiffness there.

@@ -39,12 +39,21 @@ struct AssemblyOptions {
   std::optional<std::int64_t> method;       ///< overrides case control METHOD =
 };
 
+/// One field a DESVAR designs: value = C0 + Σ coefficient · x (DVPREL1/DVMREL1).
+struct DesignedField {
+  std::string type;   ///< the card type designed: "PROD", "CONM2", "MAT1", …
+  std::int64_t id = 0;
+  std::string field;  ///< upper case: "A", "M", "E", …
+  double coefficient = 0;
+};
+
 /// A DESVAR and what it designs.
 struct DesignParameter {
   std::int64_t id = 0;
   std::string label;
   double initial = 0, lower = -1e20, upper = 1e20;
   std::vector<std::string> designs;  ///< e.g. "PBAR 3 I1 (DVPREL1 10, coef 1)"
+  std::vector<DesignedField> fields; ///< the same, as data
 };
 
 struct FeOperators {

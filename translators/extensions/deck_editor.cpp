@@ -3,6 +3,7 @@
 #include <stdexcept>
 
 #include "formats/deck_writer.hpp"
+#include "formats/parse_error.hpp"
 #include "translators/extensions/model_extension.hpp"
 
 namespace ssid::translators::extensions {
@@ -56,7 +57,7 @@ void DeckEditor::comment(const std::string& text) { m_appended += "$ " + text + 
 
 void DeckEditor::change(std::size_t card, std::vector<formats::FieldValue> values) {
   if (m_deck->cards.at(card).file != 0)
-    throw std::invalid_argument("DeckEditor: cannot change a card inside an INCLUDE file (" +
+    throw formats::InputError("DeckEditor: cannot change a card inside an INCLUDE file (" +
                                 std::string(m_deck->cards[card].name) + ")");
   m_deck->set_values(card, std::move(values));
 }

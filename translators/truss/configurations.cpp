@@ -6,6 +6,8 @@
 #include <cmath>
 #include <stdexcept>
 
+#include "formats/parse_error.hpp"
+
 namespace ssid::translators::truss {
 
 namespace {
@@ -142,8 +144,8 @@ void set_suspension(TrussModel& t, bool surge, const SuspensionDesign& d) {
 void apply_config(TrussModel& t, const std::string& name) {
   const auto& all = list_configs();
   auto it = std::find_if(all.begin(), all.end(), [&](const ConfigInfo& c) { return c.name == name; });
-  if (it == all.end()) throw std::invalid_argument("unknown configuration '" + name + "' (ssid truss list-configs)");
-  if (it->component) throw std::invalid_argument("'" + name + "' is a component assembly and cannot be combined");
+  if (it == all.end()) throw formats::InputError("unknown configuration '" + name + "' (ssid truss list-configs)");
+  if (it->component) throw formats::InputError("'" + name + "' is a component assembly and cannot be combined");
   if (name == "bare") {
   } else if (name == "metrology_tip_mass") {
     for (int id : metrology_tip_balls(t)) t.balls[static_cast<std::size_t>(id - 1)].added_mass += 6.0;
@@ -190,16 +192,16 @@ TrussModel build_component(int n) {
     case 5: return component_chain("component5", {1.0, 1.0, 1.0}, 0.0, false);
     case 6: return component_chain("component6", {1.0}, 0.0, false);
     case 7: return component_chain("component7", {0.8}, 0.0, false);
-    default: throw std::invalid_argument("component configurations are numbered 1 to 7");
+    default: throw formats::InputError("component configurations are numbered 1 to 7");
   }
 }
 
 TrussModel build_configured(const std::vector<std::string>& names) {
   for (const auto& n : names)
     if (n.rfind("component", 0) == 0) {
-      if (names.size() != 1) throw std::invalid_argument("a component configuration cannot be combined with others");
+      if (names.size() != 1) throw formats::InputError("a component configuration cannot be combined with others");
       const std::string num = n.substr(9);
-      if (num.size() != 1 || num[0] < '1' || num[0] > '7') throw std::invalid_argument("unknown configuration '" + n + "'");
+      if (num.size() != 1 || num[0] < '1' || num[0] > '7') throw formats::InputError("unknown configuration '" + n + "'");
       TrussModel t = build_component(num[0] - '0');
       t.configs.push_back(n);
       return t;

@@ -6,6 +6,7 @@
 #include <cmath>
 #include <map>
 
+#include "formats/parse_error.hpp"
 #include "translators/truss/configurations.hpp"
 #include "translators/truss/reference_modes.hpp"
 
@@ -246,8 +247,8 @@ TEST_CASE("component assemblies: free-free, bending below axial, short struts st
   CHECK(ba[6].first > ba[5].first);
   CHECK(ba[6].second > ba[5].second);
   CHECK(ba[5].second > ba[0].second);
-  CHECK_THROWS_AS(build_component(8), std::invalid_argument);
-  CHECK_THROWS_AS(build_configured({"component1", "bare"}), std::invalid_argument);
+  CHECK_THROWS_AS(build_component(8), ssid::formats::InputError);
+  CHECK_THROWS_AS(build_configured({"component1", "bare"}), ssid::formats::InputError);
   CHECK_THROWS_WITH(build_configured({"nonsense"}), Catch::Contains("unknown configuration 'nonsense'"));
 }
 
