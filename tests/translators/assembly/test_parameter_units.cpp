@@ -79,7 +79,7 @@ TEST_CASE("a deck's \"$ units:\" comment names the parameters' units", "[assembl
 }
 
 TEST_CASE("a deck without a unit system: deck units, with the quantity", "[assembly][units]") {
-  for (const std::string head : {std::string("$ no units stated\n"), std::string("$ Units: mm, t, s, N, MPa\n")}) {
+  for (const std::string& head : {std::string("$ no units stated\n"), std::string("$ Units: mm, t, s, N, MPa\n")}) {
     const Loaded l = load(deck(head));
     const translators::DeckUnits u = translators::deck_units(l.deck);
     CHECK(!u.si);
