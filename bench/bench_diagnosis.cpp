@@ -53,7 +53,7 @@ Row diagnose_case(const std::string& nominal_deck, const translators::ModeSet& m
 }
 
 /// A rod-model case: the truth's elastic modes 2-66 Hz at every ball.
-Row diagnose_case(const Case& nominal, const tr::FeModel& truth, const std::string& kind, const std::string& where,
+Row diagnose_case(const Case& nominal, const tr::TrussCards& truth, const std::string& kind, const std::string& where,
                   const std::string& magnitude, const std::function<bool(const dx::Hypothesis&)>& right_place,
                   unsigned seed) {
   TestSpec spec;
@@ -126,7 +126,7 @@ void sweep(const std::string& only) {
     sd.surge_hz[0] = sd.surge_hz[1] = f;
     sd.surge_hz[2] = f * 57.0 / 48.0;
     tr::set_suspension(truth.t, true, sd);
-    truth.fe = tr::build_fe_model(truth.t, tr::ModelForm::Rod);
+    truth.fe = tr::build_truss_cards(truth.t, tr::ModelForm::Rod);
     fix_property_ids(truth.fe);
     char mag[48];
     std::snprintf(mag, sizeof mag, "surge %.0f/%.0f/%.0f Hz", f, f, f * 57.0 / 48.0);
@@ -172,9 +172,9 @@ void sweep(const std::string& only) {
 
 void beam() {
   Case nominal{tr::build_configured({}), {}};
-  nominal.fe = tr::build_fe_model(nominal.t, tr::ModelForm::Beam);
+  nominal.fe = tr::build_truss_cards(nominal.t, tr::ModelForm::Beam);
   fix_property_ids(nominal.fe);
-  tr::FeModel truth = nominal.fe;
+  tr::TrussCards truth = nominal.fe;
   perturb(truth, "STRUTA", 1.04);
   truth.masses.push_back({99001, 29, 2.0, 0.0, "hidden"});
   TestSpec spec;

@@ -36,8 +36,8 @@
 #include <vector>
 
 #include "bench/lattice.hpp"
-#include "estimator/allocation_policy.hpp"
-#include "estimator/eigen_solver.hpp"
+#include "estimator/linalg/allocation_policy.hpp"
+#include "estimator/eigen/eigen_solver.hpp"
 
 namespace {
 

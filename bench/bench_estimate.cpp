@@ -21,13 +21,13 @@
 #include <string>
 #include <unistd.h>
 
-#include "estimator/deck_study.hpp"
-#include "estimator/eigen_solver.hpp"
-#include "estimator/updating.hpp"
+#include "estimator/study/deck_study.hpp"
+#include "estimator/eigen/eigen_solver.hpp"
+#include "estimator/updating/updating.hpp"
 #include "formats/bulk_model.hpp"
 #include "formats/uff.hpp"
 #include "translators/assembly/fe_model.hpp"
-#include "translators/test_modes.hpp"
+#include "translators/measurement/mode_set.hpp"
 
 namespace {
 

@@ -19,10 +19,10 @@
 #include <vector>
 
 #include "bench/lattice.hpp"
-#include "estimator/allocation_policy.hpp"
-#include "estimator/eigen_solver.hpp"
-#include "estimator/multilevel/aggregation_amg.hpp"
-#include "estimator/multilevel/block_ops.hpp"
+#include "estimator/linalg/allocation_policy.hpp"
+#include "estimator/eigen/eigen_solver.hpp"
+#include "estimator/eigen/multilevel/aggregation_amg.hpp"
+#include "estimator/eigen/multilevel/block_ops.hpp"
 
 namespace {
 

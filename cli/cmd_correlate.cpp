@@ -9,7 +9,7 @@
 
 #include "cli/cli_util.hpp"
 #include "cli/model_load.hpp"
-#include "estimator/correlate.hpp"
+#include "estimator/correlation/correlate.hpp"
 #include "formats/parse_error.hpp"
 #include "formats/uff.hpp"
 #include "translators/synthetic_modes.hpp"

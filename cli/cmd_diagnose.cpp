@@ -13,10 +13,10 @@
 #include "cli/exit_codes.hpp"
 #include "cli/progress_lines.hpp"
 #include "estimator/diagnosis/diagnosis.hpp"
-#include "estimator/number_text.hpp"
+#include "estimator/reporting/number_text.hpp"
 #include "formats/parse_error.hpp"
 #include "formats/uff.hpp"
-#include "translators/test_modes.hpp"
+#include "translators/measurement/mode_set.hpp"
 
 namespace ssid::cli {
 
@@ -43,7 +43,7 @@ dx::ConfigurationInput load_configuration(const std::string& deck, const std::st
   return c;
 }
 
-nlohmann::json location_json(const translators::extensions::Location& l) {
+nlohmann::json location_json(const estimator::diagnosis::hypotheses::Location& l) {
   return {{"grids", l.grids}, {"elements", l.elements}, {"properties", l.properties}, {"text", l.text}};
 }
 
@@ -124,7 +124,7 @@ int cmd_diagnose(const Args& args) {
   // The kinds the library has (a new kind needs no change here).
   std::set<std::string> kinds;
   std::string kind_list;
-  for (const auto& x : translators::extensions::standard_extensions({})) {
+  for (const auto& x : estimator::diagnosis::hypotheses::standard_extensions({})) {
     kinds.insert(x->kind());
     kind_list += (kind_list.empty() ? "" : ", ") + x->kind();
   }

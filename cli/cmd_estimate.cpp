@@ -9,7 +9,7 @@
 #include "cli/cli_util.hpp"
 #include "cli/exit_codes.hpp"
 #include "cli/progress_lines.hpp"
-#include "estimator/deck_study.hpp"
+#include "estimator/study/deck_study.hpp"
 #include "formats/deck_writer.hpp"
 #include "formats/parse_error.hpp"
 #include "formats/problem_file.hpp"

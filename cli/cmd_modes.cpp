@@ -10,7 +10,7 @@
 #include "cli/exit_codes.hpp"
 #include "cli/model_load.hpp"
 #include "cli/progress_lines.hpp"
-#include "estimator/eigen_table.hpp"
+#include "estimator/eigen/eigen_table.hpp"
 #include "formats/parse_error.hpp"
 #include "translators/synthetic_modes.hpp"
 #include "translators/weight_table.hpp"

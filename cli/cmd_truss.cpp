@@ -69,7 +69,7 @@ int truss_mpi(const Args& args) {
   if (configs.empty()) configs.push_back("bare");
 
   const tr::TrussModel t = tr::build_configured(configs);
-  const tr::FeModel fe = tr::build_fe_model(t, model == "rod" ? tr::ModelForm::Rod : tr::ModelForm::Beam);
+  const tr::TrussCards fe = tr::build_truss_cards(t, model == "rod" ? tr::ModelForm::Rod : tr::ModelForm::Beam);
   std::string command = "ssid truss mpi --model " + model;
   for (const auto& c : configs) command += " --config " + c;
   nlohmann::json j = tr::summary_json(t, fe);

@@ -10,7 +10,7 @@
 #include <limits>
 #include <stdexcept>
 
-#include "estimator/dense_eigen.hpp"
+#include "estimator/eigen/dense_eigen.hpp"
 #include "formats/bulk_model.hpp"
 #include "formats/parse_error.hpp"
 

@@ -7,10 +7,10 @@
 #include <string>
 #include <vector>
 
-#include "estimator/eigen_solver.hpp"
+#include "estimator/eigen/eigen_solver.hpp"
 #include "formats/deck.hpp"
 #include "translators/assembly/fe_model.hpp"
-#include "translators/test_mapping.hpp"
+#include "translators/measurement/sensor_mapping.hpp"
 
 namespace ssid::cli {
 

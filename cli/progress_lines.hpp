@@ -12,7 +12,7 @@
 #include <chrono>
 #include <string>
 
-#include "estimator/progress.hpp"
+#include "estimator/reporting/progress.hpp"
 
 namespace ssid::cli {
 

@@ -1,5 +1,5 @@
 /// \file fuzz_study.cpp
-/// libFuzzer harness: a study file from bytes (estimator/deck_study.cpp), as
+/// libFuzzer harness: a study file from bytes (estimator/study/deck_study.cpp), as
 /// read_study reads it: JSON syntax first, then the study's keys and values.
 /// parse_study documents std::invalid_argument for bad values (read_study turns
 /// JSON syntax errors into the same); both are expected here, as is InputError
@@ -7,7 +7,7 @@
 #include <nlohmann/json.hpp>
 #include <stdexcept>
 
-#include "estimator/deck_study.hpp"
+#include "estimator/study/deck_study.hpp"
 #include "fuzz_common.hpp"
 
 extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {

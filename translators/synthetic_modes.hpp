@@ -27,8 +27,8 @@
 #include "formats/uff.hpp"
 #include "translators/constraints.hpp"
 #include "translators/dof_map.hpp"
-#include "translators/test_mapping.hpp"
-#include "translators/test_modes.hpp"
+#include "translators/measurement/sensor_mapping.hpp"
+#include "translators/measurement/mode_set.hpp"
 
 namespace ssid::translators {
 

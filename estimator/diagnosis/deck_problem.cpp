@@ -5,10 +5,10 @@
 #include <set>
 #include <stdexcept>
 
-#include "estimator/eigen_solver.hpp"
+#include "estimator/eigen/eigen_solver.hpp"
 #include "formats/bulk_model.hpp"
 #include "formats/parse_error.hpp"
-#include "translators/test_mapping.hpp"
+#include "translators/measurement/sensor_mapping.hpp"
 
 namespace ssid::estimator::diagnosis {
 

@@ -1,7 +1,7 @@
 #pragma once
 /// \file deck_problem.hpp
 /// Glue between a deck + measured modes and the estimator (a small stand-in for
-/// the study of `ssid estimate`; meant to be switched to estimator/deck_study
+/// the study of `ssid estimate`; meant to be switched to estimator/study/deck_study
 /// once that exists). It builds, for one deck text and one measured mode set:
 ///  - the FE model (translators::FeModel) and its operators at any DESVAR values,
 ///  - the observation matrix C_a on the a-set (test DOFs = C_a φ_a),
@@ -16,12 +16,12 @@
 #include <string>
 #include <vector>
 
-#include "estimator/modal_model.hpp"
-#include "estimator/progress.hpp"
-#include "estimator/updating.hpp"
+#include "estimator/updating/modal_model.hpp"
+#include "estimator/reporting/progress.hpp"
+#include "estimator/updating/updating.hpp"
 #include "formats/deck.hpp"
 #include "translators/assembly/fe_model.hpp"
-#include "translators/test_modes.hpp"
+#include "translators/measurement/mode_set.hpp"
 
 namespace ssid::estimator::diagnosis {
 

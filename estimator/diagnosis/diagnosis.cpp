@@ -6,13 +6,14 @@
 #include <set>
 #include <sstream>
 
-#include "estimator/sensitivity.hpp"
+#include "estimator/eigen/eigen_solver.hpp"
+#include "estimator/updating/sensitivity.hpp"
 #include "formats/deck_writer.hpp"
 #include "formats/parse_error.hpp"
 
 namespace ssid::estimator::diagnosis {
 
-namespace ext = translators::extensions;
+namespace ext = hypotheses;
 
 namespace {
 
@@ -53,7 +54,7 @@ double pair_loglik(const std::vector<MeasuredMode>& test, const ModalSolution& s
   for (const auto& p : pairs) {
     const auto& t = test[static_cast<std::size_t>(p.test)];
     if (t.use_frequency && t.frequency_std_hz > 0) {
-      const double x = (t.frequency_hz - hz(sol.eigenvalues(p.fem))) / t.frequency_std_hz;
+      const double x = (t.frequency_hz - eigenvalue_to_hz(sol.eigenvalues(p.fem))) / t.frequency_std_hz;
       ll += -0.5 * x * x - 0.5 * std::log(2 * M_PI * t.frequency_std_hz * t.frequency_std_hz);
     }
     if (shapes && t.use_shape && t.shape.size() && t.shape_std > 0) {
@@ -227,7 +228,7 @@ Screen prepare_screen(DeckProblem& pb, const Eigen::VectorXd& r, const std::vect
     tests.push_back(&t);
     Screen::Row row;
     row.fem = p.fem;
-    row.f = hz(sol.eigenvalues(p.fem));
+    row.f = eigenvalue_to_hz(sol.eigenvalues(p.fem));
     const Eigen::VectorXd phi_s = sol.sensor_shapes.col(p.fem);
     row.norm = phi_s.norm();
     row.u = phi_s / row.norm;
@@ -312,7 +313,7 @@ std::vector<Eigen::VectorXd> neighbours_of_unexplained(DeckProblem& pb, const Mo
     double best_mac = -1;
     for (int pass = 0; pass < 2 && best < 0; ++pass)
       for (Eigen::Index j = 0; j < sol.sensor_shapes.cols(); ++j) {
-        const double f = hz(sol.eigenvalues(j));
+        const double f = eigenvalue_to_hz(sol.eigenvalues(j));
         if (pass == 0 && std::abs(f - u.frequency_hz) > 0.3 * u.frequency_hz) continue;
         const Eigen::VectorXd s = sol.sensor_shapes.col(j);
         const double d = s.squaredNorm() * t->shape.squaredNorm();

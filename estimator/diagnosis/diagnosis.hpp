@@ -6,7 +6,7 @@
 ///
 /// 1. Ordinary update of the deck's own parameters ("parameter" hypothesis)
 ///    and the residual evidence (evidence.hpp).
-/// 2. Candidates of every extension kind (translators/extensions). Kinds that
+/// 2. Candidates of every extension kind (estimator/diagnosis/hypotheses). Kinds that
 ///    add no DOF are screened to first order at the updated parameters r*:
 ///    with e the weighted residual, t = S_ee^{-1/2} ∂u/∂β the weighted
 ///    sensitivity of the new parameter (∂λ exact, ∂φ by modal summation),
@@ -31,8 +31,8 @@
 
 #include "estimator/diagnosis/deck_problem.hpp"
 #include "estimator/diagnosis/evidence.hpp"
-#include "estimator/progress.hpp"
-#include "translators/extensions/model_extension.hpp"
+#include "estimator/reporting/progress.hpp"
+#include "estimator/diagnosis/hypotheses/model_extension.hpp"
 
 namespace ssid::estimator::diagnosis {
 
@@ -46,7 +46,7 @@ struct ConfigurationInput {
 
 struct DiagnosisOptions {
   DeckProblemOptions problem;
-  translators::extensions::ExtensionOptions extension;
+  estimator::diagnosis::hypotheses::ExtensionOptions extension;
   std::vector<std::string> kinds;  ///< extension kinds to try; empty: all
   int shortlist = 3;               ///< candidates per kind re-estimated exactly
   int exhaustive_limit = 100;      ///< kinds without screening: try all when this few (and the model is small)
@@ -66,10 +66,10 @@ struct Fit {
 
 struct Hypothesis {
   std::string kind;  ///< "none", "parameter", or an extension kind
-  translators::extensions::Location location;
+  estimator::diagnosis::hypotheses::Location location;
   std::string description;
   std::vector<std::string> names;  ///< every parameter (deck DESVARs, then the new ones)
-  std::vector<translators::extensions::NewParameter> added;
+  std::vector<estimator::diagnosis::hypotheses::NewParameter> added;
   Eigen::VectorXd estimate, posterior_std, prior_mean;
   double log_evidence = 0;   ///< Laplace, paired data only
   double miss_penalty = 0;   ///< Σ log p_miss over unpaired test modes (≤ 0)

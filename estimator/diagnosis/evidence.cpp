@@ -5,7 +5,8 @@
 #include <map>
 #include <sstream>
 
-#include "estimator/correlation.hpp"
+#include "estimator/correlation/measures.hpp"
+#include "estimator/eigen/eigen_solver.hpp"
 
 namespace ssid::estimator::diagnosis {
 
@@ -29,8 +30,6 @@ std::vector<GridShare> shares(const std::vector<translators::MeasuredDof>& dofs,
 }
 
 }  // namespace
-
-double hz(double lambda) { return std::sqrt(std::max(lambda, 0.0)) / (2.0 * M_PI); }
 
 Evidence gather_evidence(DeckProblem& pb, const Eigen::VectorXd& r, const std::vector<UpdatePair>& pairs) {
   const ModalSolution sol = pb.model->solve(r);
@@ -66,7 +65,7 @@ Evidence gather_evidence(DeckProblem& pb, const Eigen::VectorXd& r, const std::v
     if (it != by_test.end()) {
       const auto& p = *it->second;
       me.fem = p.fem + 1;
-      me.fem_hz = hz(sol.eigenvalues(p.fem));
+      me.fem_hz = eigenvalue_to_hz(sol.eigenvalues(p.fem));
       me.error_pct = (me.fem_hz - t.frequency_hz) / t.frequency_hz * 100.0;
       me.mac = p.mac;
       errs.push_back(me.error_pct);
@@ -92,7 +91,7 @@ Evidence gather_evidence(DeckProblem& pb, const Eigen::VectorXd& r, const std::v
     ev.modes.push_back(me);
   }
   for (Eigen::Index j = 0; j < sol.eigenvalues.size(); ++j) {
-    const double f = hz(sol.eigenvalues(j));
+    const double f = eigenvalue_to_hz(sol.eigenvalues(j));
     if (fem_paired[static_cast<std::size_t>(j)] || f > 1.1 * max_test_hz || f < 0.5 * test.front().frequency_hz) continue;
     ev.unpaired_fe.push_back({static_cast<int>(j + 1), f});
   }

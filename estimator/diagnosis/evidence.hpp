@@ -17,7 +17,7 @@
 #include <vector>
 
 #include "estimator/diagnosis/deck_problem.hpp"
-#include "estimator/number_text.hpp"
+#include "estimator/reporting/number_text.hpp"
 
 namespace ssid::estimator::diagnosis {
 
@@ -60,9 +60,5 @@ struct Evidence {
 /// Builds the evidence from one problem solved at `r` and the pairs of the
 /// update's final cycle.
 Evidence gather_evidence(DeckProblem& problem, const Eigen::VectorXd& r, const std::vector<UpdatePair>& pairs);
-
-/// Frequency in Hz of an eigenvalue λ = ω² (0 for λ ≤ 0). Shared by the
-/// evidence and the diagnosis report.
-double hz(double lambda);
 
 }  // namespace ssid::estimator::diagnosis

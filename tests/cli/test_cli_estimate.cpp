@@ -5,7 +5,7 @@
 #include <set>
 #include <unistd.h>
 
-#include "../estimator/estimate_test_data.hpp"
+#include "tests/estimator/study/estimate_test_data.hpp"
 #include "cli_run.hpp"
 #include "formats/problem_file.hpp"
 

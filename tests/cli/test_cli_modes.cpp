@@ -9,7 +9,7 @@
 
 #include "cli_run.hpp"
 #include "formats/uff.hpp"
-#include "translators/test_modes.hpp"
+#include "translators/measurement/mode_set.hpp"
 
 namespace fs = std::filesystem;
 

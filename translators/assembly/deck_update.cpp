@@ -9,15 +9,11 @@
 #include "formats/bulk_model.hpp"
 #include "formats/parse_error.hpp"
 #include "translators/assembly/fe_model.hpp"
+#include "formats/text_util.hpp"
 
 namespace ssid::translators {
 
 namespace {
-
-inline std::string to_upper(std::string s) {
-  for (auto& c : s) c = static_cast<char>(std::toupper(static_cast<unsigned char>(c)));
-  return s;
-}
 
 std::string number(double v) {
   std::ostringstream o;
@@ -42,7 +38,7 @@ DeckUpdateReport update_deck(formats::Deck& deck, const std::map<std::string, do
   for (const auto& [name, value] : values) {
     std::size_t j = params.size();
     for (std::size_t k = 0; k < params.size(); ++k)
-      if (to_upper(params[k].label) == to_upper(name)) j = k;
+      if (formats::detail::upper(params[k].label) == formats::detail::upper(name)) j = k;
     if (j == params.size()) {
       std::string labels;
       for (const auto& p : params) labels += (labels.empty() ? "" : ", ") + p.label;
@@ -123,7 +119,7 @@ std::map<std::string, double> parameter_values_from_json(const std::string& text
       throw formats::InputError(where + " (" + p["name"].get<std::string>() + "): expected a number \"estimate\"");
     const std::string name = p["name"].get<std::string>();
     for (const auto& [other, v] : out)
-      if (to_upper(other) == to_upper(name))
+      if (formats::detail::upper(other) == formats::detail::upper(name))
         throw formats::InputError(where + ": parameter '" + name + "' is given twice");
     out[name] = p["estimate"].get<double>();
   }

@@ -1,4 +1,5 @@
 #include "translators/assembly/fe_model.hpp"
+#include "formats/text_util.hpp"
 
 #include <algorithm>
 #include <cctype>
@@ -12,6 +13,7 @@ namespace {
 
 using formats::BulkModel;
 using formats::Deck;
+using formats::detail::upper;
 
 /// Cards that cannot change K or M in a real-eigenvalue analysis: ignored, with a
 /// note. NASTRAN's SOL 103 (and the real-modes step of its modal solutions) runs
@@ -47,10 +49,6 @@ const std::set<std::string>& no_effect_cards() {
   return s;
 }
 
-std::string upper(std::string s) {
-  for (auto& c : s) c = static_cast<char>(std::toupper(static_cast<unsigned char>(c)));
-  return s;
-}
 
 /// `NAME = n` in case control (global, or the first subcase), e.g. SPC, MPC, METHOD;
 /// `where` receives the statement's place.
@@ -120,10 +118,20 @@ std::string field_name(const std::string& type, std::int64_t fid) {
 }  // namespace
 
 FeModel::FeModel(const Deck& deck, BulkModel model, AssemblyOptions options) : m_model(std::move(model)) {
-  const BulkModel& m = m_model;
+  refuse_unassembled_cards(deck);
+  const ReductionSettings reduction = read_analysis_parameters(deck, options);
+  m_geometry = std::make_unique<ModelGeometry>(deck, m_model);
+  m_elements = std::make_unique<ElementSet>(deck, m_model, *m_geometry, m_settings);
+  const ConstraintSelection sets = select_sets(deck, options);
+  const std::vector<std::size_t> spc = single_point_constraints(deck, sets);
+  const std::vector<MpcEquation> mpcs = multipoint_constraints(deck, sets);
+  relate_parameters(deck);
+  apply_constraints(spc, mpcs, reduction);
+}
 
-  // Cards we do not assemble: harmless ones are noted, the others refused, at the first of them.
-  for (const auto& [name, count] : m.unsupported) {
+/// Cards we do not assemble: harmless ones are noted, the others refused, at the first of them.
+void FeModel::refuse_unassembled_cards(const Deck& deck) {
+  for (const auto& [name, count] : m_model.unsupported) {
     if (no_effect_cards().count(name)) {
       m_notes.push_back(std::to_string(count) + " " + name + " card" + (count > 1 ? "s" : "") +
                         " ignored: no effect on K or M");
@@ -136,8 +144,11 @@ FeModel::FeModel(const Deck& deck, BulkModel model, AssemblyOptions options) : m
                              "): ssid cannot assemble this card and it may change K or M; remove it or model it with "
                              "supported cards");
   }
+}
 
-  // Parameters of the analysis.
+/// PARAM COUPMASS, BARMASS, WTMASS, AUTOSPC, EPZERO (the options override them).
+FeModel::ReductionSettings FeModel::read_analysis_parameters(const Deck& deck, const AssemblyOptions& options) {
+  const BulkModel& m = m_model;
   auto param_int = [&](const char* name) -> std::optional<std::int64_t> {
     if (const auto* p = find_param(m, name)) {
       if (auto v = p->integer()) return v;
@@ -155,18 +166,20 @@ FeModel::FeModel(const Deck& deck, BulkModel model, AssemblyOptions options) : m
       if (auto v = p->real()) m_wtmass = *v;
       else throw ModelError(card_label(deck, p->card) + ": PARAM WTMASS: expected a real value");
     }
-  const bool autospc = options.autospc ? *options.autospc : param_int("AUTOSPC").value_or(1) != 0;
-  double epzero = options.epzero;
+  ReductionSettings r;
+  r.autospc = options.autospc ? *options.autospc : param_int("AUTOSPC").value_or(1) != 0;
+  r.epzero = options.epzero;
   if (const auto* p = find_param(m, "EPZERO"))
-    if (auto v = p->real()) epzero = *v;
+    if (auto v = p->real()) r.epzero = *v;
   if (m_wtmass != 1.0) m_notes.push_back("PARAM WTMASS " + std::to_string(m_wtmass) + " scales the mass matrix");
   if (m_settings.mass == elements::MassKind::Coupled) m_notes.push_back("PARAM COUPMASS: coupled mass for rods and bars");
+  return r;
+}
 
-  m_geometry = std::make_unique<ModelGeometry>(deck, m);
-  m_elements = std::make_unique<ElementSet>(deck, m, *m_geometry, m_settings);
-  const ModelGeometry& geo = *m_geometry;
-
-  // Constraint sets selected by case control (or the only one in a deck without case control).
+/// The SPC, MPC and METHOD sets selected by case control (or the only one in a
+/// deck without case control); the METHOD's EIGRL/EIGR.
+FeModel::ConstraintSelection FeModel::select_sets(const Deck& deck, const AssemblyOptions& options) {
+  const BulkModel& m = m_model;
   std::map<std::string, formats::SourceLocation> selected_at;  // the case control statement of each selection
   auto select = [&](const char* what, std::optional<std::int64_t> forced, std::set<std::int64_t> available)
       -> std::optional<std::int64_t> {
@@ -188,9 +201,11 @@ FeModel::FeModel(const Deck& deck, BulkModel model, AssemblyOptions options) : m
   for (const auto& s : m.mpcs) mpc_ids.insert(s.sid);
   for (const auto& e : m.eigrls) method_ids.insert(e.sid);
   for (const auto& e : m.eigrs) method_ids.insert(e.sid);
-  const auto spc_set = select("SPC", options.spc_set, spc_ids);
-  const auto mpc_set = select("MPC", options.mpc_set, mpc_ids);
+  ConstraintSelection sets;
+  sets.spc = select("SPC", options.spc_set, spc_ids);
+  sets.mpc = select("MPC", options.mpc_set, mpc_ids);
   const auto method = select("METHOD", options.method, method_ids);
+  sets.spc_at = selected_at["SPC"];
   if (method) {
     for (const auto& e : m.eigrls)
       if (e.sid == *method) m_eigrl = &e;
@@ -199,8 +214,14 @@ FeModel::FeModel(const Deck& deck, BulkModel model, AssemblyOptions options) : m
     if (!m_eigrl && !m_eigr)
       throw ModelError(selected_at["METHOD"], "METHOD = " + std::to_string(*method) + ": no EIGRL or EIGR with that SID");
   }
+  return sets;
+}
 
-  // Single-point constraints: GRID PS and the selected set (SPCADD expanded).
+/// Single-point constraints: GRID PS and the selected set (SPCADD expanded), as
+/// g-set DOFs in increasing order.
+std::vector<std::size_t> FeModel::single_point_constraints(const Deck& deck, const ConstraintSelection& sets) {
+  const BulkModel& m = m_model;
+  const ModelGeometry& geo = *m_geometry;
   std::set<std::size_t> spc;
   auto add_components = [&](std::int64_t point, const std::string& comps, const std::string& who) {
     if (geo.is_scalar_point(point)) {
@@ -211,13 +232,13 @@ FeModel::FeModel(const Deck& deck, BulkModel model, AssemblyOptions options) : m
   };
   for (const auto& g : geo.grids())
     if (!g.ps.empty()) add_components(g.id, g.ps, card_label(deck, g.card));
-  if (spc_set) {
-    std::set<std::int64_t> sets{*spc_set};
+  if (const auto& spc_set = sets.spc) {
+    std::set<std::int64_t> ids{*spc_set};
     for (const auto& a : m.spcadds)
-      if (a.sid == *spc_set) sets.insert(a.sets.begin(), a.sets.end());
+      if (a.sid == *spc_set) ids.insert(a.sets.begin(), a.sets.end());
     bool found = false;
     for (const auto& s : m.spcs)
-      if (sets.count(s.sid)) {
+      if (ids.count(s.sid)) {
         found = true;
         for (const auto& e : s.entries) {
           if (e.d != 0.0)
@@ -227,15 +248,20 @@ FeModel::FeModel(const Deck& deck, BulkModel model, AssemblyOptions options) : m
         }
       }
     for (const auto& s : m.spc1s)
-      if (sets.count(s.sid)) {
+      if (ids.count(s.sid)) {
         found = true;
         for (auto g : s.grids) add_components(g, s.c, card_label(deck, s.card));
       }
     if (!found && !std::any_of(m.spcadds.begin(), m.spcadds.end(), [&](const auto& a) { return a.sid == *spc_set; }))
-      throw ModelError(selected_at["SPC"], "SPC = " + std::to_string(*spc_set) + ": no SPC, SPC1 or SPCADD with that SID");
+      throw ModelError(sets.spc_at, "SPC = " + std::to_string(*spc_set) + ": no SPC, SPC1 or SPCADD with that SID");
   }
+  return {spc.begin(), spc.end()};
+}
 
-  // Multipoint constraints: rigid elements and the selected MPC set.
+/// Multipoint constraints: rigid elements and the selected MPC set.
+std::vector<MpcEquation> FeModel::multipoint_constraints(const Deck& deck, const ConstraintSelection& sets) const {
+  const BulkModel& m = m_model;
+  const ModelGeometry& geo = *m_geometry;
   std::vector<MpcEquation> mpcs;
   auto rigid = [&](const GridPoint& g, const std::string& ind, const std::string& dep) {
     return RigidGrid{g.x, g.dofs, ind, dep, g.frame};
@@ -282,9 +308,9 @@ FeModel::FeModel(const Deck& deck, BulkModel model, AssemblyOptions options) : m
       auto part = rbe3_equations(ref.x, ref.dofs, r.refc, groups, who, ref.frame);
       mpcs.insert(mpcs.end(), part.begin(), part.end());
     }
-    if (mpc_set)
+    if (sets.mpc)
       for (const auto& c : m.mpcs) {
-        if (c.sid != *mpc_set) continue;
+        if (c.sid != *sets.mpc) continue;
         const auto who = card_label(deck, c.card);
         const auto& t0 = c.terms.front();
         if (t0.a == 0.0) throw ModelError(who + ": the dependent term's coefficient A1 is zero");
@@ -298,8 +324,12 @@ FeModel::FeModel(const Deck& deck, BulkModel model, AssemblyOptions options) : m
   } catch (const std::invalid_argument& e) {
     throw ModelError(e.what());
   }
+  return mpcs;
+}
 
-  // Parameters and their relations to the model.
+/// The DESVARs as parameters and their DVPREL1/DVMREL1 relations to the model.
+void FeModel::relate_parameters(const Deck& deck) {
+  const BulkModel& m = m_model;
   std::map<std::int64_t, std::size_t> desvar_index;
   for (const auto& d : m.desvars) {
     desvar_index[d.id] = m_parameters.size();
@@ -352,15 +382,19 @@ FeModel::FeModel(const Deck& deck, BulkModel model, AssemblyOptions options) : m
     if (upper(d.type) != "MAT1") throw ModelError(who + ": only MAT1 materials are designed (TYPE " + d.type + ")");
     relate({ValueOwner::Material, d.mid, upper(d.mpname)}, "MAT1", d.c0, d.mpmin, d.mpmax, d.terms, who);
   }
+}
 
-  // Constraint sets at the nominal design; AUTOSPC from the stiffness there.
-  std::vector<std::size_t> spc_list(spc.begin(), spc.end());
+/// Constraint sets at the nominal design; AUTOSPC from the stiffness there.
+void FeModel::apply_constraints(const std::vector<std::size_t>& spc, const std::vector<MpcEquation>& mpcs,
+                                const ReductionSettings& r) {
+  std::vector<std::size_t> spc_list = spc;
+  const ModelGeometry& geo = *m_geometry;
   const std::size_t ng = geo.gset().size();
   try {
     m_reduction = build_reduction(ng, mpcs, spc_list);
-    if (autospc) {
+    if (r.autospc) {
       const SparseMatrix Kg = sum_blocks(m_elements->blocks(values_at(initial_parameters())), false);
-      m_autospc = find_singular_dofs(Kg, m_reduction, geo.gset(), epzero);
+      m_autospc = find_singular_dofs(Kg, m_reduction, geo.gset(), r.epzero);
       if (!m_autospc.empty()) {
         std::sort(m_autospc.begin(), m_autospc.end());
         spc_list.insert(spc_list.end(), m_autospc.begin(), m_autospc.end());

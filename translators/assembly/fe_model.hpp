@@ -104,6 +104,23 @@ class FeModel {
   };
   SparseMatrix sum_blocks(const std::vector<ElementBlock>& blocks, bool mass) const;
 
+  /// The constructor's phases, in order.
+  struct ConstraintSelection {  ///< the SPC and MPC sets case control selects, and where
+    std::optional<std::int64_t> spc, mpc;
+    formats::SourceLocation spc_at;
+  };
+  struct ReductionSettings {  ///< AUTOSPC and its singularity threshold
+    bool autospc = true;
+    double epzero = 1e-8;
+  };
+  void refuse_unassembled_cards(const formats::Deck& deck);
+  ReductionSettings read_analysis_parameters(const formats::Deck& deck, const AssemblyOptions& options);
+  ConstraintSelection select_sets(const formats::Deck& deck, const AssemblyOptions& options);
+  std::vector<std::size_t> single_point_constraints(const formats::Deck& deck, const ConstraintSelection& sets);
+  std::vector<MpcEquation> multipoint_constraints(const formats::Deck& deck, const ConstraintSelection& sets) const;
+  void relate_parameters(const formats::Deck& deck);
+  void apply_constraints(const std::vector<std::size_t>& spc, const std::vector<MpcEquation>& mpcs, const ReductionSettings& r);
+
   formats::BulkModel m_model;
   std::unique_ptr<ModelGeometry> m_geometry;
   ElementSettings m_settings;

@@ -2,7 +2,7 @@
 /// \file rigid_modes.hpp
 /// The low-energy displacement fields of a model's analysis set that the
 /// multilevel eigen-solver builds its coarse space from
-/// (estimator/multilevel/aggregation_amg.hpp): the six rigid-body motions, and the
+/// (estimator/eigen/multilevel/aggregation_amg.hpp): the six rigid-body motions, and the
 /// six constant-strain fields.
 #include <Eigen/Core>
 

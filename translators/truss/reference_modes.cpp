@@ -52,7 +52,7 @@ Eigen::Matrix<double, 12, 12> frame_local(double E, double G, double A, double I
 
 }  // namespace
 
-Assembled assemble_reference(const FeModel& fe) {
+Assembled assemble_reference(const TrussCards& fe) {
   const std::size_t ng = fe.grids.size();
   const Eigen::Index n = static_cast<Eigen::Index>(6 * ng);
   std::unordered_map<int, std::size_t> idx;
@@ -193,7 +193,7 @@ Assembled assemble_reference(const FeModel& fe) {
   return out;
 }
 
-ReferenceModes reference_modes(const FeModel& fe, int count) {
+ReferenceModes reference_modes(const TrussCards& fe, int count) {
   const Assembled a = assemble_reference(fe);
   const Eigen::SparseMatrix<double> Ka = Eigen::SparseMatrix<double>(a.T.transpose() * a.K * a.T);
   const Eigen::SparseMatrix<double> Ma = Eigen::SparseMatrix<double>(a.T.transpose() * a.M * a.T);
@@ -257,7 +257,7 @@ ReferenceModes reference_modes(const FeModel& fe, int count) {
   return out;
 }
 
-double energy_fraction(const FeModel& fe, const Assembled& a, const ReferenceModes& modes, int j,
+double energy_fraction(const TrussCards& fe, const Assembled& a, const ReferenceModes& modes, int j,
                        const std::vector<int>& grids) {
   const Eigen::VectorXd v = modes.shapes.col(j);
   const Eigen::VectorXd mv = a.M * v;
@@ -281,7 +281,7 @@ Eigen::Vector3d translational_energy(const Assembled& a, const ReferenceModes& m
   return e / v.dot(mv);
 }
 
-std::pair<double, double> component_bending_axial(const FeModel& fe, int count) {
+std::pair<double, double> component_bending_axial(const TrussCards& fe, int count) {
   const Assembled a = assemble_reference(fe);
   const ReferenceModes m = reference_modes(fe, count);
   double bending = std::nan(""), axial = std::nan("");

@@ -2,7 +2,7 @@
 /// \file reference_modes.hpp
 /// The truss generator's own small assembler and eigen-solve, used to aim the
 /// generated structure at the report's frequency band and to verify each
-/// configuration's effect. It reads the FeModel (exactly what the deck holds),
+/// configuration's effect. It reads the TrussCards (exactly what the deck holds),
 /// not the deck, so it is an independent check on any deck assembler:
 ///
 ///  - CROD: k = EA/L along the axis; lumped mass (rho A + NSM) L / 2 per end.
@@ -23,14 +23,14 @@
 #include <string>
 #include <vector>
 
-#include "translators/truss/fe_model.hpp"
+#include "translators/truss/truss_cards.hpp"
 
 namespace ssid::translators::truss {
 
 struct ReferenceModes {
   std::vector<double> frequency_hz;   ///< ascending; negative eigenvalues give -sqrt(|lambda|)/2pi
-  Eigen::MatrixXd shapes;             ///< g-set shapes (6 per grid, grid order of FeModel::grids), mass-normalised
-  std::vector<int> grid_ids;          ///< FeModel grid order
+  Eigen::MatrixXd shapes;             ///< g-set shapes (6 per grid, grid order of TrussCards::grids), mass-normalised
+  std::vector<int> grid_ids;          ///< TrussCards grid order
   std::size_t a_set_size = 0;         ///< independent DOFs solved
   bool converged = true;
 };
@@ -41,14 +41,14 @@ struct Assembled {
 };
 
 /// Assembles K, M (g-set) and the reduction T.
-Assembled assemble_reference(const FeModel& fe);
+Assembled assemble_reference(const TrussCards& fe);
 
 /// Lowest `count` modes (rigid-body modes included).
-ReferenceModes reference_modes(const FeModel& fe, int count);
+ReferenceModes reference_modes(const TrussCards& fe, int count);
 
 /// Kinetic-energy fraction of mode j on a set of grids: sum over their
 /// translational DOFs of phi_i (M phi)_i (mass-normalised mode, sums to 1).
-double energy_fraction(const FeModel& fe, const Assembled& a, const ReferenceModes& modes, int j,
+double energy_fraction(const TrussCards& fe, const Assembled& a, const ReferenceModes& modes, int j,
                        const std::vector<int>& grids);
 
 /// Kinetic-energy fractions of mode j in x, y and z translation over all grids
@@ -59,6 +59,6 @@ Eigen::Vector3d translational_energy(const Assembled& a, const ReferenceModes& m
 /// along x, from the lowest `count` modes: the first elastic mode (> 1 Hz) whose
 /// kinetic energy is mostly lateral (y + z > 0.5), and mostly axial (x > 0.5).
 /// NaN when not found among them.
-std::pair<double, double> component_bending_axial(const FeModel& fe, int count = 60);
+std::pair<double, double> component_bending_axial(const TrussCards& fe, int count = 60);
 
 }  // namespace ssid::translators::truss

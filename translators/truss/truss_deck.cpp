@@ -20,7 +20,7 @@ std::string form_name(ModelForm f) { return f == ModelForm::Rod ? "rod" : "beam"
 
 }  // namespace
 
-formats::Deck to_deck(const TrussModel& t, const FeModel& fe, const std::string& command, const std::string& name) {
+formats::Deck to_deck(const TrussModel& t, const TrussCards& fe, const std::string& command, const std::string& name) {
   formats::Deck d = formats::new_deck(name);
   const bool spc = !fe.spcs.empty();
   std::string head;
@@ -135,7 +135,7 @@ formats::Deck to_deck(const TrussModel& t, const FeModel& fe, const std::string&
   return d;
 }
 
-nlohmann::json summary_json(const TrussModel& t, const FeModel& fe) {
+nlohmann::json summary_json(const TrussModel& t, const TrussCards& fe) {
   nlohmann::json j;
   j["model"] = form_name(fe.form);
   j["name"] = t.name;

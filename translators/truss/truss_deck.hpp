@@ -8,16 +8,16 @@
 #include <string>
 
 #include "formats/deck.hpp"
-#include "translators/truss/fe_model.hpp"
+#include "translators/truss/truss_cards.hpp"
 
 namespace ssid::translators::truss {
 
 /// The deck of `fe`; `command` is recorded in the header comment. The deck's
 /// main file is named `name` (used in messages; write it with write_deck).
-formats::Deck to_deck(const TrussModel& t, const FeModel& fe, const std::string& command,
+formats::Deck to_deck(const TrussModel& t, const TrussCards& fe, const std::string& command,
                       const std::string& name = "generated.bdf");
 
 /// Counts, masses, centre of gravity, layout and the parameter table.
-nlohmann::json summary_json(const TrussModel& t, const FeModel& fe);
+nlohmann::json summary_json(const TrussModel& t, const TrussCards& fe);
 
 }  // namespace ssid::translators::truss

@@ -85,7 +85,7 @@ TEST_CASE("diagnosis finds suspension springs with mass (surge modes)", "[estima
   Case truth;
   truth.t = tr::build_configured({});
   tr::set_suspension(truth.t, true);
-  truth.fe = tr::build_fe_model(truth.t, tr::ModelForm::Rod);
+  truth.fe = tr::build_truss_cards(truth.t, tr::ModelForm::Rod);
   fix_property_ids(truth.fe);
   TestSpec spec;
   spec.seed = 13;

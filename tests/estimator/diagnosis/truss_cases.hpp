@@ -11,7 +11,7 @@
 #include <string>
 
 #include "formats/deck_writer.hpp"
-#include "translators/test_modes.hpp"
+#include "translators/measurement/mode_set.hpp"
 #include "translators/truss/configurations.hpp"
 #include "translators/truss/reference_modes.hpp"
 #include "translators/truss/truss_deck.hpp"
@@ -24,7 +24,7 @@ namespace tr = translators::truss;
 /// (fixed on main: PROD ids move to 101-142, DVPREL1 of PELAS names K). Until
 /// that is merged, the same renumbering is done here on the plain model, not
 /// in the generator. Does nothing when there is no collision.
-inline void fix_property_ids(tr::FeModel& fe) {
+inline void fix_property_ids(tr::TrussCards& fe) {
   std::set<int> springs;
   for (const auto& p : fe.spring_props) springs.insert(p.id);
   bool clash = false;
@@ -40,7 +40,7 @@ inline void fix_property_ids(tr::FeModel& fe) {
     if (d.type == "PELAS" && d.pname == "K1") d.pname = "K";
 }
 
-inline std::string deck_text(const tr::TrussModel& t, const tr::FeModel& fe) {
+inline std::string deck_text(const tr::TrussModel& t, const tr::TrussCards& fe) {
   return formats::render_file(tr::to_deck(t, fe, "diagnosis test"), 0);
 }
 
@@ -54,7 +54,7 @@ struct TestSpec {
 };
 
 /// The truth's modes at the sensors (x, y, z of each sensor grid), with noise.
-inline translators::ModeSet synthetic_test(const tr::FeModel& truth, const TestSpec& spec, int count = 60) {
+inline translators::ModeSet synthetic_test(const tr::TrussCards& truth, const TestSpec& spec, int count = 60) {
   const tr::ReferenceModes rm = tr::reference_modes(truth, count);
   std::vector<int> sensors = spec.sensor_grids;
   if (sensors.empty())
@@ -92,18 +92,18 @@ inline translators::ModeSet synthetic_test(const tr::FeModel& truth, const TestS
 /// The rod-form truss and its plain model (ids fixed).
 struct Case {
   tr::TrussModel t;
-  tr::FeModel fe;
+  tr::TrussCards fe;
 };
 inline Case rod_case(const std::vector<std::string>& configs = {}) {
   Case c{tr::build_configured(configs), {}};
-  c.fe = tr::build_fe_model(c.t, tr::ModelForm::Rod);
+  c.fe = tr::build_truss_cards(c.t, tr::ModelForm::Rod);
   fix_property_ids(c.fe);
   return c;
 }
 
 /// Sets a DESVAR's value in the truth: the designed fields follow through the
 /// DVPREL1 relations of the plain model (coefficient × value, summed).
-inline void perturb(tr::FeModel& fe, const std::string& label, double factor) {
+inline void perturb(tr::TrussCards& fe, const std::string& label, double factor) {
   int dv = 0;
   for (auto& d : fe.desvars)
     if (d.label == label) { dv = d.id; d.init *= factor; }
@@ -140,7 +140,7 @@ inline void perturb(tr::FeModel& fe, const std::string& label, double factor) {
 /// the tube is clamped at both ends. A finer model than the two-bar refinement
 /// the local_modes kind tries.
 inline void refine_rod(Case& c, int rod_id, double inertia, int segments = 4) {
-  tr::FeModel& fe = c.fe;
+  tr::TrussCards& fe = c.fe;
   auto it = std::find_if(fe.rods.begin(), fe.rods.end(), [&](const tr::FeRod& r) { return r.id == rod_id; });
   if (it == fe.rods.end()) throw std::invalid_argument("refine_rod: no rod " + std::to_string(rod_id));
   const tr::FeRod rod = *it;
@@ -205,7 +205,7 @@ inline double clamped_tube_inertia(double f_hz, double L, double mu, double E) {
 /// BALLM (every ball's CONM2 M).
 inline Case frame_case() {
   Case c;
-  tr::FeModel& fe = c.fe;
+  tr::TrussCards& fe = c.fe;
   fe.form = tr::ModelForm::Beam;
   fe.title = "frame tower (beam form)";
   fe.mat = {1, 6.89e10, 0.33, 0.0};
@@ -266,7 +266,7 @@ inline std::vector<int> frame_sensors(const Case& c) {
 /// joint_flexibility kind's CELAS1 springs (the stub also bends in shear and
 /// twists at 2G/E·k_θ).
 inline void flexible_joint(Case& c, int ball, double k_theta) {
-  tr::FeModel& fe = c.fe;
+  tr::TrussCards& fe = c.fe;
   const double ls = 0.01, Is = k_theta * ls / fe.mat.E;
   tr::FeBarProp stub;
   for (const auto& p : fe.bar_props) stub.id = std::max(stub.id, p.id);

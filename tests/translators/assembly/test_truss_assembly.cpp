@@ -32,7 +32,7 @@ struct Check {
 Check cross_check(const std::vector<std::string>& configs, translators::truss::ModelForm form, int count) {
   using namespace translators::truss;
   const TrussModel t = build_configured(configs);
-  const translators::truss::FeModel gen = build_fe_model(t, form);
+  const translators::truss::TrussCards gen = build_truss_cards(t, form);
   const formats::Deck written = to_deck(t, gen, "cross-check");
   // Through the text, as a user would load it.
   const formats::Deck deck = formats::read_deck_text(formats::render_file(written, 0), "mpi.bdf");

@@ -30,10 +30,10 @@ std::size_t count_in(const std::vector<double>& f, double lo, double hi) {
   return static_cast<std::size_t>(std::count_if(f.begin(), f.end(), [&](double x) { return x >= lo && x < hi; }));
 }
 std::vector<double> rod_modes(const std::vector<std::string>& configs, int n = 40) {
-  return reference_modes(build_fe_model(build_configured(configs), ModelForm::Rod), n).frequency_hz;
+  return reference_modes(build_truss_cards(build_configured(configs), ModelForm::Rod), n).frequency_hz;
 }
 /// Centre of gravity from the assembled lumped mass matrix (independent of the inventory's bookkeeping).
-Eigen::Vector3d assembled_cg(const FeModel& fe, double& mass) {
+Eigen::Vector3d assembled_cg(const TrussCards& fe, double& mass) {
   const Assembled a = assemble_reference(fe);
   Eigen::Vector3d s = Eigen::Vector3d::Zero();
   mass = 0;
@@ -78,7 +78,7 @@ TEST_CASE("MPI truss: total mass about 210 kg; rod and beam decks carry the same
   CHECK(t.total_mass() == Approx(210.0).epsilon(0.01));
   const Eigen::Vector3d cg = t.center_of_gravity();
   for (ModelForm form : {ModelForm::Rod, ModelForm::Beam}) {
-    const FeModel fe = build_fe_model(t, form);
+    const TrussCards fe = build_truss_cards(t, form);
     double m = 0;
     const Eigen::Vector3d c = assembled_cg(fe, m);
     CHECK(fe.total_mass() == Approx(t.total_mass()).epsilon(2e-4));
@@ -91,11 +91,11 @@ TEST_CASE("MPI truss: total mass about 210 kg; rod and beam decks carry the same
 
 TEST_CASE("MPI truss: model sizes as the report's (240 DOF rod, about 10 thousand DOF beam)", "[truss]") {
   const TrussModel t = build_mpi();
-  const FeModel rod = build_fe_model(t, ModelForm::Rod);
+  const TrussCards rod = build_truss_cards(t, ModelForm::Rod);
   CHECK(rod.grids.size() == 80);
   CHECK(rod.dof_count() == 240);
   CHECK(rod.rods.size() == 252);
-  const FeModel beam = build_fe_model(t, ModelForm::Beam);
+  const TrussCards beam = build_truss_cards(t, ModelForm::Beam);
   CHECK(beam.dof_count() > 9000);
   CHECK(beam.dof_count() < 12000);
   CHECK(beam.rigids.size() == 80);
@@ -125,7 +125,7 @@ TEST_CASE("MPI truss: six rigid-body modes free-free, six suspension modes below
 }
 
 TEST_CASE("MPI truss rod model: aimed at the report's measured band", "[truss][modes]") {
-  const auto f = elastic(reference_modes(build_fe_model(build_mpi(), ModelForm::Rod), 40));
+  const auto f = elastic(reference_modes(build_truss_cards(build_mpi(), ModelForm::Rod), 40));
   // Report Table 2 (Sandia), system modes 1-8.
   const double report[8] = {7.75, 11.65, 12.67, 29.36, 34.06, 37.34, 42.25, 46.04};
   CHECK(f[0] == Approx(7.75).epsilon(0.03));
@@ -140,8 +140,8 @@ TEST_CASE("MPI truss rod model: aimed at the report's measured band", "[truss][m
 
 TEST_CASE("MPI truss: rod and beam models agree on the low modes within a few per cent", "[truss][modes][beam]") {
   const TrussModel t = build_mpi();
-  const auto rod = elastic(reference_modes(build_fe_model(t, ModelForm::Rod), 20));
-  const ReferenceModes bm = reference_modes(build_fe_model(t, ModelForm::Beam), 40);
+  const auto rod = elastic(reference_modes(build_truss_cards(t, ModelForm::Rod), 20));
+  const ReferenceModes bm = reference_modes(build_truss_cards(t, ModelForm::Beam), 40);
   REQUIRE(bm.converged);
   const auto beam = elastic(bm);
   for (int j = 0; j < 8; ++j) {
@@ -153,11 +153,11 @@ TEST_CASE("MPI truss: rod and beam models agree on the low modes within a few pe
 }
 
 TEST_CASE("MPI configurations: tip masses lower, tower diagonals raise the modes they move", "[truss][modes][configs]") {
-  const auto bare = elastic(reference_modes(build_fe_model(build_configured({"bare"}), ModelForm::Rod), 20));
-  const auto met = elastic(reference_modes(build_fe_model(build_configured({"metrology_tip_mass"}), ModelForm::Rod), 20));
-  const auto opt = elastic(reference_modes(build_fe_model(build_configured({"optics_tip_mass"}), ModelForm::Rod), 20));
-  const auto d1 = elastic(reference_modes(build_fe_model(build_configured({"tower_diagonal_1"}), ModelForm::Rod), 20));
-  const auto d2 = elastic(reference_modes(build_fe_model(build_configured({"tower_diagonal_2"}), ModelForm::Rod), 20));
+  const auto bare = elastic(reference_modes(build_truss_cards(build_configured({"bare"}), ModelForm::Rod), 20));
+  const auto met = elastic(reference_modes(build_truss_cards(build_configured({"metrology_tip_mass"}), ModelForm::Rod), 20));
+  const auto opt = elastic(reference_modes(build_truss_cards(build_configured({"optics_tip_mass"}), ModelForm::Rod), 20));
+  const auto d1 = elastic(reference_modes(build_truss_cards(build_configured({"tower_diagonal_1"}), ModelForm::Rod), 20));
+  const auto d2 = elastic(reference_modes(build_truss_cards(build_configured({"tower_diagonal_2"}), ModelForm::Rod), 20));
   // Report (STARS-ID Table 4): 24 kg at the metrology tip 7.75 -> 6.45, 11.65 -> 9.7 Hz;
   // 16 kg at the optics tip 7.75 -> 7.03 Hz; an added tower strut 7.75 -> 8.16 Hz.
   CHECK(met[0] < 0.92 * bare[0]);
@@ -199,7 +199,7 @@ TEST_CASE("MPI configurations: mid-span mass and long B-nuts lower the long stru
     Member copy = m;
     copy.id = 1, copy.a = 1, copy.b = 2;
     one.members = {copy};
-    FeModel fe = build_fe_model(one, ModelForm::Beam);
+    TrussCards fe = build_truss_cards(one, ModelForm::Beam);
     fe.spcs = {{1, "123"}, {2, "123"}};
     const auto f = elastic(reference_modes(fe, 12).frequency_hz, 1e-3);
     return f.empty() ? 0.0 : f.front();
@@ -218,7 +218,7 @@ TEST_CASE("MPI configurations: mid-span mass and long B-nuts lower the long stru
 
   // In the whole beam model the loaded strut's local mode stands out below the
   // crowd of (identical, mixing) bare strut modes.
-  const FeModel fe = build_fe_model(mass, ModelForm::Beam);
+  const TrussCards fe = build_truss_cards(mass, ModelForm::Beam);
   const Assembled a = assemble_reference(fe);
   const ReferenceModes m = reference_modes(fe, 40);
   std::vector<int> grids;
@@ -235,7 +235,7 @@ TEST_CASE("MPI configurations: mid-span mass and long B-nuts lower the long stru
 TEST_CASE("component assemblies: free-free, bending below axial, short struts stiffest", "[truss][modes][components]") {
   std::vector<std::pair<double, double>> ba;
   for (int n = 1; n <= 7; ++n) {
-    const FeModel fe = build_fe_model(build_component(n), ModelForm::Beam);
+    const TrussCards fe = build_truss_cards(build_component(n), ModelForm::Beam);
     const auto m = reference_modes(fe, 8);
     for (int j = 0; j < 6; ++j) CHECK(std::fabs(m.frequency_hz[j]) < 0.05);
     ba.push_back(component_bending_axial(fe, 80));
@@ -254,7 +254,7 @@ TEST_CASE("component assemblies: free-free, bending below axial, short struts st
 
 TEST_CASE("rod form: DVPREL1 gives each PROD its area and the exact derivatives in the component areas", "[truss][parameters]") {
   TrussModel t = build_configured({"long_bnut"});
-  const FeModel fe = build_fe_model(t, ModelForm::Rod);
+  const TrussCards fe = build_truss_cards(t, ModelForm::Rod);
   std::map<int, double> x;
   for (const auto& d : fe.desvars) x[d.id] = d.init;
   std::map<int, double> area;

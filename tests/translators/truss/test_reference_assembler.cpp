@@ -10,15 +10,15 @@
 using namespace ssid::translators::truss;
 
 namespace {
-FeModel empty_model() {
-  FeModel fe;
+TrussCards empty_model() {
+  TrussCards fe;
   fe.mat = {1, 70e9, 0.3, 0.0};
   return fe;
 }
 }  // namespace
 
 TEST_CASE("reference assembler: rod between two masses vibrates at sqrt(2k/m)", "[truss][assembler]") {
-  FeModel fe = empty_model();
+  TrussCards fe = empty_model();
   fe.grids = {{1, {0, 0, 0}, "456", "ball"}, {2, {0.6, 0.8, 0}, "456", "ball"}};  // skewed axis, L = 1
   fe.rod_props = {{1, 2e-4, 0, 0, "strut"}};
   fe.rods = {{1, 1, 1, 2, 1}};
@@ -31,7 +31,7 @@ TEST_CASE("reference assembler: rod between two masses vibrates at sqrt(2k/m)", 
 }
 
 TEST_CASE("reference assembler: free-free tube of 80 CBARs matches Euler-Bernoulli bending and axial", "[truss][assembler]") {
-  FeModel fe = empty_model();
+  TrussCards fe = empty_model();
   const double L = 2.0, A = 2e-4, I = 2e-8, mpl = 0.55;
   const int n = 80;
   Eigen::Vector3d axis = Eigen::Vector3d(1, 2, 2).normalized();  // an oblique axis exercises the rotation
@@ -65,7 +65,7 @@ TEST_CASE("reference assembler: free-free tube of 80 CBARs matches Euler-Bernoul
 TEST_CASE("reference assembler: RBE2 offset couples translation and rotation rigidly", "[truss][assembler]") {
   // A mass m with rotary inertia J at grid 1, a rigid arm of length r to grid 2,
   // a grounded spring k in y at grid 2: omega^2 = k (1/m + r^2/J).
-  FeModel fe = empty_model();
+  TrussCards fe = empty_model();
   const double m = 3.0, J = 0.02, r = 0.25, k = 5000.0;
   fe.grids = {{1, {0, 0, 0}, "", "ball"}, {2, {r, 0, 0}, "", "ball_surface"}};
   fe.masses = {{1, 1, m, J, "ball"}};
@@ -82,7 +82,7 @@ TEST_CASE("surge chain: fixed-fixed spring of N segments surges at the design fr
   const double k = 600.0, f = 48.0;
   const int N = 12;
   const double ms = surge_spring_mass(k, f, N);
-  FeModel fe = empty_model();
+  TrussCards fe = empty_model();
   fe.spring_props = {{1, N * k, "suspension_chain"}};
   for (int i = 1; i < N; ++i) {
     fe.grids.push_back({i, {0, 0, 0.01 * i}, "12456", "spring"});

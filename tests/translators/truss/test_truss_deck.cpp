@@ -34,8 +34,8 @@ int integer(const fmt_::Card& c, std::size_t i) {
 
 /// Rebuilds the model from the deck's own text (only the card types the generator
 /// writes): what the reference assembler then solves is what the deck says.
-FeModel fe_from_deck(const fmt_::Deck& d) {
-  FeModel fe;
+TrussCards fe_from_deck(const fmt_::Deck& d) {
+  TrussCards fe;
   for (const auto& c : d.cards) {
     if (c.name == "GRID") {
       FeGrid g{integer(c, 1), {real(c, 3), real(c, 4), real(c, 5)}, std::string(c.field(7)), ""};
@@ -74,9 +74,9 @@ TEST_CASE("the deck text holds the model: modes from the re-read deck equal the 
   fs::create_directories(dir);
   for (ModelForm form : {ModelForm::Rod, ModelForm::Beam}) {
     const TrussModel t = build_configured({"surge_springs", "tower_diagonal_1", "strut_mass"});
-    const FeModel fe = build_fe_model(t, form);
+    const TrussCards fe = build_truss_cards(t, form);
     fmt_::write_deck(to_deck(t, fe, "test"), (dir / "m.bdf").string());
-    const FeModel back = fe_from_deck(fmt_::read_deck((dir / "m.bdf").string()));
+    const TrussCards back = fe_from_deck(fmt_::read_deck((dir / "m.bdf").string()));
     CHECK(back.grids.size() == fe.grids.size());
     CHECK(back.total_mass() == Approx(fe.total_mass()).epsilon(1e-12));
     const ReferenceModes a = reference_modes(fe, 20), b = reference_modes(back, 20);
@@ -98,7 +98,7 @@ TEST_CASE("generated truss decks read back with no problems and round-trip byte 
                         Case{ModelForm::Beam, {"long_bnut", "strut_mass", "surge_springs"}},
                         Case{ModelForm::Beam, {"component4"}}}) {
     const TrussModel t = build_configured(c.configs);
-    const FeModel fe = build_fe_model(t, c.form);
+    const TrussCards fe = build_truss_cards(t, c.form);
     const fmt_::Deck d = to_deck(t, fe, "test");
     const fs::path first = dir / "first.bdf", second = dir / "second.bdf";
     fmt_::write_deck(d, first.string());
@@ -145,7 +145,7 @@ TEST_CASE("generated truss decks read back with no problems and round-trip byte 
 
 TEST_CASE("truss JSON summary: counts, mass and the parameter table", "[truss][deck]") {
   const TrussModel t = build_configured({"bare"});
-  const auto j = summary_json(t, build_fe_model(t, ModelForm::Beam));
+  const auto j = summary_json(t, build_truss_cards(t, ModelForm::Beam));
   CHECK(j["balls"] == 80);
   CHECK(j["struts"] == 252);
   CHECK(j["mass_kg"].get<double>() == Approx(t.total_mass()));

@@ -1,0 +1,129 @@
+#include <algorithm>
+#include <cctype>
+#include <stdexcept>
+
+#include "formats/deck_writer.hpp"
+#include "formats/parse_error.hpp"
+#include "estimator/diagnosis/hypotheses/model_extension.hpp"
+
+namespace ssid::estimator::diagnosis::hypotheses {
+
+namespace {
+
+/// The first id above `current_max`, rounded up to a multiple of 1000 so
+/// generated cards stand out (9001, 9002, … after ids up to 8999).
+std::int64_t fresh(std::int64_t current_max) {
+  return (current_max / 1000 + 1) * 1000 + 1;
+}
+
+}  // namespace
+
+DeckEditor::DeckEditor(const std::string& text, const std::string& name)
+    : m_deck(std::make_unique<formats::Deck>(formats::read_deck_text(text, name))) {
+  m_bulk = formats::parse_bulk(*m_deck);
+  formats::resolve(*m_deck, m_bulk);
+  const auto& b = m_bulk;
+  std::int64_t g = 0, e = 0, p = 0, d = 0, r = 0;
+  for (const auto& x : b.grids) g = std::max(g, x.id);
+  for (const auto& x : b.spoints)
+    for (auto id : x.ids) g = std::max(g, id);
+  for (auto id : b.implied_spoints) g = std::max(g, id);
+  auto elements = [&](const auto& v) { for (const auto& x : v) e = std::max(e, x.eid); };
+  elements(b.crods); elements(b.conrods); elements(b.cbars); elements(b.cbeams); elements(b.conm2s);
+  elements(b.cmass1s); elements(b.cmass2s); elements(b.celas1s); elements(b.celas2s); elements(b.cbushes);
+  elements(b.rbars); elements(b.rbe2s); elements(b.rbe3s);
+  auto props = [&](const auto& v) { for (const auto& x : v) p = std::max(p, x.pid); };
+  props(b.prods); props(b.pbars); props(b.pbarls); props(b.pbeams); props(b.pbeamls); props(b.pelases);
+  props(b.pmasses); props(b.pbushes);
+  for (const auto& x : b.desvars) d = std::max(d, x.id);
+  for (const auto& x : b.dvprel1s) r = std::max(r, x.id);
+  for (const auto& x : b.dvmrel1s) r = std::max(r, x.id);
+  m_next_grid = fresh(g);
+  m_next_element = fresh(e);
+  m_next_property = fresh(p);
+  m_next_desvar = fresh(d);
+  m_next_relation = fresh(r);
+  std::int64_t c = 0;
+  for (const auto& x : b.cord2s) c = std::max(c, x.cid);
+  m_next_coord = fresh(c);
+}
+
+void DeckEditor::append(const std::vector<formats::FieldValue>& values) {
+  const auto& name = std::get<std::string>(values.at(0));
+  m_appended += formats::format_card(name, values, formats::FieldFormat::Small);
+}
+
+void DeckEditor::comment(const std::string& text) { m_appended += "$ " + text + "\n"; }
+
+void DeckEditor::change(std::size_t card, std::vector<formats::FieldValue> values) {
+  if (m_deck->cards.at(card).file != 0)
+    throw formats::InputError("DeckEditor: cannot change a card inside an INCLUDE file (" +
+                                std::string(m_deck->cards[card].name) + ")");
+  m_deck->set_values(card, std::move(values));
+}
+
+std::int64_t DeckEditor::add_desvar(const NewParameter& p, double xinit) {
+  formats::Desvar d;
+  d.id = new_desvar_id();
+  d.label = p.label;
+  d.xinit = xinit;
+  d.xlb = p.lower;
+  d.xub = p.upper;
+  append(formats::write_desvar(d));
+  parameters.push_back(p);
+  return d.id;
+}
+
+void DeckEditor::add_dvprel1(const std::string& type, std::int64_t id, const std::string& pname, std::int64_t dvid,
+                             double coef, double c0, std::optional<double> pmin) {
+  formats::Dvprel1 r;
+  r.id = new_relation_id();
+  r.type = type;
+  r.pid = id;
+  r.pname = pname;
+  r.pmin = pmin;
+  r.c0 = c0;
+  r.terms = {{dvid, coef}};
+  append(formats::write_dvprel1(r));
+}
+
+std::string DeckEditor::text() const {
+  std::string main = formats::render_file(*m_deck, 0);
+  // Insert before the ENDDATA line (or at the end).
+  std::size_t at = std::string::npos;
+  for (std::size_t pos = 0; pos < main.size();) {
+    std::size_t end = main.find('\n', pos);
+    if (end == std::string::npos) end = main.size();
+    std::size_t b = pos;
+    while (b < end && (main[b] == ' ' || main[b] == '\t')) ++b;
+    std::string word;
+    for (std::size_t k = b; k < end && k < b + 7; ++k) word += static_cast<char>(std::toupper(static_cast<unsigned char>(main[k])));
+    if (word == "ENDDATA") at = pos;
+    pos = end + 1;
+  }
+  if (at == std::string::npos) {
+    if (!main.empty() && main.back() != '\n') main += "\n";
+    return main + m_appended;
+  }
+  return main.substr(0, at) + m_appended + main.substr(at);
+}
+
+double total_mass(const FeModel& model) {
+  const auto ops = model.operators(model.initial_parameters(), false);
+  const auto& gset = model.geometry().gset();
+  Eigen::VectorXd e = Eigen::VectorXd::Zero(static_cast<Eigen::Index>(gset.size()));
+  for (const auto& g : model.geometry().grids()) e(static_cast<Eigen::Index>(g.dofs[0])) = 1.0;
+  return e.dot(ops.Mg * e);
+}
+
+std::vector<std::unique_ptr<ModelExtension>> standard_extensions(const ExtensionOptions& options) {
+  std::vector<std::unique_ptr<ModelExtension>> v;
+  v.push_back(make_local_stiffness(options));
+  v.push_back(make_missing_mass(options));
+  v.push_back(make_support_dynamics(options));
+  v.push_back(make_joint_flexibility(options));
+  v.push_back(make_local_modes(options));
+  return v;
+}
+
+}  // namespace ssid::estimator::diagnosis::hypotheses

@@ -1,0 +1,43 @@
+#include "estimator/diagnosis/hypotheses/extension_util.hpp"
+
+#include <stdexcept>
+
+#include "translators/constraints.hpp"
+
+namespace ssid::estimator::diagnosis::hypotheses::detail {
+
+Eigen::SparseMatrix<double> to_aset(const FeModel& model, const std::vector<Eigen::Triplet<double>>& g_triplets) {
+  const auto n = static_cast<Eigen::Index>(model.geometry().gset().size());
+  Eigen::SparseMatrix<double> A(n, n);
+  A.setFromTriplets(g_triplets.begin(), g_triplets.end());
+  return reduce(A, model.reduction());
+}
+
+double young_modulus(const formats::BulkModel& bulk, std::int64_t mid) {
+  for (const auto& m : bulk.mat1s)
+    if (m.mid == mid) return m.e;
+  throw std::invalid_argument("MAT1 " + std::to_string(mid) + " not found");
+}
+
+std::string label(const std::string& prefix, std::int64_t id) {
+  std::string s = prefix + std::to_string(id);
+  if (s.size() > 8) s = prefix.substr(0, 1) + std::to_string(id % 10000000);
+  return s.substr(0, 8);
+}
+
+std::vector<double> start_frequencies(const ExtensionOptions& options) {
+  std::vector<double> f = options.unexplained_hz;
+  if (static_cast<int>(f.size()) > options.max_surge_starts) f.resize(static_cast<std::size_t>(options.max_surge_starts));
+  return f;
+}
+
+Location member_location(const std::string& type, std::int64_t eid, std::int64_t pid, std::int64_t ga, std::int64_t gb) {
+  Location l;
+  l.grids = {ga, gb};
+  l.elements = {eid};
+  if (pid) l.properties = {pid};
+  l.text = type + " " + std::to_string(eid) + " (grids " + std::to_string(ga) + "-" + std::to_string(gb) + ")";
+  return l;
+}
+
+}  // namespace ssid::estimator::diagnosis::hypotheses::detail

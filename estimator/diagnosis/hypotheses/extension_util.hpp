@@ -1,0 +1,30 @@
+#pragma once
+/// \file extension_util.hpp
+/// Helpers shared by the extension kinds (internal).
+#include <Eigen/SparseCore>
+#include <string>
+#include <vector>
+
+#include "translators/assembly/fe_model.hpp"
+#include "estimator/diagnosis/hypotheses/model_extension.hpp"
+
+namespace ssid::estimator::diagnosis::hypotheses::detail {
+
+/// A g-set matrix given by triplets, reduced to the a-set: Tᵀ A T.
+Eigen::SparseMatrix<double> to_aset(const FeModel& model, const std::vector<Eigen::Triplet<double>>& g_triplets);
+
+/// Young's modulus of MAT1 `mid` (throws when absent).
+double young_modulus(const formats::BulkModel& bulk, std::int64_t mid);
+
+/// Short DESVAR label (≤ 8 characters): prefix + id.
+std::string label(const std::string& prefix, std::int64_t id);
+
+/// The unexplained test frequencies a kind starts its new mode at (the first
+/// `max_surge_starts`); empty when every test mode has a partner.
+std::vector<double> start_frequencies(const ExtensionOptions& options);
+
+/// The location of a two-grid member: its grids, element, property (when
+/// `pid` > 0) and "TYPE eid (grids a-b)".
+Location member_location(const std::string& type, std::int64_t eid, std::int64_t pid, std::int64_t ga, std::int64_t gb);
+
+}  // namespace ssid::estimator::diagnosis::hypotheses::detail
