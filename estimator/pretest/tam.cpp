@@ -28,7 +28,9 @@ TamCheck tam_check(TamKind kind, const Eigen::SparseMatrix<double>& K, const Eig
   c.message = r.message;
   if (r.status != ReductionStatus::Ok) return c;
   const Eigen::MatrixXd Phi_a = take_rows(Phi, sensors);
-  c.xor_matrix = cross_orthogonality(Phi_a, r.M, Phi_a, true);
+  // Not normalised: the FE modes are mass-normalised, so the diagonal measures how
+  // much of each mode's mass the TAM keeps (a normalised diagonal is 1 by construction).
+  c.xor_matrix = cross_orthogonality(Phi_a, r.M, Phi_a, false);
   const Eigen::Index m = Phi.cols();
   const Eigen::MatrixXd A = c.xor_matrix.cwiseAbs();
   c.min_diagonal = m ? A.diagonal().minCoeff() : 0.0;

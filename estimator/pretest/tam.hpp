@@ -30,8 +30,10 @@ struct TamCheck {
   TamKind kind = TamKind::Guyan;
   ReductionStatus status = ReductionStatus::Ok;
   std::string message;  ///< why the reduction failed, when status != Ok
-  /// X = Φ_aᵀ M_TAM Φ_a, each mode scaled to unit mass under M_TAM (m x m), with
-  /// Φ_a the FE target modes at the sensors: how well the TAM mass tells them apart.
+  /// X = Φ_aᵀ M_TAM Φ_a (m x m), with Φ_a the FE target modes (mass-normalised on
+  /// the full model) at the sensors, not rescaled: the diagonal says how much of
+  /// each mode's mass the TAM keeps (1 ideally), the off-diagonal how well the TAM
+  /// mass tells the modes apart (0 ideally).
   Eigen::MatrixXd xor_matrix;
   double min_diagonal = 0, max_offdiagonal = 0;  ///< of |X|
   Eigen::VectorXd tam_hz;    ///< per target, the nearest frequency (Hz) of (K_TAM, M_TAM)
@@ -41,7 +43,7 @@ struct TamCheck {
 };
 
 /// Reduces (K, M) (n x n) to the sensor rows `sensors` with `kind`, and checks the
-/// target modes `Phi` (n x m, mass-normalised, frequencies `hz`) with the TAM mass.
+/// target modes `Phi` (n x m, mass-normalised: φᵀMφ = 1, frequencies `hz`) with the TAM mass.
 /// A failed reduction comes back as the status, never an exception.
 TamCheck tam_check(TamKind kind, const Eigen::SparseMatrix<double>& K, const Eigen::SparseMatrix<double>& M,
                    const Eigen::Ref<const Eigen::MatrixXd>& Phi, const Eigen::Ref<const Eigen::VectorXd>& hz,
