@@ -16,7 +16,7 @@
 #include "cli/cli_util.hpp"
 #include "cli/exit_codes.hpp"
 #include "cli/model_load.hpp"
-#include "estimator/correlation.hpp"
+#include "estimator/correlation/measures.hpp"
 #include "estimator/pretest/exciter_placement.hpp"
 #include "estimator/pretest/sensor_placement.hpp"
 #include "estimator/pretest/tam.hpp"

@@ -3,14 +3,14 @@
 /// Pretest planning, step 3: test-analysis models (TAM) on a sensor set and the
 /// orthogonality check of the target modes with them (issue 23 item 3; pretest
 /// paper §4-5: cross-orthogonality with an "exactly reduced" (SEREP) mass).
-/// The reductions themselves are estimator/correlation.hpp's guyan_reduce,
+/// The reductions themselves are estimator/correlation/measures.hpp's guyan_reduce,
 /// serep_reduce and irs_reduce.
 #include <Eigen/Core>
 #include <Eigen/SparseCore>
 #include <string>
 #include <vector>
 
-#include "estimator/correlation.hpp"
+#include "estimator/correlation/measures.hpp"
 
 namespace ssid::estimator::pretest {
 

@@ -3,7 +3,7 @@
 #include <Eigen/Dense>
 #include <cmath>
 
-#include "estimator/correlation.hpp"
+#include "estimator/correlation/measures.hpp"
 #include "estimator/pretest/exciter_placement.hpp"
 #include "estimator/pretest/genetic.hpp"
 #include "estimator/pretest/mif.hpp"
