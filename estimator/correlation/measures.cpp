@@ -104,6 +104,32 @@ ReducedModel guyan_reduce(const Eigen::SparseMatrix<double>& K, const Eigen::Spa
   return r;
 }
 
+ReducedModel irs_reduce(const Eigen::SparseMatrix<double>& K, const Eigen::SparseMatrix<double>& M,
+                        const std::vector<Eigen::Index>& a_set) {
+  ReducedModel r = guyan_reduce(K, M, a_set);
+  if (r.status != ReductionStatus::Ok) return r;
+  const Eigen::Index n = K.rows();
+  std::vector<Eigen::Index> o_set;
+  split_sets(n, a_set, o_set);  // checked by guyan_reduce
+  if (o_set.empty()) return r;  // nothing omitted: T = I
+  Eigen::LDLT<Eigen::MatrixXd> mg(r.M);
+  if (mg.info() != Eigen::Success || mg.vectorD().minCoeff() <= 0) {
+    r.status = ReductionStatus::SingularOmittedStiffness;
+    r.message = "the Guyan mass of the " + std::to_string(a_set.size()) + " a-set DOFs is singular; IRS needs it";
+    return r;
+  }
+  // Z = M T_G M_G⁻¹ K_G, then the o rows of S Z = K_oo⁻¹ Z_o.
+  const Eigen::MatrixXd Z = (M * r.T) * mg.solve(r.K);
+  const auto So = selector(n, o_set);
+  const Eigen::SparseMatrix<double> Koo = So.transpose() * K * So;
+  Eigen::SimplicialLLT<Eigen::SparseMatrix<double>> llt(Koo);  // positive definite: guyan_reduce factored it
+  const Eigen::MatrixXd Zo = So.transpose() * Z;
+  const Eigen::MatrixXd C = llt.solve(Zo);
+  for (std::size_t i = 0; i < o_set.size(); ++i) r.T.row(o_set[i]) += C.row(static_cast<Eigen::Index>(i));
+  project(r, K, M);
+  return r;
+}
+
 ReducedModel serep_reduce(const Eigen::SparseMatrix<double>& K, const Eigen::SparseMatrix<double>& M,
                           const Eigen::Ref<const Eigen::MatrixXd>& Phi, const std::vector<Eigen::Index>& a_set) {
   ReducedModel r;

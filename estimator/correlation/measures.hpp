@@ -68,6 +68,15 @@ struct ReducedModel {
 ReducedModel guyan_reduce(const Eigen::SparseMatrix<double>& K, const Eigen::SparseMatrix<double>& M,
                           const std::vector<Eigen::Index>& a_set);
 
+/// IRS (Improved Reduced System, O'Callahan 1989): Guyan's transformation T_G
+/// corrected for the inertia of the omitted DOFs to first order,
+///   T_IRS = T_G + S M T_G M_G⁻¹ K_G,   S = [0 0; 0 K_oo⁻¹]  (o rows only),
+/// with M_G = T_Gᵀ M T_G, K_G = T_Gᵀ K T_G. Closer than Guyan to the low modes
+/// when the omitted DOFs carry mass; equal to Guyan when they carry none.
+/// Statuses as guyan_reduce, plus SingularOmittedStiffness when M_G is singular.
+ReducedModel irs_reduce(const Eigen::SparseMatrix<double>& K, const Eigen::SparseMatrix<double>& M,
+                        const std::vector<Eigen::Index>& a_set);
+
 /// SEREP (System Equivalent Reduction Expansion Process). With Φ the n x m
 /// analysis modes and Φ_a their a-set rows (a ≥ m, rank m),
 ///   T = Φ Φ_a⁺,  Φ_a⁺ = (Φ_aᵀ Φ_a)⁻¹ Φ_aᵀ;

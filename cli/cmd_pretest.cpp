@@ -1,0 +1,361 @@
+/// \file cmd_pretest.cpp
+/// `ssid pretest DECK`: pretest planning (issue 23): target modes, sensor
+/// placement (EI, KE, AKE, EVP), test-analysis models on the sensor set
+/// (Guyan, SEREP, IRS) with the cross-orthogonality check, and exciter placement
+/// (MIF drop-offs and the genetic algorithm). The simulated-test evaluation
+/// (issue 23 item 5, ERA) is not here yet.
+#include <Eigen/SparseCore>
+#include <cmath>
+#include <fstream>
+#include <iomanip>
+#include <iostream>
+#include <map>
+#include <set>
+#include <sstream>
+
+#include "cli/cli_util.hpp"
+#include "cli/exit_codes.hpp"
+#include "cli/model_load.hpp"
+#include "estimator/correlation/measures.hpp"
+#include "estimator/pretest/exciter_placement.hpp"
+#include "estimator/pretest/sensor_placement.hpp"
+#include "estimator/pretest/tam.hpp"
+#include "estimator/pretest/targets.hpp"
+#include "formats/parse_error.hpp"
+#include "formats/uff.hpp"
+#include "translators/synthetic_modes.hpp"
+
+namespace ssid::cli {
+
+namespace pt = estimator::pretest;
+
+namespace {
+
+pt::PlacementMethod parse_method(const std::string& s) {
+  if (s == "ei") return pt::PlacementMethod::EffectiveIndependence;
+  if (s == "ke") return pt::PlacementMethod::KineticEnergy;
+  if (s == "ake") return pt::PlacementMethod::AverageKineticEnergy;
+  if (s == "evp") return pt::PlacementMethod::EigenvectorProduct;
+  if (s == "evp-sum") return pt::PlacementMethod::EigenvectorSum;
+  throw formats::InputError("--method: expected ei, ke, ake, evp or evp-sum, got \"" + s + "\"");
+}
+
+/// "GRID:X,Y,Z" → an exciter on that grid (direction normalised).
+pt::Exciter parse_exciter(const std::string& text, const std::map<std::int64_t, int>& group_of) {
+  const auto colon = text.find(':');
+  const std::string what = "--exciter-at \"" + text + "\": ";
+  if (colon == std::string::npos) throw formats::InputError(what + "expected GRID:X,Y,Z");
+  std::int64_t grid = 0;
+  Eigen::Vector3d d;
+  try {
+    std::size_t used = 0;
+    grid = std::stoll(text.substr(0, colon), &used);
+    if (used != colon) throw std::invalid_argument("grid");
+    std::stringstream ss(text.substr(colon + 1));
+    std::string item;
+    int k = 0;
+    while (std::getline(ss, item, ',')) {
+      if (k == 3) throw std::invalid_argument("count");
+      std::size_t u = 0;
+      d(k++) = std::stod(item, &u);
+      if (u != item.size()) throw std::invalid_argument("number");
+    }
+    if (k != 3) throw std::invalid_argument("count");
+  } catch (const std::logic_error&) {
+    throw formats::InputError(what + "expected GRID:X,Y,Z (a grid id and three direction cosines)");
+  }
+  if (d.norm() == 0) throw formats::InputError(what + "the direction is the zero vector");
+  const auto it = group_of.find(grid);
+  if (it == group_of.end()) throw formats::InputError(what + "grid " + std::to_string(grid) + " is not a candidate grid");
+  return {it->second, d.normalized()};
+}
+
+std::string fmt(double v, int prec = 4) {
+  std::ostringstream o;
+  o << std::setprecision(prec) << v;
+  return o.str();
+}
+
+nlohmann::json matrix_rows(const Eigen::MatrixXd& X) {
+  nlohmann::json j = nlohmann::json::array();
+  for (Eigen::Index i = 0; i < X.rows(); ++i) {
+    std::vector<double> r(static_cast<std::size_t>(X.cols()));
+    for (Eigen::Index k = 0; k < X.cols(); ++k) r[static_cast<std::size_t>(k)] = X(i, k);
+    j.push_back(r);
+  }
+  return j;
+}
+
+}  // namespace
+
+int cmd_pretest(const Args& args) {
+  po::options_description desc("ssid pretest options");
+  desc.add_options()("deck", po::value<std::string>()->required(), "NASTRAN input file (SOL 103 bulk data)")(
+      "target-modes", po::value<int>()->required(), "N: the N lowest modes above --min-hz are the targets")(
+      "min-hz", po::value<double>()->default_value(0.1, "0.1"),
+      "F: targets lie strictly above F Hz (the default skips rigid-body modes)")(
+      "sensors", po::value<int>()->required(), "S: the number of sensors (DOFs); a multiple of 3 with --triax")(
+      "method", po::value<std::string>()->default_value("ei"),
+      "ei (effective independence), ke (kinetic energy), ake (average kinetic energy), evp (eigenvector product) "
+      "or evp-sum (absolute eigenvector sum)")(
+      "triax", po::bool_switch(), "place S/3 triaxes (the three translations of a grid) instead of single DOFs")(
+      "grids", po::value<std::string>(),
+      "candidate grids, e.g. \"1:80\" (default: every grid with a translational DOF)")(
+      "ke-mass", po::value<std::string>()->default_value("fe"),
+      "ke/ake: the mass of the kinetic energy, fe (the FE mass) or guyan (reduced to the candidate DOFs)")(
+      "exciters", po::value<int>()->default_value(0), "E: place E exciters with the GA over MIF drop-offs (0: none)")(
+      "exciter-at", po::value<std::vector<std::string>>()->composing(),
+      "evaluate a given exciter, GRID:X,Y,Z (repeat for several; compared with the GA's)")(
+      "population", po::value<int>()->default_value(20), "GA population (the paper: 20)")(
+      "generations", po::value<int>()->default_value(40), "GA generations (the paper: 40)")(
+      "seed", po::value<std::uint64_t>()->default_value(1), "GA seed (same seed, same exciters)")(
+      "damping", po::value<double>()->default_value(0.01, "0.01"), "modal damping ratio of the MIF's FRFs")(
+      "frf-modes", po::value<int>(),
+      "modes solved for (targets, rigid-body and the MIF's modal model; default max(3N, N + 12), at most the "
+      "DOF count less one)")(
+      "json", po::value<std::string>(), "write every figure as JSON to this file ('-' for stdout)")(
+      "uff", po::value<std::string>(), "write the sensor grids (and exciter grids) as UFF dataset 15 to this file");
+  po::positional_options_description pos;
+  pos.add("deck", 1);
+  po::variables_map vm;
+  int rc = 0;
+  if (!parse_options(args,
+                     "ssid pretest DECK --target-modes N [--min-hz F] --sensors S --method ei|ke|ake|evp|evp-sum "
+                     "[--triax] [--exciters E] [--json OUT] [--uff OUT.unv]",
+                     desc, pos, vm, rc))
+    return rc;
+  const int n_targets = vm["target-modes"].as<int>();
+  const int n_sensors = vm["sensors"].as<int>();
+  const bool triax = vm["triax"].as<bool>();
+  const auto method = parse_method(vm["method"].as<std::string>());
+  const int n_exciters = vm["exciters"].as<int>();
+  const std::string ke_mass = vm["ke-mass"].as<std::string>();
+  if (n_targets < 1) throw formats::InputError("--target-modes: expected at least 1, got " + std::to_string(n_targets));
+  if (n_sensors < 1) throw formats::InputError("--sensors: expected at least 1, got " + std::to_string(n_sensors));
+  if (triax && n_sensors % 3 != 0)
+    throw formats::InputError("--sensors " + std::to_string(n_sensors) + " with --triax: expected a multiple of 3");
+  if (ke_mass != "fe" && ke_mass != "guyan")
+    throw formats::InputError("--ke-mass: expected fe or guyan, got \"" + ke_mass + "\"");
+  if (n_exciters < 0) throw formats::InputError("--exciters: expected 0 or more, got " + std::to_string(n_exciters));
+  const double zeta = vm["damping"].as<double>();
+  if (!(zeta > 0 && zeta < 1)) throw formats::InputError("--damping: expected a ratio in (0, 1), got " + fmt(zeta));
+
+  // --- the model and its modes
+  LoadedModel lm = load_model(vm["deck"].as<std::string>());
+  print_model_notes(lm);
+  const translators::FeModel& model = *lm.model;
+  const translators::FeOperators op = model.operators(model.initial_parameters(), false);
+  const long n = op.K.rows();
+  int n_solve = vm.count("frf-modes") ? vm["frf-modes"].as<int>() : std::max(3 * n_targets, n_targets + 12);
+  n_solve = static_cast<int>(std::min<long>(n_solve, n - 1));
+  std::string source;
+  estimator::EigenOptions eo = eigen_options(model, n_solve, n, source);
+  const auto dofs = a_set_dofs(model);
+  const estimator::EigenResult er = solve_model(op, eo, dofs);
+  for (const auto& w : er.warnings) std::cerr << "warning: " << w << "\n";
+  const double min_hz = vm["min-hz"].as<double>();
+  const auto target_cols = pt::select_target_modes(er.eigenvalues, n_targets, min_hz);
+  Eigen::MatrixXd Phi(n, n_targets);
+  Eigen::VectorXd hz(n_targets);
+  for (int j = 0; j < n_targets; ++j) {
+    Phi.col(j) = er.modes.col(target_cols[static_cast<std::size_t>(j)]);
+    hz(j) = er.cycles(static_cast<int>(target_cols[static_cast<std::size_t>(j)]));
+  }
+
+  // --- candidates
+  const auto grids = grid_positions(model);
+  std::vector<std::int64_t> grid_list;
+  if (vm.count("grids")) grid_list = translators::parse_sensor_list(vm["grids"].as<std::string>(), grids, "--grids");
+  const auto cand = pt::translational_candidates(dofs, grid_list);
+  const auto groups = pt::group_by_grid(cand);
+  std::vector<Eigen::Index> cand_rows;
+  for (const auto& c : cand) cand_rows.push_back(c.row);
+  const Eigen::MatrixXd Phi_c = pt::take_rows(Phi, cand_rows);
+
+  // --- sensor placement
+  const int keep = triax ? n_sensors / 3 : n_sensors;
+  const std::vector<std::vector<Eigen::Index>> no_groups;
+  const auto& place_groups = triax ? groups : no_groups;
+  pt::Placement placement;
+  if (method == pt::PlacementMethod::EffectiveIndependence) {
+    placement = pt::effective_independence(Phi_c, keep, place_groups);
+  } else {
+    Eigen::MatrixXd ke;
+    if (method == pt::PlacementMethod::KineticEnergy || method == pt::PlacementMethod::AverageKineticEnergy) {
+      if (ke_mass == "fe") {
+        ke = pt::kinetic_energy_fractions(Phi, op.M, cand_rows);
+      } else {
+        const estimator::ReducedModel g = estimator::guyan_reduce(op.K, op.M, cand_rows);
+        if (g.status != estimator::ReductionStatus::Ok)
+          throw formats::NumericalError("--ke-mass guyan: " + g.message);
+        std::vector<Eigen::Index> all(cand_rows.size());
+        for (std::size_t i = 0; i < all.size(); ++i) all[i] = static_cast<Eigen::Index>(i);
+        ke = pt::kinetic_energy_fractions(Phi_c, g.M.sparseView(), all);
+      }
+    }
+    placement = pt::rank_placement(method, Phi_c, pt::placement_metric(method, Phi_c, ke), keep, place_groups);
+  }
+  std::vector<Eigen::Index> sensor_rows;
+  for (auto s : placement.selected) sensor_rows.push_back(cand[static_cast<std::size_t>(s)].row);
+
+  // --- TAMs on the sensor set
+  std::vector<pt::TamCheck> tams;
+  for (auto k : {pt::TamKind::Guyan, pt::TamKind::Irs, pt::TamKind::Serep})
+    tams.push_back(pt::tam_check(k, op.K, op.M, Phi, hz, sensor_rows));
+
+  // --- exciters
+  std::map<std::int64_t, int> group_of;
+  for (std::size_t g = 0; g < groups.size(); ++g) group_of[cand[static_cast<std::size_t>(groups[g][0])].dof.point] = static_cast<int>(g);
+  std::vector<pt::Exciter> given;
+  if (vm.count("exciter-at"))
+    for (const auto& s : vm["exciter-at"].as<std::vector<std::string>>()) given.push_back(parse_exciter(s, group_of));
+  std::optional<pt::ExciterPlacement> xp;
+  std::optional<Eigen::MatrixXd> given_drop;
+  if (n_exciters > 0 || !given.empty()) {
+    const pt::DropoffModel dm(er.modes, er.eigenvalues, sensor_rows, cand, groups, target_cols, zeta);
+    if (!given.empty()) given_drop = dm.dropoffs(given);
+    if (n_exciters > 0) {
+      pt::GeneticOptions go;
+      go.population = vm["population"].as<int>();
+      go.generations = vm["generations"].as<int>();
+      go.seed = vm["seed"].as<std::uint64_t>();
+      if (go.population < 3) throw formats::InputError("--population: expected 3 or more, got " + std::to_string(go.population));
+      if (go.generations < 0) throw formats::InputError("--generations: expected 0 or more, got " + std::to_string(go.generations));
+      xp = pt::place_exciters(dm, n_exciters, go);
+    }
+  }
+  auto grid_of_group = [&](int g) { return cand[static_cast<std::size_t>(groups[static_cast<std::size_t>(g)][0])].dof.point; };
+
+  // --- JSON
+  nlohmann::json j;
+  j["deck"] = lm.path;
+  j["dof"] = n;
+  j["method"] = pt::method_name(method);
+  j["triax"] = triax;
+  j["candidates"] = cand.size();
+  j["target_modes"] = nlohmann::json::array();
+  for (int t = 0; t < n_targets; ++t)
+    j["target_modes"].push_back({{"mode", target_cols[static_cast<std::size_t>(t)] + 1}, {"hz", hz(t)}});
+  j["sensors"] = nlohmann::json::array();
+  for (std::size_t i = 0; i < placement.selected.size(); ++i) {
+    const auto& c = cand[static_cast<std::size_t>(placement.selected[i])];
+    j["sensors"].push_back({{"grid", c.dof.point}, {"component", c.dof.component}, {"score", placement.score(static_cast<Eigen::Index>(i))}});
+  }
+  auto finite_or_null = [](double v) { return std::isfinite(v) ? nlohmann::json(v) : nlohmann::json(nullptr); };
+  j["fisher_determinant"] = placement.fisher.determinant;
+  j["log10_fisher_determinant"] = finite_or_null(placement.fisher.log10_determinant);
+  j["condition_number"] = finite_or_null(placement.fisher.condition_number);
+  j["fisher_rank"] = placement.fisher.rank;
+  if (triax) j["protected_grids"] = placement.protected_groups;
+  j["tam"] = nlohmann::json::object();
+  for (const auto& t : tams) {
+    nlohmann::json x{{"status", t.status == estimator::ReductionStatus::Ok ? "ok" : "failed"}};
+    if (t.status != estimator::ReductionStatus::Ok) x["message"] = t.message;
+    else {
+      x["min_diagonal_xor"] = t.min_diagonal;
+      x["max_offdiagonal_xor"] = t.max_offdiagonal;
+      x["max_frequency_error_pct"] = t.max_frequency_error_pct;
+      x["accepted"] = t.accepted;
+      x["accepted_primary"] = t.accepted_primary;
+      x["xor"] = matrix_rows(t.xor_matrix);
+    }
+    j["tam"][pt::tam_name(t.kind)] = x;
+  }
+  j["acceptance"] = {{"min_diagonal", 0.9}, {"max_offdiagonal", 0.1}, {"max_offdiagonal_primary", 0.02}};
+  j["exciters"] = nlohmann::json::array();
+  if (xp) {
+    for (const auto& e : xp->exciters)
+      j["exciters"].push_back({{"grid", grid_of_group(e.group)}, {"direction", {e.direction(0), e.direction(1), e.direction(2)}}});
+    j["exciter_objective"] = xp->objective;
+    j["mif_dropoff"] = matrix_rows(xp->dropoffs);
+    j["ga"] = {{"population", vm["population"].as<int>()}, {"generations", vm["generations"].as<int>()},
+               {"seed", vm["seed"].as<std::uint64_t>()}, {"evaluations", xp->ga.evaluations},
+               {"best_per_generation", xp->ga.best_per_generation}};
+  }
+  if (given_drop) {
+    nlohmann::json g;
+    g["exciters"] = nlohmann::json::array();
+    for (const auto& e : given)
+      g["exciters"].push_back({{"grid", grid_of_group(e.group)}, {"direction", {e.direction(0), e.direction(1), e.direction(2)}}});
+    g["objective"] = pt::exciter_objective(*given_drop);
+    g["mif_dropoff"] = matrix_rows(*given_drop);
+    j["given_exciters"] = g;
+  }
+  j["damping_ratio"] = zeta;
+
+  // --- report
+  const std::string json_path = vm.count("json") ? vm["json"].as<std::string>() : "";
+  if (json_path != "-") {
+    std::ostream& o = std::cout;
+    o << lm.path << ": " << n << " analysis-set DOF(s), " << er.size() << " mode(s) solved, " << cand.size()
+      << " candidate sensor DOF(s) on " << groups.size() << " grid(s)\n\n";
+    o << "target modes (" << n_targets << " lowest above " << min_hz << " Hz):";
+    for (int t = 0; t < n_targets; ++t) o << (t % 6 == 0 ? "\n  " : "  ") << "#" << target_cols[static_cast<std::size_t>(t)] + 1 << " " << std::fixed << std::setprecision(3) << hz(t) << " Hz";
+    o << std::defaultfloat << "\n\n";
+    o << "sensors: " << pt::method_name(method) << (triax ? ", triaxial (" + std::to_string(keep) + " grids)" : "")
+      << ", " << placement.selected.size() << " DOF(s)\n";
+    o << "  grid  component  score\n";
+    for (std::size_t i = 0; i < placement.selected.size(); ++i) {
+      const auto& c = cand[static_cast<std::size_t>(placement.selected[i])];
+      o << "  " << std::setw(4) << c.dof.point << "  T" << c.dof.component << "         " << fmt(placement.score(static_cast<Eigen::Index>(i))) << "\n";
+    }
+    o << "Fisher information (unit noise, mass-normalised modes): det " << fmt(placement.fisher.determinant)
+      << " (log10 " << fmt(placement.fisher.log10_determinant) << "), condition number "
+      << fmt(placement.fisher.condition_number) << ", rank " << placement.fisher.rank << " of " << n_targets << "\n";
+    if (triax && placement.protected_groups)
+      o << "  " << placement.protected_groups << " grid(s) kept because one of their DOFs has EI = 1\n";
+    o << "\ntest-analysis models on the sensors (cross-orthogonality of the target modes; accept: diagonal > 0.9, "
+         "off-diagonal < 0.1, primary < 0.02):\n";
+    for (const auto& t : tams) {
+      o << "  " << std::left << std::setw(6) << pt::tam_name(t.kind) << std::right;
+      if (t.status != estimator::ReductionStatus::Ok) {
+        o << " failed: " << t.message << "\n";
+        continue;
+      }
+      o << " min diagonal " << fmt(t.min_diagonal) << ", max off-diagonal " << fmt(t.max_offdiagonal)
+        << ", max frequency error " << fmt(t.max_frequency_error_pct, 3) << " %: "
+        << (t.accepted_primary ? "accepted (primary)" : t.accepted ? "accepted (secondary)" : "NOT accepted") << "\n";
+    }
+    auto print_exciters = [&](const char* title, const std::vector<pt::Exciter>& ex, const Eigen::MatrixXd& D) {
+      o << "\n" << title << " (MIF drop-off at each target; objective " << fmt(pt::exciter_objective(D), 6) << ")\n";
+      for (std::size_t e = 0; e < ex.size(); ++e)
+        o << "  exciter " << e + 1 << ": grid " << grid_of_group(ex[e].group) << ", direction (" << fmt(ex[e].direction(0), 3)
+          << ", " << fmt(ex[e].direction(1), 3) << ", " << fmt(ex[e].direction(2), 3) << ")\n";
+      o << "  mode  " ;
+      for (std::size_t e = 0; e < ex.size(); ++e) o << "  exciter " << e + 1;
+      o << "\n";
+      for (int t = 0; t < n_targets; ++t) {
+        o << "  " << std::setw(4) << target_cols[static_cast<std::size_t>(t)] + 1 << "  ";
+        for (Eigen::Index e = 0; e < D.cols(); ++e) o << "  " << std::setw(9) << std::fixed << std::setprecision(4) << D(t, e);
+        o << std::defaultfloat << "\n";
+      }
+    };
+    if (xp) print_exciters("exciters placed by the GA", xp->exciters, xp->dropoffs);
+    if (given_drop) print_exciters("exciters given (--exciter-at)", given, *given_drop);
+  }
+  if (!json_path.empty()) write_json(json_path, j);
+
+  if (vm.count("uff")) {
+    std::set<std::int64_t> ids;
+    for (auto s : placement.selected) ids.insert(cand[static_cast<std::size_t>(s)].dof.point);
+    if (xp)
+      for (const auto& e : xp->exciters) ids.insert(grid_of_group(e.group));
+    formats::uff::NodeSet ns;
+    ns.dataset = 15;
+    for (const auto& g : grids)
+      if (ids.count(g.id)) {
+        formats::uff::Node nd;
+        nd.id = g.id;
+        nd.xyz = {g.position(0), g.position(1), g.position(2)};
+        ns.nodes.push_back(nd);
+      }
+    formats::uff::UffFile f;
+    f.datasets.push_back(ns);
+    const std::string out = vm["uff"].as<std::string>();
+    formats::uff::write_uff(f, out, formats::uff::Precision::Standard);
+    std::cerr << "wrote " << out << ": " << ns.nodes.size() << " node(s) (dataset 15, positions in the basic system)\n";
+  }
+  return kExitSuccess;
+}
+
+}  // namespace ssid::cli
