@@ -33,7 +33,150 @@ const char* analysis_name(int t) {
   }
 }
 
-nlohmann::json to_json(const uff::UffFile& f) {
+/// Function types of dataset 58 record 6 field 1.
+const char* function_type_name(int t) {
+  static const char* names[] = {"general",
+                                "time response",
+                                "auto spectrum",
+                                "cross spectrum",
+                                "frequency response function",
+                                "transmissibility",
+                                "coherence",
+                                "auto correlation",
+                                "cross correlation",
+                                "power spectral density",
+                                "energy spectral density",
+                                "probability density function",
+                                "spectrum",
+                                "cumulative frequency distribution",
+                                "peaks valley",
+                                "stress/cycles",
+                                "strain/cycles",
+                                "orbit",
+                                "mode indicator function",
+                                "force pattern",
+                                "partial power",
+                                "partial coherence",
+                                "eigenvalue",
+                                "eigenvector",
+                                "shock response spectrum",
+                                "finite impulse response filter",
+                                "multiple coherence",
+                                "order function"};
+  return t >= 0 && t < static_cast<int>(sizeof names / sizeof names[0]) ? names[t] : "other";
+}
+
+const char* ordinate_type_name(int t) {
+  switch (t) {
+    case 2: return "real single";
+    case 4: return "real double";
+    case 5: return "complex single";
+    case 6: return "complex double";
+    default: return "other";
+  }
+}
+
+nlohmann::json axis_json(const uff::Axis58& a) {
+  return {{"specific_data_type", a.specific_data_type},
+          {"label", a.label},
+          {"units", a.units},
+          {"exponents", {a.length_exponent, a.force_exponent, a.temperature_exponent}}};
+}
+
+/// One 58/58b: what it measures, where, and how its abscissa and ordinate are laid out.
+nlohmann::json function_json(const uff::Function58& fn, bool values) {
+  nlohmann::json e{{"function_type", fn.function_type},
+                   {"function", function_type_name(fn.function_type)},
+                   {"binary", fn.binary},
+                   {"ordinate_type", fn.ordinate_type},
+                   {"ordinate", ordinate_type_name(fn.ordinate_type)},
+                   {"complex", fn.is_complex()},
+                   {"spacing", fn.even ? "even" : "uneven"},
+                   {"even", fn.even},
+                   {"points", fn.y.size()},
+                   {"abscissa_min", fn.x.empty() ? 0.0 : fn.x.front()},
+                   {"abscissa_max", fn.x.empty() ? 0.0 : fn.x.back()},
+                   {"response_node", fn.response_node},
+                   {"response_direction", fn.response_direction},
+                   {"response", std::to_string(fn.response_node) + direction_name(fn.response_direction)},
+                   {"reference_node", fn.reference_node},
+                   {"reference_direction", fn.reference_direction},
+                   {"reference", fn.reference_node == 0 && fn.reference_direction == 0
+                                     ? std::string("none")
+                                     : std::to_string(fn.reference_node) + direction_name(fn.reference_direction)},
+                   {"id_line", fn.id_lines[0]},
+                   {"abscissa_axis", axis_json(fn.axes[0])},
+                   {"ordinate_axis", axis_json(fn.axes[1])},
+                   {"denominator_axis", axis_json(fn.axes[2])}};
+  if (fn.even) e["abscissa_increment"] = fn.abscissa_increment;
+  if (fn.binary) e["byte_order"] = fn.byte_order == 2 ? "big endian" : "little endian";
+  if (values) {
+    e["x"] = fn.x;
+    nlohmann::json y = nlohmann::json::array();
+    for (const auto& v : fn.y) {
+      if (fn.is_complex()) y.push_back({v.real(), v.imag()});
+      else y.push_back(v.real());
+    }
+    e["y"] = std::move(y);
+  }
+  return e;
+}
+
+/// Per-dataset details for the listing ("datasets" of the JSON).
+struct DatasetJson {
+  nlohmann::json& e;
+  bool values;
+  void operator()(const uff::Header151&) const { e["type"] = "header"; }
+  void operator()(const uff::Units164& u) const {
+    e["type"] = "units";
+    e["units_code"] = u.code;
+  }
+  void operator()(const uff::NodeSet& s) const {
+    e["type"] = "nodes";
+    e["nodes"] = s.nodes.size();
+  }
+  void operator()(const uff::NodalData55& m) const {
+    e["type"] = "data at nodes";
+    e["analysis"] = analysis_name(m.analysis_type);
+    e["mode"] = m.mode_number();
+    e["frequency_hz"] = m.frequency_hz();
+    e["nodes"] = m.nodes.size();
+    e["values_per_node"] = m.values_per_node;
+    e["complex"] = m.is_complex();
+    if (m.analysis2414) e["analysis_dataset_name"] = m.analysis2414->name;
+  }
+  void operator()(const uff::Function58& fn) const {
+    e["type"] = "function";
+    e.update(function_json(fn, values));
+  }
+  void operator()(const uff::Qualifiers1858& q) const {
+    e["type"] = "function qualifiers";
+    e["window"] = q.window();
+    e["samples"] = q.samples();
+    e["exponential_window_damping"] = q.exponential_damping();
+  }
+  void operator()(const uff::ElementSet2412& s) const {
+    e["type"] = "elements";
+    e["elements"] = s.elements.size();
+  }
+  void operator()(const uff::TraceLine82& t) const {
+    e["type"] = "trace line";
+    e["trace_line"] = t.id;
+    e["label"] = t.label;
+    e["nodes"] = t.nodes.size();
+  }
+  void operator()(const uff::CoordinateSystems18& s) const {
+    e["type"] = "coordinate systems";
+    e["systems"] = s.systems.size();
+  }
+  void operator()(const uff::CoordinateSystems2420& s) const {
+    e["type"] = "coordinate systems";
+    e["systems"] = s.systems.size();
+  }
+  void operator()(const uff::UnknownDataset&) const { e["type"] = "kept verbatim"; }
+};
+
+nlohmann::json to_json(const uff::UffFile& f, bool values) {
   nlohmann::json j;
   j["file"] = f.path;
   j["datasets"] = nlohmann::json::array();
@@ -42,6 +185,7 @@ nlohmann::json to_json(const uff::UffFile& f) {
     e["number"] = uff::dataset_number(d);
     std::visit([&](const auto& x) { e["line"] = x.where.line; }, d);
     e["kept_verbatim"] = std::holds_alternative<uff::UnknownDataset>(d);
+    std::visit(DatasetJson{e, values}, d);
     j["datasets"].push_back(e);
   }
   for (const auto& d : f.datasets) {
@@ -80,19 +224,11 @@ nlohmann::json to_json(const uff::UffFile& f) {
     j["modes"].push_back(e);
   }
   j["functions"] = nlohmann::json::array();
-  for (const auto* fn : f.functions())
-    j["functions"].push_back({{"line", fn->where.line},
-                              {"function_type", fn->function_type},
-                              {"response_node", fn->response_node},
-                              {"response_direction", fn->response_direction},
-                              {"reference_node", fn->reference_node},
-                              {"reference_direction", fn->reference_direction},
-                              {"points", fn->y.size()},
-                              {"complex", fn->is_complex()},
-                              {"even", fn->even},
-                              {"abscissa_min", fn->x.empty() ? 0.0 : fn->x.front()},
-                              {"abscissa_max", fn->x.empty() ? 0.0 : fn->x.back()},
-                              {"id_line", fn->id_lines[0]}});
+  for (const auto* fn : f.functions()) {
+    nlohmann::json e{{"line", fn->where.line}};
+    e.update(function_json(*fn, false));
+    j["functions"].push_back(e);
+  }
   nlohmann::json sk = nlohmann::json::object();
   for (const auto& [n, c] : f.skipped()) sk[std::to_string(n)] = c;
   j["skipped"] = sk;
@@ -108,14 +244,17 @@ nlohmann::json to_json(const uff::UffFile& f) {
 int uff_list(const Args& args) {
   po::options_description desc("ssid uff list options");
   desc.add_options()("file", po::value<std::string>()->required(), "universal file (.unv/.uff)")(
-      "json", po::value<std::string>(), "write the listing as JSON to this file ('-' for stdout)");
+      "json", po::value<std::string>(), "write the listing as JSON to this file ('-' for stdout)")(
+      "values", "with --json: the abscissa and ordinate values of every 58/58b ([re, im] pairs when complex)");
   po::positional_options_description pos;
   pos.add("file", 1);
   po::variables_map vm;
   int rc = 0;
-  if (!parse_options(args, "ssid uff list FILE [--json OUT]", desc, pos, vm, rc)) return rc;
+  if (!parse_options(args, "ssid uff list FILE [--json OUT] [--values]", desc, pos, vm, rc)) return rc;
+  if (vm.count("values") && !vm.count("json"))
+    throw formats::InputError("ssid uff list: --values adds the values to the JSON listing; give --json OUT (or --json -)");
   const uff::UffFile f = uff::read_uff(vm["file"].as<std::string>());
-  const nlohmann::json j = to_json(f);
+  const nlohmann::json j = to_json(f, vm.count("values") > 0);
   const std::string json_path = vm.count("json") ? vm["json"].as<std::string>() : "";
   if (json_path == "-") {
     write_json("-", j);
@@ -152,15 +291,26 @@ int uff_list(const Args& args) {
     std::fflush(stdout);
   }
   const auto fns = f.functions();
-  std::cout << "functions at nodal DOFs (58): " << fns.size() << "\n";
+  std::cout << "functions at nodal DOFs (58, 58b): " << fns.size() << "\n";
   for (const auto* fn : fns)
-    std::cout << "  line " << fn->where.line << ": type " << fn->function_type << ", response " << fn->response_node
+    std::cout << "  line " << fn->where.line << (fn->binary ? " (58b)" : "") << ": type " << fn->function_type << " ("
+              << function_type_name(fn->function_type) << "), response " << fn->response_node
               << direction_name(fn->response_direction) << ", reference "
               << (fn->reference_node == 0 && fn->reference_direction == 0
                       ? std::string("none")
                       : std::to_string(fn->reference_node) + direction_name(fn->reference_direction))
-              << ", " << fn->y.size() << " points"
-              << (fn->is_complex() ? " (complex)" : "") << "\n";
+              << ", " << fn->y.size() << " points, " << (fn->even ? "even" : "uneven") << " abscissa, "
+              << ordinate_type_name(fn->ordinate_type) << "\n";
+  std::size_t n1858 = 0, n2412 = 0, n82 = 0, ncs = 0;
+  for (const auto& d : f.datasets) {
+    if (std::holds_alternative<uff::Qualifiers1858>(d)) ++n1858;
+    if (auto e = std::get_if<uff::ElementSet2412>(&d)) n2412 += e->elements.size();
+    if (std::holds_alternative<uff::TraceLine82>(d)) ++n82;
+    if (auto c = std::get_if<uff::CoordinateSystems18>(&d)) ncs += c->systems.size();
+    if (auto c = std::get_if<uff::CoordinateSystems2420>(&d)) ncs += c->systems.size();
+  }
+  std::cout << "function qualifiers (1858): " << n1858 << "; elements (2412): " << n2412
+            << "; trace lines (82): " << n82 << "; coordinate systems (18, 2420): " << ncs << "\n";
   std::cout << "skipped (kept verbatim):";
   if (f.skipped().empty()) std::cout << " none";
   for (const auto& [n, c] : f.skipped()) std::cout << " " << n << " x" << c;
@@ -177,7 +327,7 @@ int uff_list(const Args& args) {
 }  // namespace
 
 int cmd_uff(const Args& args) {
-  const std::string usage = "usage: ssid uff list FILE [--json OUT]\n";
+  const std::string usage = "usage: ssid uff list FILE [--json OUT] [--values]\n";
   if (args.empty()) {
     std::cerr << usage;
     return 2;
