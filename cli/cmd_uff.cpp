@@ -33,6 +33,28 @@ const char* analysis_name(int t) {
   }
 }
 
+/// Text of a universal file as JSON can carry it: valid UTF-8 sequences kept,
+/// any other byte of 0x80 and above taken as Latin-1 (Test.Lab and VibControl
+/// write "g²/Hz" in Latin-1).
+std::string utf8_text(const std::string& s) {
+  std::string o;
+  for (std::size_t i = 0; i < s.size();) {
+    const auto c = static_cast<unsigned char>(s[i]);
+    std::size_t len = c < 0x80 ? 1 : (c >> 5) == 0x6 ? 2 : (c >> 4) == 0xE ? 3 : (c >> 3) == 0x1E ? 4 : 0;
+    bool valid = len > 0 && i + len <= s.size();
+    for (std::size_t k = 1; valid && k < len; ++k) valid = (static_cast<unsigned char>(s[i + k]) & 0xC0) == 0x80;
+    if (valid) {
+      o.append(s, i, len);
+      i += len;
+    } else {
+      o += static_cast<char>(0xC0 | (c >> 6));
+      o += static_cast<char>(0x80 | (c & 0x3F));
+      ++i;
+    }
+  }
+  return o;
+}
+
 /// Function types of dataset 58 record 6 field 1.
 const char* function_type_name(int t) {
   static const char* names[] = {"general",
@@ -78,8 +100,8 @@ const char* ordinate_type_name(int t) {
 
 nlohmann::json axis_json(const uff::Axis58& a) {
   return {{"specific_data_type", a.specific_data_type},
-          {"label", a.label},
-          {"units", a.units},
+          {"label", utf8_text(a.label)},
+          {"units", utf8_text(a.units)},
           {"exponents", {a.length_exponent, a.force_exponent, a.temperature_exponent}}};
 }
 
@@ -104,7 +126,7 @@ nlohmann::json function_json(const uff::Function58& fn, bool values) {
                    {"reference", fn.reference_node == 0 && fn.reference_direction == 0
                                      ? std::string("none")
                                      : std::to_string(fn.reference_node) + direction_name(fn.reference_direction)},
-                   {"id_line", fn.id_lines[0]},
+                   {"id_line", utf8_text(fn.id_lines[0])},
                    {"abscissa_axis", axis_json(fn.axes[0])},
                    {"ordinate_axis", axis_json(fn.axes[1])},
                    {"denominator_axis", axis_json(fn.axes[2])}};
@@ -143,7 +165,7 @@ struct DatasetJson {
     e["nodes"] = m.nodes.size();
     e["values_per_node"] = m.values_per_node;
     e["complex"] = m.is_complex();
-    if (m.analysis2414) e["analysis_dataset_name"] = m.analysis2414->name;
+    if (m.analysis2414) e["analysis_dataset_name"] = utf8_text(m.analysis2414->name);
   }
   void operator()(const uff::Function58& fn) const {
     e["type"] = "function";
@@ -162,7 +184,7 @@ struct DatasetJson {
   void operator()(const uff::TraceLine82& t) const {
     e["type"] = "trace line";
     e["trace_line"] = t.id;
-    e["label"] = t.label;
+    e["label"] = utf8_text(t.label);
     e["nodes"] = t.nodes.size();
   }
   void operator()(const uff::CoordinateSystems18& s) const {
@@ -178,7 +200,7 @@ struct DatasetJson {
 
 nlohmann::json to_json(const uff::UffFile& f, bool values) {
   nlohmann::json j;
-  j["file"] = f.path;
+  j["file"] = utf8_text(f.path);
   j["datasets"] = nlohmann::json::array();
   for (const auto& d : f.datasets) {
     nlohmann::json e;
@@ -190,9 +212,11 @@ nlohmann::json to_json(const uff::UffFile& f, bool values) {
   }
   for (const auto& d : f.datasets) {
     if (auto h = std::get_if<uff::Header151>(&d)) {
-      j["header"] = {{"model", h->model_name()}, {"description", h->description()}, {"program", h->program()}};
+      j["header"] = {{"model", utf8_text(h->model_name())},
+                     {"description", utf8_text(h->description())},
+                     {"program", utf8_text(h->program())}};
     } else if (auto u = std::get_if<uff::Units164>(&d)) {
-      j["units"] = {{"code", u->code},       {"description", u->description}, {"length", u->length},
+      j["units"] = {{"code", u->code},       {"description", utf8_text(u->description)}, {"length", u->length},
                     {"force", u->force},     {"temperature", u->temperature}, {"temperature_offset", u->temperature_offset}};
     }
   }
@@ -210,7 +234,7 @@ nlohmann::json to_json(const uff::UffFile& f, bool values) {
                      {"nodes", m->nodes.size()},
                      {"values_per_node", m->values_per_node},
                      {"complex", m->is_complex()},
-                     {"id_line", m->id_lines[0]}};
+                     {"id_line", utf8_text(m->id_lines[0])}};
     if (m->is_normal_mode()) {
       e["modal_mass"] = m->modal_mass();
       e["viscous_damping"] = m->viscous_damping();

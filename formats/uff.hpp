@@ -390,7 +390,8 @@ UffFile parse_uff(const std::string& text, const std::string& name);
 
 /// How values are written. Standard follows the dataset definitions exactly
 /// (1P E13.5 for 15/55, D25.16 for 2411, E20.12 for double 58 data).
-/// Extended writes 55 and 15 values as 1P E25.16 (three per line), which
+/// Extended writes 55, 2414 and 15 values and the ASCII data of single-precision
+/// 58 (ordinate types 2, 5) as 1P E25.16 (three per line), which
 /// ssid and free-format readers read back to the last bit; use it for
 /// synthetic data that must survive a round trip exactly.
 enum class Precision { Standard, Extended };

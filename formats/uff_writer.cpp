@@ -171,7 +171,7 @@ std::vector<double> record12_values(const Function58& f) {
   return v;
 }
 
-void write_58(std::string& o, const Function58& f) {
+void write_58(std::string& o, const Function58& f, Precision p) {
   for (const auto& l : f.id_lines) put_line(o, l);
   put_int(o, f.function_type, 5);
   put_int(o, f.function_id, 10);
@@ -205,7 +205,8 @@ void write_58(std::string& o, const Function58& f) {
     return;
   }
   if (!f.is_double()) {
-    put_reals(o, v.data(), v.size(), 6, 13, 5);
+    const auto w = single_format(p);
+    put_reals(o, v.data(), v.size(), w.per_line, w.width, w.decimals);
     return;
   }
   // Double precision: even 4E20.12; uneven real 2(E13.5,E20.12); uneven complex E13.5,2E20.12.
@@ -362,7 +363,7 @@ std::string format_uff(const UffFile& file, Precision precision) {
     else if (auto m = std::get_if<NodalData55>(&d)) {
       if (m->analysis2414) write_2414(o, *m, precision);
       else write_55(o, *m, precision);
-    } else if (auto f = std::get_if<Function58>(&d)) write_58(o, *f);
+    } else if (auto f = std::get_if<Function58>(&d)) write_58(o, *f, precision);
     else if (auto q = std::get_if<Qualifiers1858>(&d)) write_1858(o, *q);
     else if (auto e = std::get_if<ElementSet2412>(&d)) write_2412(o, *e);
     else if (auto t = std::get_if<TraceLine82>(&d)) write_82(o, *t);

@@ -103,56 +103,25 @@ TEST_CASE("ssid uff list: 58b and 2414 listed, values on request, 2414 modes usa
     bytes.append(b, 4);  // the test hosts are little endian (x86-64)
   }
   std::string text =
-      "    -1
-    58b     1     2          11          16     0     0           0           0
-"
-      "FRF 7+Z/1+Z
-NONE
-NONE
-NONE
-NONE
-"
-      "    4         1    0         0 NONE               7   3 NONE               1   3
-"
-      "         5         2         1  1.00000E+01  5.00000E-01  0.00000E+00
-"
-      "        18    0    0    0 Frequency            Hz                  
-"
-      "        12    0    0    0 Acceleration         m/s^2               
-"
-      "        13    0    0    0 Force                N                   
-"
-      "         0    0    0    0 NONE                 NONE                
-" +
+      "    -1\n    58b     1     2          11          16     0     0           0           0\n"
+      "FRF 7+Z/1+Z\nNONE\nNONE\nNONE\nNONE\n"
+      "    4         1    0         0 NONE               7   3 NONE               1   3\n"
+      "         5         2         1  1.00000E+01  5.00000E-01  0.00000E+00\n"
+      "        18    0    0    0 Frequency            Hz                  \n"
+      "        12    0    0    0 Acceleration         m/s\xb2"  // Latin-1 superscript two, as VibControl writes it
+      "                \n"
+      "        13    0    0    0 Force                N                   \n"
+      "         0    0    0    0 NONE                 NONE                \n" +
       bytes +
-      "    -1
-"
-      "    -1
-  2414
-         1
-Mode 1
-         1
-A
-B
-C
-D
-E
-"
-      "         1         2         2         8         2         3
-"
-      "         0         0         1         0         1         1         0         0
-"
-      "         0         0
-"
-      "  0.00000E+00  4.50000E+00  0.00000E+00  1.00000E+00  2.00000E-02  0.00000E+00
-"
-      "  0.00000E+00  0.00000E+00  0.00000E+00  0.00000E+00  0.00000E+00  0.00000E+00
-"
-      "         7
-  0.00000E+00  0.00000E+00  1.00000E+00
-"
-      "    -1
-";
+      "    -1\n"
+      "    -1\n  2414\n         1\nMode 1\n         1\nA\nB\nC\nD\nE\n"
+      "         1         2         2         8         2         3\n"
+      "         0         0         1         0         1         1         0         0\n"
+      "         0         0\n"
+      "  0.00000E+00  4.50000E+00  0.00000E+00  1.00000E+00  2.00000E-02  0.00000E+00\n"
+      "  0.00000E+00  0.00000E+00  0.00000E+00  0.00000E+00  0.00000E+00  0.00000E+00\n"
+      "         7\n  0.00000E+00  0.00000E+00  1.00000E+00\n"
+      "    -1\n";
   const fs::path p = scratch() / "lab.unv";
   std::ofstream(p, std::ios::binary) << text;
   const fs::path json = scratch() / "lab.json";
@@ -170,6 +139,7 @@ E
   CHECK(f["function"] == "frequency response function");
   CHECK(f["spacing"] == "even");
   CHECK(f["ordinate"] == "complex single");
+  CHECK(f["ordinate_axis"]["units"] == "m/s\xc2\xb2");  // JSON text is UTF-8
   CHECK(f["points"] == 2);
   CHECK(f["x"] == nlohmann::json::array({10.0, 10.5}));
   CHECK(f["y"] == nlohmann::json::parse("[[1.0, -0.5], [0.25, 2.0]]"));

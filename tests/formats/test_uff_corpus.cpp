@@ -9,6 +9,7 @@
 #include <filesystem>
 #include <fstream>
 #include <map>
+#include <cmath>
 
 #include "formats/uff.hpp"
 
@@ -38,6 +39,55 @@ std::string first_difference(const UffFile& a, const UffFile& b) {
     }
   }
   return "";
+}
+
+/// The values pyuff's own tests (tests/test_2414.py, test_1858.py, test_58.py)
+/// expect of its data files, where the file is one of them.
+void check_pyuff_expectations(const std::string& name, const UffFile& f, const std::string& dir) {
+  if (name == "NX simulation output.uff") {
+    // pyuff read_sets(7): last node's data_at_node (complex, re/im pairs).
+    const auto& m = std::get<NodalData55>(f.datasets.at(7));
+    const auto last = static_cast<Eigen::Index>(m.nodes.size()) - 1;
+    CHECK(m.nodes.back() == 9761);
+    CHECK(m.complex_values(last, 0) == std::complex<double>(5.34055E-02, -0.0));
+    CHECK(m.complex_values(last, 1) == std::complex<double>(-1.58675E+00, 0.0));
+    CHECK(m.complex_values(last, 2) == std::complex<double>(-8.87909E-18, 0.0));
+  }
+  if (name == "simcenter_exported_result.uff") {
+    const auto& m = std::get<NodalData55>(f.datasets.at(3));
+    CHECK(m.nodes.front() == 1);
+    CHECK(m.nodes[9] == 10);
+    CHECK(m.nodes.back() == 11619);
+    CHECK(m.values(2, 0) == -4.29674E-05);
+    CHECK(m.values(2, 1) == -9.05452E-06);
+    CHECK(m.values(2, 2) == -9.67413E-04);
+  }
+  if (name == "1858.uff") {
+    const auto& a = std::get<Qualifiers1858>(f.datasets.at(0));
+    const auto& b = std::get<Qualifiers1858>(f.datasets.at(1));
+    CHECK(a.r1[2] == 1);  // measurement run
+    CHECK(a.window() == 4);
+    CHECK(a.exponential_damping() == Approx(0.052706007).epsilon(1e-12));
+    CHECK(a.directions == "X+    X+");
+    CHECK(b.r1[2] == 1);
+    CHECK(b.r1[1] == 3);  // octave format
+    CHECK(b.directions == "NONE  NONE");
+  }
+  if (name == "Sample_UFF58b_bin.uff") {
+    // pyuff: the binary file holds the ASCII file's function (x equal, data to 6 decimals).
+    const UffFile ascii = read_uff(dir + "/Sample_UFF58_ascii.uff");
+    const auto& b = *f.functions().at(0);
+    const auto& a = *ascii.functions().at(0);
+    CHECK(a.id_lines[0] == b.id_lines[0]);
+    CHECK(a.response_direction == b.response_direction);
+    REQUIRE(a.y.size() == b.y.size());
+    double worst = 0;
+    for (std::size_t i = 0; i < a.y.size(); ++i) {
+      CHECK(a.x[i] == b.x[i]);
+      worst = std::max(worst, std::abs(a.y[i] - b.y[i]));
+    }
+    CHECK(worst < 1.5e-6);  // assert_array_almost_equal: 6 decimals
+  }
 }
 
 }  // namespace
@@ -70,6 +120,7 @@ TEST_CASE("UFF corpus: lab files read, written and read back with the same value
     const std::string standard = format_uff(f);
     UffFile h = parse_uff(standard, path + " (standard)");
     CHECK(format_uff(h) == standard);
+    check_pyuff_expectations(entry.path().filename().string(), f, dir);
     std::ifstream in(path, std::ios::binary);
     const std::string original((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
     std::map<int, std::size_t> counts;
