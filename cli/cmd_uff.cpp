@@ -296,7 +296,7 @@ int uff_list(const Args& args) {
     if (auto s = std::get_if<uff::NodeSet>(&d)) (s->dataset == 15 ? n15 : n2411) += s->nodes.size();
   std::cout << "nodes: " << n15 + n2411 << " (dataset 15: " << n15 << ", dataset 2411: " << n2411 << ")\n";
   const auto modes = f.nodal_data();
-  std::cout << "data at nodes (55): " << modes.size() << "\n";
+  std::cout << "data at nodes (55, 2414): " << modes.size() << "\n";
   if (!modes.empty()) {
     std::printf("  %5s %6s %14s %12s %10s %6s %4s  %s\n", "line", "mode", "frequency Hz", "modal mass", "damping",
                 "nodes", "NDV", "analysis");
