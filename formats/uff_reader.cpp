@@ -338,8 +338,9 @@ Function58 parse_58(DatasetParser& p, const BinaryPayload* bin = nullptr) {
     f.byte_order = bin->byte_order;
     p.finish(11);
     const std::size_t size = f.is_double() ? 8 : 4;
-    const std::uint64_t want = static_cast<std::uint64_t>(n) * stride * size;
-    if (want != bin->bytes.size()) {
+    // A count above the byte count is refused before it is multiplied (no overflow).
+    const bool fits = static_cast<std::uint64_t>(n) <= bin->bytes.size();
+    if (!fits || static_cast<std::uint64_t>(n) * stride * size != bin->bytes.size()) {
       const std::size_t point = stride * size;
       p.ctx(7).fail_field(l7, 2, "number of data values",
                           (bin->bytes.size() % point == 0 ? std::to_string(bin->bytes.size() / point)

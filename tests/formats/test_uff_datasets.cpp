@@ -160,6 +160,9 @@ TEST_CASE("UFF 58b: located errors", "[uff][58b][errors]") {
   CHECK(error_of(file_58b(1, "         2         4         1  0.00000E+00  1.00000E+00  0.00000E+00\n", bytes)) ==
         "bad.unv:9: dataset 58 record 7 field 2 (number of data values): expected 3 (the 58b header at line 2 "
         "declares 12 bytes; a point is 1 value(s) of 4 bytes), got \"4\"");
+  CHECK(error_of(file_58b(1, "         2 999999999         1  0.00000E+00  1.00000E+00  0.00000E+00\n", bytes)) ==
+        "bad.unv:9: dataset 58 record 7 field 2 (number of data values): expected 3 (the 58b header at line 2 "
+        "declares 12 bytes; a point is 1 value(s) of 4 bytes), got \"999999999\"");
   // Something other than a line end between the bytes and the delimiter: the byte count is wrong.
   t = text;
   t.insert(t.size() - 7, "junk\n");
