@@ -221,9 +221,23 @@ nlohmann::json to_json(const uff::UffFile& f, bool values) {
     }
   }
   j["nodes"] = nlohmann::json::array();
-  for (const auto& n : f.nodes())
-    j["nodes"].push_back({{"id", n.id}, {"xyz", n.xyz}, {"definition_cs", n.definition_cs},
-                          {"displacement_cs", n.displacement_cs}});
+  // Positions in the global system too, where a node is defined in a local one
+  // (datasets 18, 2420); a system the file lacks is a problem, listed below.
+  std::vector<uff::Node> global;
+  std::string cs_problem;
+  try {
+    global = f.nodes_in_global();
+  } catch (const formats::InputError& e) {
+    cs_problem = e.what();
+  }
+  const auto nodes = f.nodes();
+  for (std::size_t k = 0; k < nodes.size(); ++k) {
+    const auto& n = nodes[k];
+    nlohmann::json e{{"id", n.id}, {"xyz", n.xyz}, {"definition_cs", n.definition_cs},
+                     {"displacement_cs", n.displacement_cs}};
+    if (n.definition_cs != 0 && k < global.size()) e["xyz_global"] = global[k].xyz;
+    j["nodes"].push_back(e);
+  }
   j["modes"] = nlohmann::json::array();
   for (const auto* m : f.nodal_data()) {
     nlohmann::json e{{"line", m->where.line},
@@ -262,6 +276,7 @@ nlohmann::json to_json(const uff::UffFile& f, bool values) {
   j["complex_modes"] = rep.complex_modes;
   j["measured_dofs"] = set.dofs.size();
   j["problems"] = rep.problems;
+  if (!cs_problem.empty()) j["problems"].push_back(cs_problem);
   return j;
 }
 

@@ -157,6 +157,32 @@ TEST_CASE("ssid uff list: 58b and 2414 listed, values on request, 2414 modes usa
                        "--json -)\n");
 }
 
+TEST_CASE("ssid uff list: node positions in the global system where a coordinate system is given", "[cli][uff]") {
+  const fs::path p = scratch() / "cs.unv";
+  std::ofstream(p) << "    -1\n    18\n         1         0         0         8         1\nSYS1\n"
+                      " -2.40000E+00 -9.50000E-01  0.00000E+00 -3.40000E+00 -9.50000E-01  0.00000E+00\n"
+                      " -3.40000E+00 -9.50000E-01 -1.00000E+00\n    -1\n"
+                      "    -1\n    15\n        11         1         1         0  1.00000E+00  2.00000E+00  3.00000E+00\n"
+                      "        12         0         0         0  1.00000E+00  2.00000E+00  3.00000E+00\n    -1\n";
+  auto r = run_ssid("uff list " + p.string() + " --json -");
+  CHECK(r.code == 0);
+  auto j = nlohmann::json::parse(r.out);
+  // SYS1's axes: x = -X, y = +Y, z = -Z from (-2.4, -0.95, 0): (1, 2, 3) is (-3.4, 1.05, -3).
+  REQUIRE(j["nodes"][0].contains("xyz_global"));
+  CHECK(j["nodes"][0]["xyz_global"][0].get<double>() == Approx(-3.4).margin(1e-12));
+  CHECK(j["nodes"][0]["xyz_global"][1].get<double>() == Approx(1.05).margin(1e-12));
+  CHECK(j["nodes"][0]["xyz_global"][2].get<double>() == Approx(-3.0).margin(1e-12));
+  CHECK_FALSE(j["nodes"][1].contains("xyz_global"));
+  // A node in a system the file lacks: listed as a problem, no global positions.
+  std::ofstream(p, std::ios::app) << "    -1\n    15\n        13         7         0         0  1.00000E+00  2.00000E+00  "
+                                     "3.00000E+00\n    -1\n";
+  auto m = run_ssid("uff list " + p.string() + " --json -");
+  CHECK(m.code == 0);
+  auto k = nlohmann::json::parse(m.out);
+  CHECK_FALSE(k["nodes"][0].contains("xyz_global"));
+  CHECK(k["problems"].back() == "node 13: definition coordinate system 7 is not defined in the file (datasets 18, 2420)");
+}
+
 TEST_CASE("ssid correlate: pairing table, unpaired modes, JSON; position mapping", "[cli][correlate]") {
   const fs::path dir = scratch();
   write_pair(dir / "fe.unv", dir / "test.unv");
