@@ -2,6 +2,8 @@
 /// `ssid uff list FILE [--json OUT]`: what a universal file holds.
 #include <cstdio>
 #include <iostream>
+#include <map>
+#include <optional>
 
 #include "cli/cli_util.hpp"
 #include "formats/uff.hpp"
@@ -262,9 +264,20 @@ nlohmann::json to_json(const uff::UffFile& f, bool values) {
     j["modes"].push_back(e);
   }
   j["functions"] = nlohmann::json::array();
+  // Measured directions given in a node's local displacement system, as global unit vectors.
+  std::map<std::int64_t, uff::Node> by_id;
+  for (const auto& n : nodes) by_id.emplace(n.id, n);
+  const auto global_axis = [&](std::int64_t node, int direction) -> std::optional<std::array<double, 3>> {
+    auto it = by_id.find(node);
+    if (it == by_id.end() || it->second.displacement_cs == 0 || direction == 0 || !cs_problem.empty())
+      return std::nullopt;
+    return f.direction_in_global(it->second, direction);
+  };
   for (const auto* fn : f.functions()) {
     nlohmann::json e{{"line", fn->where.line}};
     e.update(function_json(*fn, false));
+    if (auto a = global_axis(fn->response_node, fn->response_direction)) e["response_axis_global"] = *a;
+    if (auto a = global_axis(fn->reference_node, fn->reference_direction)) e["reference_axis_global"] = *a;
     j["functions"].push_back(e);
   }
   nlohmann::json sk = nlohmann::json::object();

@@ -163,7 +163,15 @@ TEST_CASE("ssid uff list: node positions in the global system where a coordinate
                       " -2.40000E+00 -9.50000E-01  0.00000E+00 -3.40000E+00 -9.50000E-01  0.00000E+00\n"
                       " -3.40000E+00 -9.50000E-01 -1.00000E+00\n    -1\n"
                       "    -1\n    15\n        11         1         1         0  1.00000E+00  2.00000E+00  3.00000E+00\n"
-                      "        12         0         0         0  1.00000E+00  2.00000E+00  3.00000E+00\n    -1\n";
+                      "        12         0         0         0  1.00000E+00  2.00000E+00  3.00000E+00\n    -1\n"
+                      "    -1\n    58\nA\nB\nC\nD\nE\n"
+                      "    1         1    0         0 NONE              11   3 NONE              12   1\n"
+                      "         2         1         1  0.00000E+00  1.00000E+00  0.00000E+00\n"
+                      "         0    0    0    0 NONE                 NONE\n"
+                      "         0    0    0    0 NONE                 NONE\n"
+                      "         0    0    0    0 NONE                 NONE\n"
+                      "         0    0    0    0 NONE                 NONE\n"
+                      "  1.00000E+00\n    -1\n";
   auto r = run_ssid("uff list " + p.string() + " --json -");
   CHECK(r.code == 0);
   auto j = nlohmann::json::parse(r.out);
@@ -173,6 +181,10 @@ TEST_CASE("ssid uff list: node positions in the global system where a coordinate
   CHECK(j["nodes"][0]["xyz_global"][1].get<double>() == Approx(1.05).margin(1e-12));
   CHECK(j["nodes"][0]["xyz_global"][2].get<double>() == Approx(-3.0).margin(1e-12));
   CHECK_FALSE(j["nodes"][1].contains("xyz_global"));
+  // A response measured along +Z of node 11's displacement system SYS1 is global -Z.
+  REQUIRE(j["functions"].size() == 1);
+  CHECK(j["functions"][0]["response_axis_global"] == nlohmann::json::array({0.0, 0.0, -1.0}));
+  CHECK_FALSE(j["functions"][0].contains("reference_axis_global"));
   // A node in a system the file lacks: listed as a problem, no global positions.
   std::ofstream(p, std::ios::app) << "    -1\n    15\n        13         7         0         0  1.00000E+00  2.00000E+00  "
                                      "3.00000E+00\n    -1\n";
