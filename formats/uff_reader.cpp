@@ -604,8 +604,11 @@ CoordinateSystems2420 parse_2420(DatasetParser& p) {
   return s;
 }
 
+/// Blanks, or the DOS end-of-file mark (0x1A) that old lab software leaves after the last delimiter.
 bool is_blank_text(std::string_view s) {
-  return std::all_of(s.begin(), s.end(), [](char c) { return c == ' ' || c == '\t' || c == '\r' || c == '\n' || c == '\f'; });
+  return std::all_of(s.begin(), s.end(), [](char c) {
+    return c == ' ' || c == '\t' || c == '\r' || c == '\n' || c == '\f' || c == '\x1a';
+  });
 }
 
 [[noreturn]] void not_text(const std::string& name, const Line& l, std::size_t column) {
@@ -645,7 +648,11 @@ UffFile parse_uff(const std::string& text, const std::string& name) {
     }
     return l;
   };
+  // A byte-order mark (Windows editors) is no part of the first delimiter.
+  if (text.compare(0, 3, "\xEF\xBB\xBF") == 0) sc.skip_bytes(3);
+  const auto only_blanks_left = [&] { return is_blank_text(std::string_view(text).substr(sc.offset())); };
   while (!sc.at_end()) {
+    if (only_blanks_left()) break;
     Line open = next_text("where a dataset delimiter is expected");
     if (detail::is_blank(open.text)) continue;
     if (!detail::is_delimiter(open.text)) {
@@ -655,7 +662,6 @@ UffFile parse_uff(const std::string& text, const std::string& name) {
                            detail::quoted(detail::rtrim(open.text)));
     }
     // A trailing lone delimiter (maybe followed by blank lines) ends the file.
-    const auto only_blanks_left = [&] { return is_blank_text(std::string_view(text).substr(sc.offset())); };
     if (only_blanks_left()) break;
     Block b;
     b.header = next_text("where a dataset number is expected");

@@ -422,3 +422,14 @@ TEST_CASE("UFF 18 and 2420: coordinate systems applied to node positions and mea
         "bad.unv:3: dataset 18 record 1 field 2 (coordinate system type): expected 0 (Cartesian), 1 (cylindrical) or "
         "2 (spherical), got \"3\"");
 }
+
+TEST_CASE("UFF: stray characters of real files: a byte-order mark, a DOS end-of-file mark", "[uff]") {
+  UffFile f = parse_uff("\xEF\xBB\xBF    -1\n  2467\nx\n    -1\n\x1a", "s.unv");
+  REQUIRE(f.datasets.size() == 1);
+  CHECK(f.skipped() == std::map<int, std::size_t>{{2467, 1}});
+  UffFile g = parse_uff("    -1\n  2467\nx\n    -1\r\n\x1a\r\n", "s.unv");
+  CHECK(g.datasets.size() == 1);
+  // Anywhere else the mark is a byte that is not text.
+  CHECK(error_of("    -1\n  2467\nx\n    -1\n\x1a\n    -1\n  2467\ny\n    -1\n") ==
+        "bad.unv:5: byte 0x1A at column 1 is not text (where a dataset delimiter is expected)");
+}
