@@ -27,7 +27,8 @@
 /// Reading accepts what test-lab software writes: values that touch (fixed
 /// columns are honoured, so `-1.23456E+00-2.34567E+00` is two fields), Fortran
 /// `D` exponents, lower case, blank integer fields (Fortran reads them as 0),
-/// CR-LF line ends, trailing blanks after delimiters. A numeric line that does
+/// CR-LF line ends, trailing blanks after delimiters, a byte-order mark before the
+/// first delimiter and a DOS end-of-file mark after the last. A numeric line that does
 /// not fit its fixed columns but holds the expected number of blank-separated
 /// values is read in free format (Fortran list-directed style), since several
 /// writers widen fields. Every error names file, line, dataset, record, field
