@@ -7,7 +7,7 @@
 
 #include "cli/cli_util.hpp"
 #include "formats/uff.hpp"
-#include "translators/test_modes.hpp"
+#include "translators/measurement/mode_set.hpp"
 
 namespace ssid::cli {
 
