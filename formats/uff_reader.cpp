@@ -3,6 +3,7 @@
 /// known ones record by record (layouts in uff.hpp).
 #include <algorithm>
 #include <cmath>
+#include <cstring>
 #include <filesystem>
 #include <fstream>
 #include <sstream>
@@ -245,7 +246,32 @@ Axis58 parse_axis(DatasetParser& p, int record, const char* what) {
   return a;
 }
 
-Function58 parse_58(DatasetParser& p) {
+/// Record 12 of a 58b: the raw bytes after the ASCII records.
+struct BinaryPayload {
+  std::string_view bytes;
+  int byte_order = 1;  ///< 1 little endian, 2 big endian
+  Line header;         ///< the "    58b ..." line, where a size mismatch is reported
+};
+
+/// IEEE 754 value of `size` (4 or 8) bytes at `b` in byte order `order`.
+double decode_ieee(const char* b, int size, int order) {
+  std::uint64_t u = 0;
+  for (int k = 0; k < size; ++k) {
+    const int at = order == 1 ? size - 1 - k : k;  // most significant byte first
+    u = (u << 8) | static_cast<unsigned char>(b[at]);
+  }
+  if (size == 4) {
+    const auto u32 = static_cast<std::uint32_t>(u);
+    float v;
+    std::memcpy(&v, &u32, 4);
+    return v;
+  }
+  double v;
+  std::memcpy(&v, &u, 8);
+  return v;
+}
+
+Function58 parse_58(DatasetParser& p, const BinaryPayload* bin = nullptr) {
   Function58 f;
   f.where = p.where();
   for (int r = 0; r < 5; ++r) f.id_lines[r] = detail::rtrim(p.next(r + 1, "ID line").text);
@@ -292,7 +318,7 @@ Function58 parse_58(DatasetParser& p) {
   if (n < 0) p.ctx(7).fail_field(l7, 2, "number of data values", "a count >= 0", std::to_string(n));
   // Each value takes at least one character of the lines left: a larger count is a
   // damaged record, not a reason to allocate.
-  if (static_cast<std::uint64_t>(n) > p.characters_left())
+  if (!bin && static_cast<std::uint64_t>(n) > p.characters_left())
     p.ctx(7).fail_field(l7, 2, "number of data values",
                         "a count the dataset's remaining " + std::to_string(p.characters_left()) + " characters can hold",
                         std::to_string(n));
@@ -306,13 +332,36 @@ Function58 parse_58(DatasetParser& p) {
 
   const bool cplx = f.is_complex();
   const std::size_t stride = (f.even ? 0 : 1) + (cplx ? 2 : 1);
+  std::vector<double> v;
+  if (bin) {
+    f.binary = true;
+    f.byte_order = bin->byte_order;
+    p.finish(11);
+    const std::size_t size = f.is_double() ? 8 : 4;
+    // A count above the byte count is refused before it is multiplied (no overflow).
+    const bool fits = static_cast<std::uint64_t>(n) <= bin->bytes.size();
+    if (!fits || static_cast<std::uint64_t>(n) * stride * size != bin->bytes.size()) {
+      const std::size_t point = stride * size;
+      p.ctx(7).fail_field(l7, 2, "number of data values",
+                          (bin->bytes.size() % point == 0 ? std::to_string(bin->bytes.size() / point)
+                                                          : std::string("a count whose points fill them")) +
+                              " (the 58b header at line " + std::to_string(bin->header.number) + " declares " +
+                              std::to_string(bin->bytes.size()) + " bytes; a point is " + std::to_string(stride) +
+                              " value(s) of " + std::to_string(size) + " bytes)",
+                          std::to_string(n));
+    }
+    v.resize(static_cast<std::size_t>(n) * stride);
+    for (std::size_t k = 0; k < v.size(); ++k)
+      v[k] = decode_ieee(bin->bytes.data() + k * size, static_cast<int>(size), bin->byte_order);
+  }
   std::vector<int> widths;
   if (!f.is_double()) widths.assign(6, 13);
   else if (f.even) widths.assign(4, 20);
   else if (!cplx) widths = {13, 20, 13, 20};
   else widths = {13, 20, 20};
-  auto v = detail::read_real_stream(p.ctx(12), p.lines(), p.pos(), static_cast<std::size_t>(n) * stride, widths,
-                                    "data values");
+  if (!bin)
+    v = detail::read_real_stream(p.ctx(12), p.lines(), p.pos(), static_cast<std::size_t>(n) * stride, widths,
+                                 "data values");
   f.x.resize(static_cast<std::size_t>(n));
   f.y.resize(static_cast<std::size_t>(n));
   for (std::size_t i = 0; i < static_cast<std::size_t>(n); ++i) {
@@ -323,30 +372,243 @@ Function58 parse_58(DatasetParser& p) {
     const double im = cplx ? e[k] : 0.0;
     f.y[i] = {re, im};
   }
-  p.finish(12);
+  if (!bin) p.finish(12);
   return f;
 }
 
-/// Binary 58b: header (I6,1A1,I6,I6,I12,I12,...) gives the byte count after the
-/// ASCII records; the dataset is kept verbatim.
-std::size_t binary_byte_count(const std::string& file, const Line& header) {
-  RecordContext ctx;
-  ctx.file = &file;
-  ctx.dataset = 58;
-  ctx.record = 0;
-  auto v = detail::read_fields(ctx, header,
-                               {{6, Kind::Integer, "dataset number"},
-                                {1, Kind::Skip, ""},
-                                {6, Kind::IntegerOrBlank, "byte ordering"},
-                                {6, Kind::IntegerOrBlank, "floating point format"},
-                                {12, Kind::Integer, "number of ASCII lines"},
-                                {12, Kind::Integer, "number of bytes"}});
-  if (v[5].i < 0) ctx.fail_field(header, 5, "number of bytes", "a count >= 0", std::to_string(v[5].i));
-  return static_cast<std::size_t>(v[5].i);
+Qualifiers1858 parse_1858(DatasetParser& p) {
+  Qualifiers1858 q;
+  q.where = p.where();
+  auto r1 = detail::read_fields(p.ctx(1), p.next(1, "set record number"),
+                                std::vector<FieldSpec>(6, FieldSpec{12, Kind::IntegerOrBlank, "record 1 integer"}));
+  for (int k = 0; k < 6; ++k) q.r1[k] = r1[k].i;
+  auto r2 = detail::read_fields(p.ctx(2), p.next(2, "weighting, window, units and qualifiers"),
+                                std::vector<FieldSpec>(12, FieldSpec{6, Kind::IntegerOrBlank, "record 2 integer"}));
+  for (int k = 0; k < 12; ++k) q.r2[k] = r2[k].i;
+  for (int r = 0; r < 3; ++r) {
+    auto v = detail::read_real_stream(p.ctx(3 + r), p.lines(), p.pos(), 5, std::vector<int>(5, 15),
+                                      r == 0 ? "z RPM, time, order, samples" : r == 1 ? "user values, window damping"
+                                                                                      : "unused reals");
+    std::copy(v.begin(), v.end(), q.reals.begin() + 5 * r);
+  }
+  q.directions = detail::rtrim(p.next(6, "response and reference direction").text);
+  if (!p.done()) q.r7 = detail::rtrim(p.next(7, "unused text").text);
+  p.finish(7);
+  return q;
 }
 
+/// Dataset 2414 at nodes into NodalData55 (layouts in uff.hpp); nullopt for the
+/// other dataset locations, which the caller keeps verbatim.
+std::optional<NodalData55> parse_2414(DatasetParser& p) {
+  NodalData55 d;
+  Analysis2414 a;
+  d.where = p.where();
+  a.label = detail::read_fields(p.ctx(1), p.next(1, "analysis dataset label"),
+                                {{10, Kind::Integer, "analysis dataset label"}})[0].i;
+  a.name = detail::rtrim(p.next(2, "analysis dataset name").text);
+  const Line& l3 = p.next(3, "dataset location");
+  a.location = static_cast<int>(detail::read_fields(p.ctx(3), l3, {{10, Kind::Integer, "dataset location"}})[0].i);
+  if (a.location < 1 || a.location > 5)
+    p.ctx(3).fail_field(l3, 1, "dataset location", "1 (nodes), 2 (elements), 3 (nodes on elements) or 5 (points)",
+                        std::to_string(a.location));
+  if (a.location != 1) return std::nullopt;
+  for (int r = 0; r < 5; ++r) d.id_lines[r] = detail::rtrim(p.next(4 + r, "ID line").text);
+  const Line& l9 = p.next(9, "data description");
+  auto r9 = detail::read_fields(p.ctx(9), l9,
+                                {{10, Kind::IntegerOrBlank, "model type"},
+                                 {10, Kind::Integer, "analysis type"},
+                                 {10, Kind::IntegerOrBlank, "data characteristic"},
+                                 {10, Kind::IntegerOrBlank, "result type"},
+                                 {10, Kind::Integer, "data type"},
+                                 {10, Kind::Integer, "number of data values per node"}});
+  d.model_type = static_cast<int>(r9[0].i);
+  d.analysis_type = static_cast<int>(r9[1].i);
+  d.data_characteristic = static_cast<int>(r9[2].i);
+  d.specific_data_type = static_cast<int>(r9[3].i);
+  d.data_type = static_cast<int>(r9[4].i);
+  d.values_per_node = static_cast<int>(r9[5].i);
+  if (d.data_type != 2 && d.data_type != 4 && d.data_type != 5 && d.data_type != 6)
+    p.ctx(9).fail_field(l9, 5, "data type", "2, 4 (real) or 5, 6 (complex)", std::to_string(d.data_type));
+  if (d.values_per_node < 1 || d.values_per_node > 99)
+    p.ctx(9).fail_field(l9, 6, "number of data values per node", "1 to 99", std::to_string(d.values_per_node));
+  auto r10 = detail::read_fields(p.ctx(10), p.next(10, "design set, iteration, ... frequency number"),
+                                 std::vector<FieldSpec>(8, FieldSpec{10, Kind::IntegerOrBlank, "record 10 integer"}));
+  for (int k = 0; k < 8; ++k) a.r10[k] = r10[k].i;
+  auto r11 = detail::read_fields(p.ctx(11), p.next(11, "creation option, number retained"),
+                                 std::vector<FieldSpec>(2, FieldSpec{10, Kind::IntegerOrBlank, "record 11 integer"}));
+  a.r11 = {r11[0].i, r11[1].i};
+  auto r12 = detail::read_real_stream(p.ctx(12), p.lines(), p.pos(), 6, std::vector<int>(6, 13),
+                                      "time, frequency, eigenvalue, modal mass, damping");
+  auto r13 = detail::read_real_stream(p.ctx(13), p.lines(), p.pos(), 6, std::vector<int>(6, 13),
+                                      "complex eigenvalue, modal A and B");
+  std::copy(r12.begin(), r12.end(), a.r12.begin());
+  std::copy(r13.begin(), r13.end(), a.r13.begin());
+  // The type-specific parameters as a 55 of the same analysis type carries them.
+  const std::int64_t load_set = a.r10[4], mode = a.r10[5];
+  switch (d.analysis_type) {
+    case 2: d.int_params = {load_set, mode}; d.real_params = {a.r12[1], a.r12[3], a.r12[4], a.r12[5]}; break;
+    case 3: case 7: d.int_params = {load_set, mode}; d.real_params.assign(a.r13.begin(), a.r13.end()); break;
+    case 5: d.int_params = {load_set, a.r10[7]}; d.real_params = {a.r12[1]}; break;
+    case 4: d.int_params = {load_set, a.r10[6]}; d.real_params = {a.r12[0]}; break;
+    default: d.int_params = {load_set}; d.real_params = {0.0}; break;
+  }
+  const int ndv = d.values_per_node;
+  const std::size_t per_node = static_cast<std::size_t>(d.is_complex() ? 2 * ndv : ndv);
+  const bool dbl = d.data_type == 4 || d.data_type == 6;
+  std::vector<double> flat;
+  while (!p.done()) {
+    const Line& l14 = p.next(14, "node number");
+    if (detail::is_blank(l14.text)) continue;
+    d.nodes.push_back(detail::read_fields(p.ctx(14), l14, {{10, Kind::Integer, "node number"}})[0].i);
+    auto v = detail::read_real_stream(p.ctx(15), p.lines(), p.pos(), per_node,
+                                      dbl ? std::vector<int>(3, 25) : std::vector<int>(6, 13), "data at node");
+    flat.insert(flat.end(), v.begin(), v.end());
+  }
+  const auto nn = static_cast<Eigen::Index>(d.nodes.size());
+  if (d.is_complex()) {
+    d.complex_values.resize(nn, ndv);
+    for (Eigen::Index i = 0; i < nn; ++i)
+      for (int c = 0; c < ndv; ++c)
+        d.complex_values(i, c) = {flat[i * per_node + 2 * c], flat[i * per_node + 2 * c + 1]};
+  } else {
+    d.values.resize(nn, ndv);
+    for (Eigen::Index i = 0; i < nn; ++i)
+      for (int c = 0; c < ndv; ++c) d.values(i, c) = flat[i * per_node + c];
+  }
+  d.analysis2414 = std::move(a);
+  return d;
+}
+
+ElementSet2412 parse_2412(DatasetParser& p) {
+  ElementSet2412 s;
+  s.where = p.where();
+  while (!p.done()) {
+    const Line& l = p.next(1, "element");
+    if (detail::is_blank(l.text)) continue;
+    auto v = detail::read_fields(p.ctx(1), l,
+                                 {{10, Kind::Integer, "element label"},
+                                  {10, Kind::Integer, "FE descriptor id"},
+                                  {10, Kind::IntegerOrBlank, "physical property table"},
+                                  {10, Kind::IntegerOrBlank, "material property table"},
+                                  {10, Kind::IntegerOrBlank, "color"},
+                                  {10, Kind::Integer, "number of nodes"}});
+    Element2412 e;
+    e.id = v[0].i;
+    e.descriptor = static_cast<int>(v[1].i);
+    e.physical = v[2].i;
+    e.material = v[3].i;
+    e.color = static_cast<int>(v[4].i);
+    if (v[5].i < 1 || v[5].i > 10000)
+      p.ctx(1).fail_field(l, 6, "number of nodes", "1 to 10000", std::to_string(v[5].i));
+    if (Element2412::is_beam_descriptor(e.descriptor)) {
+      auto b = detail::read_fields(p.ctx(2), p.next(2, "beam orientation node and cross sections"),
+                                   {{10, Kind::IntegerOrBlank, "beam orientation node"},
+                                    {10, Kind::IntegerOrBlank, "fore-end cross section"},
+                                    {10, Kind::IntegerOrBlank, "aft-end cross section"}});
+      e.beam = std::array<std::int64_t, 3>{b[0].i, b[1].i, b[2].i};
+    }
+    e.nodes = detail::read_integer_stream(p.ctx(e.beam ? 3 : 2), p.lines(), p.pos(), static_cast<std::size_t>(v[5].i),
+                                          8, 10, "element node");
+    s.elements.push_back(std::move(e));
+  }
+  return s;
+}
+
+TraceLine82 parse_82(DatasetParser& p) {
+  TraceLine82 t;
+  t.where = p.where();
+  const Line& l1 = p.next(1, "trace line number");
+  auto v = detail::read_fields(p.ctx(1), l1,
+                               {{10, Kind::Integer, "trace line number"},
+                                {10, Kind::Integer, "number of nodes"},
+                                {10, Kind::IntegerOrBlank, "color"}});
+  t.id = v[0].i;
+  t.color = static_cast<int>(v[2].i);
+  if (v[1].i < 0 || v[1].i > 1000000)
+    p.ctx(1).fail_field(l1, 2, "number of nodes", "0 to 1000000", std::to_string(v[1].i));
+  t.label = detail::rtrim(p.next(2, "identification line").text);
+  t.nodes = detail::read_integer_stream(p.ctx(3), p.lines(), p.pos(), static_cast<std::size_t>(v[1].i), 8, 10,
+                                        "trace line node");
+  // Writers fill the last 8I10 line with zeros (pen lifts) past the count.
+  while (!p.done()) {
+    const Line& l = p.lines()[p.pos()];
+    bool zeros = true;
+    for (char c : l.text) zeros = zeros && (c == ' ' || c == '0' || c == '\r');
+    if (!zeros) break;
+    ++p.pos();
+  }
+  p.finish(3);
+  return t;
+}
+
+CoordinateSystems18 parse_18(DatasetParser& p) {
+  CoordinateSystems18 s;
+  s.where = p.where();
+  while (!p.done()) {
+    const Line& l = p.next(1, "coordinate system number");
+    if (detail::is_blank(l.text)) continue;
+    auto v = detail::read_fields(p.ctx(1), l,
+                                 {{10, Kind::Integer, "coordinate system number"},
+                                  {10, Kind::IntegerOrBlank, "coordinate system type"},
+                                  {10, Kind::IntegerOrBlank, "reference coordinate system number"},
+                                  {10, Kind::IntegerOrBlank, "color"},
+                                  {10, Kind::IntegerOrBlank, "method of definition"}});
+    Cs18 c;
+    c.id = v[0].i;
+    c.type = static_cast<int>(v[1].i);
+    c.reference = v[2].i;
+    c.color = static_cast<int>(v[3].i);
+    c.method = static_cast<int>(v[4].i);
+    if (c.type < 0 || c.type > 2)
+      p.ctx(1).fail_field(l, 2, "coordinate system type", "0 (Cartesian), 1 (cylindrical) or 2 (spherical)",
+                          std::to_string(c.type));
+    c.name = detail::rtrim(p.next(2, "coordinate system name").text);
+    auto r3 = detail::read_real_stream(p.ctx(3), p.lines(), p.pos(), 6, std::vector<int>(6, 13),
+                                       "origin and point on +X");
+    auto r4 = detail::read_real_stream(p.ctx(4), p.lines(), p.pos(), 3, std::vector<int>(3, 13), "point in +XZ plane");
+    c.origin = {r3[0], r3[1], r3[2]};
+    c.x_point = {r3[3], r3[4], r3[5]};
+    c.xz_point = {r4[0], r4[1], r4[2]};
+    s.systems.push_back(std::move(c));
+  }
+  return s;
+}
+
+CoordinateSystems2420 parse_2420(DatasetParser& p) {
+  CoordinateSystems2420 s;
+  s.where = p.where();
+  s.part_uid = detail::read_fields(p.ctx(1), p.next(1, "part UID"), {{10, Kind::IntegerOrBlank, "part UID"}})[0].i;
+  s.part_name = detail::rtrim(p.next(2, "part name").text);
+  while (!p.done()) {
+    const Line& l = p.next(3, "coordinate system label");
+    if (detail::is_blank(l.text)) continue;
+    auto v = detail::read_fields(p.ctx(3), l,
+                                 {{10, Kind::Integer, "coordinate system label"},
+                                  {10, Kind::IntegerOrBlank, "coordinate system type"},
+                                  {10, Kind::IntegerOrBlank, "coordinate system color"}});
+    Cs2420 c;
+    c.id = v[0].i;
+    c.type = static_cast<int>(v[1].i);
+    c.color = static_cast<int>(v[2].i);
+    if (c.type < 0 || c.type > 2)
+      p.ctx(3).fail_field(l, 2, "coordinate system type", "0 (Cartesian), 1 (cylindrical) or 2 (spherical)",
+                          std::to_string(c.type));
+    c.name = detail::rtrim(p.next(4, "coordinate system name").text);
+    for (int r = 0; r < 4; ++r) {
+      auto x = detail::read_real_stream(p.ctx(5 + r), p.lines(), p.pos(), 3, {25, 25, 25},
+                                        r < 3 ? "transformation matrix row" : "origin");
+      (r < 3 ? c.rows[r] : c.origin) = {x[0], x[1], x[2]};
+    }
+    s.systems.push_back(std::move(c));
+  }
+  return s;
+}
+
+/// Blanks, or the DOS end-of-file mark (0x1A) that old lab software leaves after the last delimiter.
 bool is_blank_text(std::string_view s) {
-  return std::all_of(s.begin(), s.end(), [](char c) { return c == ' ' || c == '\t' || c == '\r' || c == '\n' || c == '\f'; });
+  return std::all_of(s.begin(), s.end(), [](char c) {
+    return c == ' ' || c == '\t' || c == '\r' || c == '\n' || c == '\f' || c == '\x1a';
+  });
 }
 
 [[noreturn]] void not_text(const std::string& name, const Line& l, std::size_t column) {
@@ -386,7 +648,11 @@ UffFile parse_uff(const std::string& text, const std::string& name) {
     }
     return l;
   };
+  // A byte-order mark (Windows editors) is no part of the first delimiter.
+  if (text.compare(0, 3, "\xEF\xBB\xBF") == 0) sc.skip_bytes(3);
+  const auto only_blanks_left = [&] { return is_blank_text(std::string_view(text).substr(sc.offset())); };
   while (!sc.at_end()) {
+    if (only_blanks_left()) break;
     Line open = next_text("where a dataset delimiter is expected");
     if (detail::is_blank(open.text)) continue;
     if (!detail::is_delimiter(open.text)) {
@@ -396,7 +662,6 @@ UffFile parse_uff(const std::string& text, const std::string& name) {
                            detail::quoted(detail::rtrim(open.text)));
     }
     // A trailing lone delimiter (maybe followed by blank lines) ends the file.
-    const auto only_blanks_left = [&] { return is_blank_text(std::string_view(text).substr(sc.offset())); };
     if (only_blanks_left()) break;
     Block b;
     b.header = next_text("where a dataset number is expected");
@@ -420,9 +685,10 @@ UffFile parse_uff(const std::string& text, const std::string& name) {
     const bool binary = b.header.text.size() > 6 && (b.header.text[6] == 'b' || b.header.text[6] == 'B');
     b.body_begin = sc.offset();
     bool closed = false;
+    std::optional<BinaryPayload> payload;
     if (binary) {
-      const std::size_t nbytes = binary_byte_count(name, b.header);
-      // The ASCII records of a binary dataset: 11 for 58b; count from the header when given.
+      // Header (I6,1A1,I6,I6,I12,I12,...): byte order, floating-point format,
+      // number of ASCII lines, number of bytes after them.
       RecordContext ctx;
       ctx.file = &name;
       ctx.dataset = b.number;
@@ -430,8 +696,41 @@ UffFile parse_uff(const std::string& text, const std::string& name) {
                                    {{6, Kind::Integer, "dataset number"}, {1, Kind::Skip, ""},
                                     {6, Kind::IntegerOrBlank, "byte ordering"},
                                     {6, Kind::IntegerOrBlank, "floating point format"},
-                                    {12, Kind::Integer, "number of ASCII lines"}});
-      for (std::int64_t k = 0; k < v[4].i && !sc.at_end(); ++k) sc.next();
+                                    {12, Kind::Integer, "number of ASCII lines"},
+                                    {12, Kind::Integer, "number of bytes"}});
+      // The number line is no record: its errors say "header field N".
+      const auto header_fail = [&](int field, const char* what, const std::string& expected, std::int64_t got) {
+        throw ParseError(SourceLocation{name, b.header.number, {}},
+                         "dataset " + std::to_string(b.number) + "b header field " + std::to_string(field) + " (" +
+                             what + "): expected " + expected + ", got \"" + std::to_string(got) + "\"");
+      };
+      if (v[4].i < 0 || v[4].i > 1000)
+        header_fail(5, "number of ASCII lines", "0 to 1000 (11 for dataset 58b)", v[4].i);
+      if (v[5].i < 0) header_fail(6, "number of bytes", "a count >= 0", v[5].i);
+      const auto nbytes = static_cast<std::size_t>(v[5].i);
+      if (b.number == 58) {
+        if (v[2].i != 1 && v[2].i != 2)
+          header_fail(3, "byte ordering", "1 (little endian) or 2 (big endian)", v[2].i);
+        if (v[3].i != 2)
+          header_fail(4, "floating point format", "2 (IEEE 754; 1 DEC VMS and 3 IBM 370 are not read)", v[3].i);
+        if (v[4].i != 11) header_fail(5, "number of ASCII lines", "11 (records 1-11 of dataset 58)", v[4].i);
+        const std::string in58b = "dataset 58b opened at line " + std::to_string(b.header.number);
+        for (int k = 0; k < 11; ++k) {
+          if (sc.at_end())
+            throw ParseError(SourceLocation{name, sc.line_number(), {}},
+                             in58b + " ends after " + std::to_string(k) + " of its 11 ASCII records");
+          b.body.push_back(next_text(in58b.c_str()));
+        }
+        const std::size_t at = sc.offset();
+        if (text.size() - at < nbytes)
+          throw ParseError(SourceLocation{name, b.header.number, {}},
+                           "dataset 58 record 12: the 58b header declares " + std::to_string(nbytes) +
+                               " bytes of binary data after the ASCII records, the file holds only " +
+                               std::to_string(text.size() - at));
+        payload = BinaryPayload{std::string_view(text).substr(at, nbytes), static_cast<int>(v[2].i), b.header};
+      } else {
+        for (std::int64_t k = 0; k < v[4].i && !sc.at_end(); ++k) sc.next();
+      }
       sc.skip_bytes(nbytes);
     }
     while (!sc.at_end()) {
@@ -442,13 +741,21 @@ UffFile parse_uff(const std::string& text, const std::string& name) {
         closed = true;
         break;
       }
+      // After 58b's bytes only a line end may come before the delimiter (some
+      // writers put one there); anything else means the byte count is wrong.
+      if (payload && !detail::is_blank(l.text))
+        throw ParseError(SourceLocation{name, l.number, {}},
+                         "dataset 58b (opened at line " + std::to_string(b.header.number) +
+                             "): expected the closing delimiter \"    -1\" right after the " +
+                             std::to_string(payload->bytes.size()) + " bytes of binary data the header declares, got " +
+                             detail::quoted(detail::rtrim(l.text)));
       if (!binary) b.body.push_back(l);
     }
     if (!closed)
       throw ParseError(SourceLocation{name, sc.line_number(), {}},
                        "dataset " + std::to_string(b.number) + " (opened at line " +
                            std::to_string(b.header.number) + ") has no closing delimiter \"    -1\"");
-    if (binary) {
+    if (binary && !payload) {
       UnknownDataset u;
       u.number = b.number;
       u.header_line = std::string(b.header.text);
@@ -464,7 +771,18 @@ UffFile parse_uff(const std::string& text, const std::string& name) {
       case 15: out.datasets.push_back(parse_15(p)); break;
       case 2411: out.datasets.push_back(parse_2411(p)); break;
       case 55: out.datasets.push_back(parse_55(p)); break;
-      case 58: out.datasets.push_back(parse_58(p)); break;
+      case 58: out.datasets.push_back(parse_58(p, payload ? &*payload : nullptr)); break;
+      case 1858: out.datasets.push_back(parse_1858(p)); break;
+      case 2412: out.datasets.push_back(parse_2412(p)); break;
+      case 82: out.datasets.push_back(parse_82(p)); break;
+      case 18: out.datasets.push_back(parse_18(p)); break;
+      case 2420: out.datasets.push_back(parse_2420(p)); break;
+      case 2414:
+        if (auto d = parse_2414(p)) {
+          out.datasets.push_back(std::move(*d));
+          break;
+        }
+        [[fallthrough]];
       default: {
         UnknownDataset u;
         u.number = b.number;
@@ -500,8 +818,13 @@ int dataset_number(const Dataset& d) {
     int operator()(const Header151&) const { return 151; }
     int operator()(const Units164&) const { return 164; }
     int operator()(const NodeSet& s) const { return s.dataset; }
-    int operator()(const NodalData55&) const { return 55; }
+    int operator()(const NodalData55& m) const { return m.analysis2414 ? 2414 : 55; }
     int operator()(const Function58&) const { return 58; }
+    int operator()(const Qualifiers1858&) const { return 1858; }
+    int operator()(const ElementSet2412&) const { return 2412; }
+    int operator()(const TraceLine82&) const { return 82; }
+    int operator()(const CoordinateSystems18&) const { return 18; }
+    int operator()(const CoordinateSystems2420&) const { return 2420; }
     int operator()(const UnknownDataset& u) const { return u.number; }
   };
   return std::visit(V{}, d);

@@ -3,6 +3,7 @@
 #include <Eigen/QR>
 #include <nlohmann/json.hpp>
 #include <random>
+#include <cstring>
 #include <unistd.h>
 
 #include "cli_run.hpp"
@@ -63,7 +64,8 @@ TEST_CASE("ssid uff list: datasets, nodes, modes, functions, JSON", "[cli][uff]"
   auto r = run_ssid("uff list " + kMixed + " --json " + json.string());
   CHECK(r.code == 0);
   CHECK_THAT(r.out, Catch::Contains("10 dataset(s)") && Catch::Contains("nodes: 5 (dataset 15: 3, dataset 2411: 2)") &&
-                        Catch::Contains("skipped (kept verbatim): 82 x1") && Catch::Contains("response 3-Y"));
+                        Catch::Contains("skipped (kept verbatim): none") &&
+                        Catch::Contains("trace lines (82): 1") && Catch::Contains("response 3-Y"));
   CHECK_THAT(r.err, Catch::Contains("9 DOF(s) are missing from some modes"));
   auto j = nlohmann::json::parse(cli_slurp(json));
   CHECK(j["datasets"].size() == 10);
@@ -73,7 +75,9 @@ TEST_CASE("ssid uff list: datasets, nodes, modes, functions, JSON", "[cli][uff]"
   CHECK(j["modes"][2]["eigenvalue"][1] == 48.0);
   CHECK(j["nodes"].size() == 5);
   CHECK(j["functions"][1]["response_direction"] == -2);
-  CHECK(j["skipped"]["82"] == 1);
+  CHECK(j["skipped"].empty());
+  CHECK(j["datasets"][4]["type"] == "trace line");
+  CHECK(j["datasets"][4]["nodes"] == 3);
   CHECK(j["normal_modes"] == 2);
   CHECK(j["complex_modes"] == 1);
   auto help = run_ssid("uff --help");
@@ -88,6 +92,107 @@ TEST_CASE("ssid uff list: datasets, nodes, modes, functions, JSON", "[cli][uff]"
   CHECK(br.code == 2);
   CHECK(br.out.empty());
   CHECK_THAT(br.err, Catch::Contains("broken.unv:10: dataset 55 record 8 field 1"));
+}
+
+TEST_CASE("ssid uff list: 58b and 2414 listed, values on request, 2414 modes usable", "[cli][uff]") {
+  // A 58b (complex single, even, little endian) built from its bytes, and a 2414 normal mode.
+  std::string bytes;
+  for (float v : {1.0f, -0.5f, 0.25f, 2.0f}) {
+    char b[4];
+    std::memcpy(b, &v, 4);
+    bytes.append(b, 4);  // the test hosts are little endian (x86-64)
+  }
+  std::string text =
+      "    -1\n    58b     1     2          11          16     0     0           0           0\n"
+      "FRF 7+Z/1+Z\nNONE\nNONE\nNONE\nNONE\n"
+      "    4         1    0         0 NONE               7   3 NONE               1   3\n"
+      "         5         2         1  1.00000E+01  5.00000E-01  0.00000E+00\n"
+      "        18    0    0    0 Frequency            Hz                  \n"
+      "        12    0    0    0 Acceleration         m/s\xb2"  // Latin-1 superscript two, as VibControl writes it
+      "                \n"
+      "        13    0    0    0 Force                N                   \n"
+      "         0    0    0    0 NONE                 NONE                \n" +
+      bytes +
+      "    -1\n"
+      "    -1\n  2414\n         1\nMode 1\n         1\nA\nB\nC\nD\nE\n"
+      "         1         2         2         8         2         3\n"
+      "         0         0         1         0         1         1         0         0\n"
+      "         0         0\n"
+      "  0.00000E+00  4.50000E+00  0.00000E+00  1.00000E+00  2.00000E-02  0.00000E+00\n"
+      "  0.00000E+00  0.00000E+00  0.00000E+00  0.00000E+00  0.00000E+00  0.00000E+00\n"
+      "         7\n  0.00000E+00  0.00000E+00  1.00000E+00\n"
+      "    -1\n";
+  const fs::path p = scratch() / "lab.unv";
+  std::ofstream(p, std::ios::binary) << text;
+  const fs::path json = scratch() / "lab.json";
+  auto r = run_ssid("uff list " + p.string() + " --json " + json.string() + " --values");
+  CHECK(r.code == 0);
+  CHECK_THAT(r.out, Catch::Contains("line 2 (58b): type 4 (frequency response function), response 7+Z, reference 1+Z, "
+                                    "2 points, even abscissa, complex single") &&
+                        Catch::Contains("real normal modes usable for correlation: 1 at 3 DOF(s)"));
+  auto j = nlohmann::json::parse(cli_slurp(json));
+  REQUIRE(j["datasets"].size() == 2);
+  const auto& f = j["datasets"][0];
+  CHECK(f["number"] == 58);
+  CHECK(f["binary"] == true);
+  CHECK(f["byte_order"] == "little endian");
+  CHECK(f["function"] == "frequency response function");
+  CHECK(f["spacing"] == "even");
+  CHECK(f["ordinate"] == "complex single");
+  CHECK(f["ordinate_axis"]["units"] == "m/s\xc2\xb2");  // JSON text is UTF-8
+  CHECK(f["points"] == 2);
+  CHECK(f["x"] == nlohmann::json::array({10.0, 10.5}));
+  CHECK(f["y"] == nlohmann::json::parse("[[1.0, -0.5], [0.25, 2.0]]"));
+  CHECK(j["datasets"][1]["number"] == 2414);
+  CHECK(j["datasets"][1]["frequency_hz"] == 4.5);
+  CHECK(j["modes"][0]["viscous_damping"] == 0.02);
+  CHECK(j["normal_modes"] == 1);
+  // Without --values the listing carries no values.
+  auto plain = run_ssid("uff list " + p.string() + " --json -");
+  CHECK(plain.code == 0);
+  CHECK_FALSE(nlohmann::json::parse(plain.out)["datasets"][0].contains("x"));
+  auto no_json = run_ssid("uff list " + p.string() + " --values");
+  CHECK(no_json.code == 2);
+  CHECK(no_json.err == "ssid: error: ssid uff list: --values adds the values to the JSON listing; give --json OUT (or "
+                       "--json -)\n");
+}
+
+TEST_CASE("ssid uff list: node positions in the global system where a coordinate system is given", "[cli][uff]") {
+  const fs::path p = scratch() / "cs.unv";
+  std::ofstream(p) << "    -1\n    18\n         1         0         0         8         1\nSYS1\n"
+                      " -2.40000E+00 -9.50000E-01  0.00000E+00 -3.40000E+00 -9.50000E-01  0.00000E+00\n"
+                      " -3.40000E+00 -9.50000E-01 -1.00000E+00\n    -1\n"
+                      "    -1\n    15\n        11         1         1         0  1.00000E+00  2.00000E+00  3.00000E+00\n"
+                      "        12         0         0         0  1.00000E+00  2.00000E+00  3.00000E+00\n    -1\n"
+                      "    -1\n    58\nA\nB\nC\nD\nE\n"
+                      "    1         1    0         0 NONE              11   3 NONE              12   1\n"
+                      "         2         1         1  0.00000E+00  1.00000E+00  0.00000E+00\n"
+                      "         0    0    0    0 NONE                 NONE\n"
+                      "         0    0    0    0 NONE                 NONE\n"
+                      "         0    0    0    0 NONE                 NONE\n"
+                      "         0    0    0    0 NONE                 NONE\n"
+                      "  1.00000E+00\n    -1\n";
+  auto r = run_ssid("uff list " + p.string() + " --json -");
+  CHECK(r.code == 0);
+  auto j = nlohmann::json::parse(r.out);
+  // SYS1's axes: x = -X, y = +Y, z = -Z from (-2.4, -0.95, 0): (1, 2, 3) is (-3.4, 1.05, -3).
+  REQUIRE(j["nodes"][0].contains("xyz_global"));
+  CHECK(j["nodes"][0]["xyz_global"][0].get<double>() == Approx(-3.4).margin(1e-12));
+  CHECK(j["nodes"][0]["xyz_global"][1].get<double>() == Approx(1.05).margin(1e-12));
+  CHECK(j["nodes"][0]["xyz_global"][2].get<double>() == Approx(-3.0).margin(1e-12));
+  CHECK_FALSE(j["nodes"][1].contains("xyz_global"));
+  // A response measured along +Z of node 11's displacement system SYS1 is global -Z.
+  REQUIRE(j["functions"].size() == 1);
+  CHECK(j["functions"][0]["response_axis_global"] == nlohmann::json::array({0.0, 0.0, -1.0}));
+  CHECK_FALSE(j["functions"][0].contains("reference_axis_global"));
+  // A node in a system the file lacks: listed as a problem, no global positions.
+  std::ofstream(p, std::ios::app) << "    -1\n    15\n        13         7         0         0  1.00000E+00  2.00000E+00  "
+                                     "3.00000E+00\n    -1\n";
+  auto m = run_ssid("uff list " + p.string() + " --json -");
+  CHECK(m.code == 0);
+  auto k = nlohmann::json::parse(m.out);
+  CHECK_FALSE(k["nodes"][0].contains("xyz_global"));
+  CHECK(k["problems"].back() == "node 13: definition coordinate system 7 is not defined in the file (datasets 18, 2420)");
 }
 
 TEST_CASE("ssid correlate: pairing table, unpaired modes, JSON; position mapping", "[cli][correlate]") {

@@ -92,6 +92,12 @@ void require_same(const UffFile& a, const UffFile& b) {
         CHECK(f->axes[a].length_exponent == g.axes[a].length_exponent);
         CHECK(f->axes[a].force_exponent == g.axes[a].force_exponent);
       }
+    } else if (auto t = std::get_if<TraceLine82>(&x)) {
+      const auto& u = std::get<TraceLine82>(y);
+      CHECK(t->id == u.id);
+      CHECK(t->color == u.color);
+      CHECK(t->label == u.label);
+      CHECK(t->nodes == u.nodes);
     } else {
       const auto& u1 = std::get<UnknownDataset>(x);
       const auto& u2 = std::get<UnknownDataset>(y);
@@ -113,7 +119,12 @@ TEST_CASE("UFF: a hand-laid test-lab file with every supported dataset", "[uff]"
   std::vector<int> numbers;
   for (const auto& d : f.datasets) numbers.push_back(dataset_number(d));
   CHECK(numbers == std::vector<int>{151, 164, 15, 2411, 82, 55, 55, 55, 58, 58});
-  CHECK(f.skipped() == std::map<int, std::size_t>{{82, 1}});
+  CHECK(f.skipped().empty());
+  const auto& trace = nth<TraceLine82>(f, 0);
+  CHECK(trace.id == 1);
+  CHECK(trace.color == 8);
+  CHECK(trace.label == "Trace");
+  CHECK(trace.nodes == std::vector<std::int64_t>{1, 2, 3});
 
   const auto& h = nth<Header151>(f, 0);
   CHECK(h.model_name() == "MPI truss modal test");
@@ -223,8 +234,9 @@ TEST_CASE("UFF: write then read gives the same data; writing is idempotent", "[u
   UffFile g = parse_uff(once, "once.unv");
   require_same(f, g);
   CHECK(format_uff(g) == once);
-  // The unknown dataset is carried verbatim.
-  CHECK(once.find("    82\n         1         3         8\nTrace\n") != std::string::npos);
+  // The trace line is written in its layout (3I10, 80A1, 8I10).
+  CHECK(once.find("    82\n         1         3         8\nTrace\n         1         2         3\n    -1\n") !=
+        std::string::npos);
 }
 
 TEST_CASE("UFF: extended precision round trip is exact for arbitrary doubles", "[uff][roundtrip]") {
@@ -293,16 +305,17 @@ TEST_CASE("UFF: free-format numeric records are accepted", "[uff]") {
   CHECK(m.values(0, 2) == 0.33333333333333331);
 }
 
-TEST_CASE("UFF: binary 58b is skipped by its byte count, even when the bytes look like a delimiter", "[uff]") {
-  std::string ascii = "    -1\n    58b     1     2        11        17     0     0           0           0\n";
-  for (int i = 0; i < 11; ++i) ascii += "x\n";
+TEST_CASE("UFF: a binary dataset other than 58b is skipped by its byte count, even when the bytes look like a delimiter",
+          "[uff]") {
+  std::string ascii = "    -1\n  9999b     1     2           2          17     0     0           0           0\n";
+  for (int i = 0; i < 2; ++i) ascii += "x\n";
   std::string bytes = "\n    -1\n    55\n\x01\x02";  // 17 bytes
   REQUIRE(bytes.size() == 17);
   std::string text = ascii + bytes + "\n    -1\n    -1\n   164\n         1SI                           2\n"
                                      "  1.0D+00  1.0D+00  1.0D+00\n  0.0D+00\n    -1\n";
   UffFile f = parse_uff(text, "bin.unv");
   REQUIRE(f.datasets.size() == 2);
-  CHECK(f.skipped() == std::map<int, std::size_t>{{58, 1}});
+  CHECK(f.skipped() == std::map<int, std::size_t>{{9999, 1}});
   CHECK(dataset_number(f.datasets[1]) == 164);
   // Written back verbatim.
   CHECK(format_uff(f).substr(0, ascii.size() + bytes.size()) == ascii + bytes);
@@ -345,15 +358,15 @@ TEST_CASE("UFF: errors name file, line, dataset, record, field and what was expe
 TEST_CASE("UFF: delimiter recognition", "[uff]") {
   // A `-1` outside columns 1-6 is data, not a delimiter: dataset 15 with node -1 would be
   // " -1" in an I10 field ending at column 10.
-  UffFile f = parse_uff("    -1\n    82\n        -1\n    -1\n", "d.unv");
+  UffFile f = parse_uff("    -1\n  2467\n        -1\n    -1\n", "d.unv");
   REQUIRE(f.datasets.size() == 1);
   CHECK(std::get<UnknownDataset>(f.datasets[0]).body == "        -1\n");
   // Trailing blanks after delimiters and blank lines between datasets are tolerated.
-  UffFile g = parse_uff("    -1   \n    82   \nx\n    -1      \n\n    -1\n    18\n    -1\n", "d.unv");
+  UffFile g = parse_uff("    -1   \n  2467   \nx\n    -1      \n\n    -1\n  2400\n    -1\n", "d.unv");
   CHECK(g.datasets.size() == 2);
-  CHECK((g.skipped() == std::map<int, std::size_t>{{18, 1}, {82, 1}}));
+  CHECK((g.skipped() == std::map<int, std::size_t>{{2400, 1}, {2467, 1}}));
   // An empty delimiter pair is tolerated.
-  UffFile h = parse_uff("    -1\n    -1\n    82\nx\n    -1\n", "d.unv");
+  UffFile h = parse_uff("    -1\n    -1\n  2467\nx\n    -1\n", "d.unv");
   CHECK(h.datasets.size() == 1);
 }
 
@@ -403,7 +416,7 @@ TEST_CASE("UFF: a binary file is called one; no raw byte reaches a message", "[u
   const std::string long_line = "This is a text file with a long first line, not a universal file at all.\n";
   CHECK(error_of(long_line) == "bad.unv:1: expected the dataset delimiter \"    -1\" (-1 in columns 1-6), got "
                                "\"This is a text file with a long first li...\"");
-  for (const auto& text : {zip, png, long_line, std::string("    -1\n    82\n\xff\xfe\x01\n    -1\n")})
+  for (const auto& text : {zip, png, long_line, std::string("    -1\n  2467\n\xff\xfe\x01\n    -1\n")})
     CHECK(printable(error_of(text)));
   // Bytes of 0x80 and above are text in ID lines (a unit "\xb5m", UTF-8 names).
   UffFile f = parse_uff("    -1\n   151\nmodel \xc2\xb5m\n    -1\n", "latin.unv");
