@@ -144,8 +144,14 @@ TEST_CASE("H1 with two references (MIMO) equals the 2-DOF receptance; multiple c
   CHECK(worst < 1e-9);
   CHECK(worst_v < 1e-9);
   CHECK(worst_mc < 1e-9);
-  // The DC line has no excitation: NaN, not a number made up.
-  CHECK(std::isnan(e.h[0](0, 0).real()));
+  // Fully correlated references: G_xx singular at every line, NaN rather than a number made up.
+  Eigen::MatrixXd same(x.rows(), 2);
+  same << x.col(0), x.col(0);
+  const FrfEstimate singular = estimate_frf(same, y, dt, o, FrfEstimator::H1);
+  CHECK(std::isnan(singular.h[5](0, 0).real()));
+  CHECK(std::isnan(singular.multiple_coherence(5, 1)));
+  CHECK(singular.coherence(5, 0) >= 0.0);  // the ordinary coherences are still defined (NaN fails both)
+  CHECK(singular.coherence(5, 0) <= 1.0);
   CHECK_THROWS_WITH(estimate_frf(x, y, dt, o, FrfEstimator::H2),
                     "FRF: H2 with 2 references (expected 1; use H1 or Hv with several)");
 }

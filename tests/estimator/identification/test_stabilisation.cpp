@@ -119,7 +119,7 @@ TEST_CASE("stabilisation classes and rejections on hand-made poles", "[identific
   }
   const StabilisationResult r = stabilise(in);
   REQUIRE(r.modes.size() == 1);
-  CHECK(r.modes[0].hz == Approx(10.01));
+  CHECK(r.modes[0].hz == Approx(10.015));  // orders 4 and 6 (order 2 has nothing to be stable against)
   CHECK(r.modes[0].poles == 2);
   for (const DiagramPole& d : r.diagram) {
     if (d.order == 2) {

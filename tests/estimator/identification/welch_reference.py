@@ -56,7 +56,8 @@ def main():
             mcoh[line, k] = (h1[line, k, :] @ gyx[line, k, :].conj()).real / gyy[line, k]
     for k in range(no):
         for i in range(ni):
-            coh[:, k, i] = sig.coherence(x[:, i], y[:, k], **kw)[1]
+            coh[:, k, i] = sig.coherence(x[:, i], y[:, k], fs=fs, window=window, nperseg=n, noverlap=nov,
+                                         detrend=False)[1]
     out = {
         "f": f.tolist(),
         "gxx": np.stack([gxx.real, gxx.imag], axis=-1).tolist(),
