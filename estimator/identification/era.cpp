@@ -1,6 +1,7 @@
 #include "estimator/identification/era.hpp"
 
 #include <Eigen/Dense>
+#include <unsupported/Eigen/FFT>
 #include <algorithm>
 #include <cmath>
 #include <fmt/format.h>
@@ -197,6 +198,34 @@ std::vector<EraResult> era_orders(const std::vector<Eigen::MatrixXd>& markov, co
 std::vector<Eigen::MatrixXd> markov_from_records(const Eigen::Ref<const Eigen::MatrixXd>& records) {
   std::vector<Eigen::MatrixXd> Y(static_cast<std::size_t>(records.rows()));
   for (Eigen::Index k = 0; k < records.rows(); ++k) Y[static_cast<std::size_t>(k)] = records.row(k).transpose();
+  return Y;
+}
+
+std::vector<Eigen::MatrixXd> markov_from_frf(const std::vector<Eigen::MatrixXcd>& frf, double df) {
+  if (frf.size() < 2) throw InputError(fmt::format("Markov parameters from FRFs: {} lines (expected at least 2)", frf.size()));
+  if (!(df > 0)) throw InputError(fmt::format("Markov parameters from FRFs: line spacing {} Hz (expected > 0)", df));
+  const Eigen::Index no = frf[0].rows(), ni = frf[0].cols();
+  for (std::size_t k = 0; k < frf.size(); ++k)
+    if (frf[k].rows() != no || frf[k].cols() != ni)
+      throw InputError(fmt::format("Markov parameters from FRFs: line {} is {}×{} (expected {}×{} as the first)", k,
+                                   frf[k].rows(), frf[k].cols(), no, ni));
+  const auto half = static_cast<Eigen::Index>(frf.size()) - 1;
+  const Eigen::Index N = 2 * half;
+  std::vector<Eigen::MatrixXd> Y(static_cast<std::size_t>(N), Eigen::MatrixXd(no, ni));
+  Eigen::FFT<double> fft;
+  std::vector<cd> spec(static_cast<std::size_t>(N));
+  std::vector<cd> time;
+  for (Eigen::Index i = 0; i < ni; ++i)
+    for (Eigen::Index o = 0; o < no; ++o) {
+      for (Eigen::Index k = 0; k <= half; ++k) spec[static_cast<std::size_t>(k)] = frf[static_cast<std::size_t>(k)](o, i);
+      // The Nyquist line of a real sequence is real: its imaginary part has no partner.
+      spec[static_cast<std::size_t>(half)] = spec[static_cast<std::size_t>(half)].real();
+      for (Eigen::Index k = 1; k < half; ++k)
+        spec[static_cast<std::size_t>(N - k)] = std::conj(frf[static_cast<std::size_t>(k)](o, i));
+      fft.inv(time, spec);  // (1/N) Σ_k S_k e^{2πikn/N}
+      for (Eigen::Index n = 0; n < N; ++n)
+        Y[static_cast<std::size_t>(n)](o, i) = time[static_cast<std::size_t>(n)].real() * static_cast<double>(N) * df;
+    }
   return Y;
 }
 

@@ -67,4 +67,15 @@ std::vector<EraResult> era_orders(const std::vector<Eigen::MatrixXd>& markov, co
 /// single-reference data: Y[k] = records.row(k)ᵀ.
 std::vector<Eigen::MatrixXd> markov_from_records(const Eigen::Ref<const Eigen::MatrixXd>& records);
 
+/// Markov parameters (the impulse response h(n·dt), dt = 1/(N·df)) from one-sided FRF lines
+/// f_k = k·df, k = 0 … N/2 (the last line at the Nyquist frequency), each no × ni:
+///   h[n] = df Σ_{k=−N/2+1}^{N/2} H(f_k) e^{2πi kn/N},  H(−f) = conj H(f),  n = 0 … N−1.
+/// Unit: the FRF's per second (e.g. m/N → m/(N·s)). The result is the impulse response
+/// wrapped over the period N·dt, which keeps the poles of a decaying response (each
+/// exponential only gains the factor 1/(1 − e^{λ N dt})); the lines being cut at the
+/// Nyquist frequency is what makes it approximate. Use the first part of the sequence
+/// (the tail carries the wrap-around). Throws formats::InputError for fewer than 2 lines,
+/// unequal sizes or df ≤ 0.
+std::vector<Eigen::MatrixXd> markov_from_frf(const std::vector<Eigen::MatrixXcd>& frf, double df);
+
 }  // namespace ssid::estimator::identification

@@ -289,9 +289,9 @@ TEST_CASE("Welch spectra, H1, H2 and coherences agree with scipy.signal", "[iden
                << dev_h2 << ", coherence " << dev_coh << ", multiple coherence " << dev_mc << ", frequencies " << dev_f);
     CHECK(dev_f < 1e-12);
     CHECK(dev_g < 1e-12);
-    CHECK(dev_h < 1e-9);
-    CHECK(dev_h2 < 1e-9);
-    CHECK(dev_coh < 1e-9);
-    CHECK(dev_mc < 1e-9);
+    CHECK(dev_h < 1e-12);
+    CHECK(dev_h2 < 1e-12);
+    CHECK(dev_coh < 1e-12);
+    CHECK(dev_mc < 1e-12);
   }
 }
