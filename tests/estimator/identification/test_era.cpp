@@ -8,6 +8,7 @@
 
 #include "chain_model.hpp"
 #include "estimator/identification/era.hpp"
+#include "estimator/identification/frf.hpp"
 #include "estimator/identification/modal_indicators.hpp"
 #include "formats/parse_error.hpp"
 
@@ -194,6 +195,56 @@ TEST_CASE("ERA on Markov parameters from exact FRF lines (inverse FFT) finds the
   CHECK(e.freq < 1e-5);
   CHECK(e.zeta < 1e-3);
   CHECK(e.mac > 0.9999);
+}
+
+TEST_CASE("impact test: force and exponential windows, H1, inverse FFT and ERA give the poles shifted by 1/τ",
+          "[identification][era][frf]") {
+  // One hammer blow of area a·dt on DOF 0 at t = 0, the exact displacement response, and
+  // noise on the force channel after the blow (what the force window is for).
+  const auto model = ident_test::chain_model(false, {0});
+  const double dt = 1.0 / 500, a = 250.0, tau = 1.0;
+  const Eigen::Index N = 4096;
+  const auto h = model.markov(dt, N);
+  Eigen::MatrixXd x = Eigen::MatrixXd::Zero(N, 1), y(N, 3);
+  ssid::translators::NormalDeviates z(3);
+  x(0, 0) = a;
+  for (Eigen::Index n = N / 10; n < N; ++n) x(n, 0) = 0.05 * a * z();
+  for (Eigen::Index n = 0; n < N; ++n) y.row(n) = a * dt * h[static_cast<std::size_t>(n)].transpose();
+  WelchOptions w;
+  w.segment_length = N;
+  w.overlap = 0;
+  w.reference_window = {WindowKind::Force, 0.05};
+  w.response_window = {WindowKind::Exponential, 0.1, tau};
+  const FrfEstimate frf = estimate_frf(x, y, dt, w, FrfEstimator::H1);
+  const auto Y = markov_from_frf(frf.h, frf.frequency_hz(1));
+  // The windowed response divided by the blow's area, exactly: e^{−t/τ} h(t).
+  double worst_h = 0, scale = 0;
+  for (Eigen::Index n = 0; n < N; ++n) {
+    const Eigen::MatrixXd expect = std::exp(-static_cast<double>(n) * dt / tau) * h[static_cast<std::size_t>(n)];
+    scale = std::max(scale, expect.cwiseAbs().maxCoeff());
+    worst_h = std::max(worst_h, (Y[static_cast<std::size_t>(n)] - expect).cwiseAbs().maxCoeff());
+  }
+  worst_h /= scale;
+  EraOptions o;
+  o.order = 6;
+  o.dt = dt;
+  const EraResult r = era(std::vector<Eigen::MatrixXd>(Y.begin(), Y.begin() + 1500), o);
+  std::vector<cd> poles;
+  std::vector<Eigen::VectorXcd> shapes;
+  model.exact(poles, shapes);
+  REQUIRE(r.poles.size() == 3);
+  double worst_shift = 0, worst_wd = 0;
+  for (std::size_t m = 0; m < 3; ++m) {
+    // Subtracting 1/τ from the decay rate gives back the structure's pole.
+    worst_shift = std::max(worst_shift, std::abs(r.poles[m].lambda.real() + 1 / tau - poles[m].real()) /
+                                            std::abs(poles[m].real()));
+    worst_wd = std::max(worst_wd, std::abs(r.poles[m].lambda.imag() - poles[m].imag()) / poles[m].imag());
+  }
+  INFO("windowed impulse response " << worst_h << " of its peak; decay rate after −1/τ " << worst_shift
+                                    << " relative; damped frequency " << worst_wd);
+  CHECK(worst_h < 1e-10);
+  CHECK(worst_shift < 1e-8);
+  CHECK(worst_wd < 1e-10);
 }
 
 TEST_CASE("ERA input errors name the cause", "[identification][era]") {
