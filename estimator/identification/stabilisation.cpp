@@ -166,8 +166,10 @@ StabilisationResult stabilise(const std::vector<OrderPoles>& orders, const Stabi
       best->last_order = d.order;
     }
 
-  // Stable poles can exist from the second order on.
-  const double compared = orders.size() > 1 ? static_cast<double>(orders.size() - 1) : 1.0;
+  // Stable poles can exist from the second order on; an order that gave no pole at all
+  // (e.g. ERA beyond the data's numerical rank) has nothing to recur in and is not counted.
+  const auto realized = std::count_if(orders.begin(), orders.end(), [](const OrderPoles& op) { return !op.poles.empty(); });
+  const double compared = realized > 1 ? static_cast<double>(realized - 1) : 1.0;
   const auto needed = std::max<std::size_t>(2, static_cast<std::size_t>(std::ceil(o.min_fraction * compared - 1e-9)));
   struct Built {
     ClusteredMode mode;

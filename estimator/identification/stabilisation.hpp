@@ -30,7 +30,8 @@ struct StabilisationOptions {
   double hz_min = 0;          ///< poles outside [hz_min, hz_max] are rejected (band of interest)
   double hz_max = 1e300;
   /// A cluster becomes a mode when stable poles of at least this fraction of the orders
-  /// that follow another order join it (and at least 2 poles).
+  /// that follow another order join it (and at least 2 poles); orders without any pole
+  /// (ERA beyond the numerical rank of noise-free data) are not counted.
   double min_fraction = 0.5;
   /// Cluster membership: within cluster_freq_tol of the cluster's first pole in frequency
   /// and cluster_mac_min in complex MAC.
