@@ -7,8 +7,8 @@
 
 #include "cli/cli_util.hpp"
 #include "cli/exit_codes.hpp"
-#include "estimator/allocation_policy.hpp"
-#include "estimator/progress.hpp"
+#include "estimator/linalg/allocation_policy.hpp"
+#include "estimator/reporting/progress.hpp"
 #include "formats/parse_error.hpp"
 
 namespace ssid::cli {
