@@ -32,6 +32,7 @@ int cmd_estimate(const Args& args);
 int cmd_translate(const Args& args);
 int cmd_update_deck(const Args& args);
 int cmd_diagnose(const Args& args);
+int cmd_identify(const Args& args);
 int cmd_pretest(const Args& args);
 
 }  // namespace ssid::cli
