@@ -203,7 +203,7 @@ int cmd_pretest(const Args& args) {
   int rc = 0;
   if (!parse_options(args,
                      "ssid pretest DECK --target-modes N [--min-hz F] --sensors S --method ei|ke|ake|evp|evp-sum "
-                     "[--triax] [--exciters E] [--evaluate] [--json OUT] [--uff OUT.unv]",
+                     "[--triax] [--exciters E] [--evaluate] [--perturb-areas SEED] [--json OUT] [--uff OUT.unv]",
                      desc, pos, vm, rc))
     return rc;
   const int n_targets = vm["target-modes"].as<int>();
