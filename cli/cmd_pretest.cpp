@@ -183,7 +183,8 @@ int cmd_pretest(const Args& args) {
       "population", po::value<int>()->default_value(20), "GA population (the paper: 20)")(
       "generations", po::value<int>()->default_value(40), "GA generations (the paper: 40)")(
       "seed", po::value<std::uint64_t>()->default_value(1), "GA seed (same seed, same exciters)")(
-      "damping", po::value<double>()->default_value(0.01, "0.01"), "modal damping ratio of the MIF's FRFs")(
+      "damping", po::value<double>()->default_value(0.01, "0.01"),
+      "modal damping ratio of every mode (the MIF's FRFs and --evaluate's simulated test)")(
       "frf-modes", po::value<int>(),
       "modes solved for (targets, rigid-body and the MIF's modal model; default max(3N, N + 12), at most the "
       "DOF count less one)")(
