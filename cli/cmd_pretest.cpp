@@ -2,14 +2,17 @@
 /// `ssid pretest DECK`: pretest planning (issue 23): target modes, sensor
 /// placement (EI, KE, AKE, EVP), test-analysis models on the sensor set
 /// (Guyan, SEREP, IRS) with the cross-orthogonality check, and exciter placement
-/// (MIF drop-offs and the genetic algorithm). The simulated-test evaluation
-/// (issue 23 item 5, ERA) is not here yet.
+/// (MIF drop-offs and the genetic algorithm), and with --evaluate the simulated
+/// impulse test of the placement (ERA, issue 23 item 5).
 #include <Eigen/SparseCore>
 #include <cmath>
 #include <fstream>
 #include <iomanip>
 #include <iostream>
+#include <iterator>
+#include <algorithm>
 #include <map>
+#include <optional>
 #include <set>
 #include <sstream>
 
@@ -17,7 +20,9 @@
 #include "cli/exit_codes.hpp"
 #include "cli/model_load.hpp"
 #include "estimator/correlation/measures.hpp"
+#include "estimator/pretest/evaluation.hpp"
 #include "estimator/pretest/exciter_placement.hpp"
+#include "estimator/pretest/model_error.hpp"
 #include "estimator/pretest/sensor_placement.hpp"
 #include "estimator/pretest/tam.hpp"
 #include "estimator/pretest/targets.hpp"
@@ -86,6 +91,75 @@ nlohmann::json matrix_rows(const Eigen::MatrixXd& X) {
   return j;
 }
 
+/// The "evaluation" object of the JSON (issue 23 item 7 names the first three keys).
+nlohmann::json evaluation_json(const estimator::pretest::PlacementEvaluation& ev,
+                               const std::vector<Eigen::Index>& target_cols, const Eigen::VectorXd& hz,
+                               const estimator::pretest::SimulatedTestOptions& so) {
+  auto num = [](double v) { return std::isfinite(v) ? nlohmann::json(v) : nlohmann::json(nullptr); };
+  nlohmann::json e;
+  e["identified"] = ev.identified_count;
+  e["max_frequency_error_pct"] = num(ev.max_frequency_error_pct);
+  e["max_offdiagonal_xor"] = num(ev.max_offdiagonal_xor);
+  e["min_diagonal_xor"] = num(ev.min_diagonal_xor);
+  e["targets"] = nlohmann::json::array();
+  for (std::size_t t = 0; t < ev.targets.size(); ++t) {
+    const auto& tm = ev.targets[t];
+    nlohmann::json x{{"mode", target_cols[t] + 1}, {"fe_hz", hz(static_cast<Eigen::Index>(t))}, {"identified", tm.identified}};
+    if (tm.identified) {
+      x["hz"] = tm.hz;
+      x["damping_ratio"] = tm.zeta;
+      x["frequency_error_pct"] = tm.frequency_error_pct;
+      x["mac"] = tm.mac;
+    }
+    e["targets"].push_back(x);
+  }
+  e["stable_modes"] = ev.identified.size();
+  if (ev.xor_status == estimator::ReductionStatus::Ok) {
+    e["xor"] = matrix_rows(ev.xor_matrix);
+    std::vector<Eigen::Index> rows;
+    for (int r : ev.xor_rows) rows.push_back(target_cols[static_cast<std::size_t>(r)] + 1);
+    e["xor_rows"] = rows;
+  } else {
+    e["xor_message"] = ev.xor_message;
+  }
+  e["test"] = {{"dt", ev.dt}, {"samples", ev.samples}, {"bandwidth_hz", ev.bandwidth_hz},
+               {"response_modes", ev.response_modes}, {"era_orders", {ev.orders.front(), ev.orders.back()}},
+               {"noise_pct", so.noise_pct}, {"noise_seed", so.seed}, {"adc_bits", so.adc_bits},
+               {"damping_ratio", so.damping}, {"match_frequency_tolerance", so.match_freq_tol},
+               {"match_mac_min", so.match_mac_min}};
+  return e;
+}
+
+/// The evaluation as text.
+void print_evaluation(std::ostream& o, const char* title, const estimator::pretest::PlacementEvaluation& ev,
+                      const std::vector<Eigen::Index>& target_cols, const Eigen::VectorXd& hz,
+                      const estimator::pretest::SimulatedTestOptions& so) {
+  o << "\n" << title << ": impulse responses of " << ev.response_modes << " mode(s) up to " << fmt(ev.bandwidth_hz)
+    << " Hz, " << ev.samples << " samples every " << fmt(ev.dt * 1e3) << " ms, noise " << fmt(so.noise_pct)
+    << " %, damping " << fmt(100 * so.damping) << " %; ERA orders " << ev.orders.front() << "…" << ev.orders.back()
+    << ": " << ev.identified.size() << " stable mode(s)\n";
+  o << "  mode   FE (Hz)  identified (Hz)  error (%)    MAC\n";
+  for (std::size_t t = 0; t < ev.targets.size(); ++t) {
+    const auto& tm = ev.targets[t];
+    o << "  " << std::setw(4) << target_cols[t] + 1 << "  " << std::setw(8) << std::fixed << std::setprecision(3)
+      << hz(static_cast<Eigen::Index>(t));
+    if (tm.identified)
+      o << "  " << std::setw(15) << tm.hz << "  " << std::setw(9) << std::setprecision(4) << tm.frequency_error_pct
+        << "  " << std::setw(5) << std::setprecision(3) << tm.mac;
+    else
+      o << "  not identified";
+    o << std::defaultfloat << "\n";
+  }
+  o << "  identified " << ev.identified_count << " of " << ev.targets.size() << " target(s)";
+  if (ev.identified_count > 0) o << ", max frequency error " << fmt(ev.max_frequency_error_pct, 3) << " %";
+  if (ev.xor_status != estimator::ReductionStatus::Ok)
+    o << "; cross-orthogonality: SEREP failed: " << ev.xor_message;
+  else if (ev.identified_count > 0)
+    o << "; cross-orthogonality (SEREP mass): min diagonal " << fmt(ev.min_diagonal_xor, 3) << ", max off-diagonal "
+      << fmt(ev.max_offdiagonal_xor, 3);
+  o << "\n";
+}
+
 }  // namespace
 
 int cmd_pretest(const Args& args) {
@@ -109,10 +183,19 @@ int cmd_pretest(const Args& args) {
       "population", po::value<int>()->default_value(20), "GA population (the paper: 20)")(
       "generations", po::value<int>()->default_value(40), "GA generations (the paper: 40)")(
       "seed", po::value<std::uint64_t>()->default_value(1), "GA seed (same seed, same exciters)")(
-      "damping", po::value<double>()->default_value(0.01, "0.01"), "modal damping ratio of the MIF's FRFs")(
+      "damping", po::value<double>()->default_value(0.01, "0.01"),
+      "modal damping ratio of every mode (the MIF's FRFs and --evaluate's simulated test)")(
       "frf-modes", po::value<int>(),
       "modes solved for (targets, rigid-body and the MIF's modal model; default max(3N, N + 12), at most the "
       "DOF count less one)")(
+      "evaluate", po::bool_switch(),
+      "judge the placement by a simulated impulse test at the exciters (full model, noise, ERA; docs/pretest.md)")(
+      "noise", po::value<double>()->default_value(2.0, "2"),
+      "--evaluate: noise standard deviation, % of each channel's RMS")(
+      "noise-seed", po::value<std::uint64_t>()->default_value(1), "--evaluate: seed of the noise")(
+      "perturb-areas", po::value<std::uint64_t>(),
+      "SEED: rerun the placement on the model with a third of the struts' areas -20 % and a third +20 % (chosen by "
+      "SEED) and report the sensors that change")(
       "json", po::value<std::string>(), "write every figure as JSON to this file ('-' for stdout)")(
       "uff", po::value<std::string>(), "write the sensor grids (and exciter grids) as UFF dataset 15 to this file");
   po::positional_options_description pos;
@@ -121,7 +204,7 @@ int cmd_pretest(const Args& args) {
   int rc = 0;
   if (!parse_options(args,
                      "ssid pretest DECK --target-modes N [--min-hz F] --sensors S --method ei|ke|ake|evp|evp-sum "
-                     "[--triax] [--exciters E] [--json OUT] [--uff OUT.unv]",
+                     "[--triax] [--exciters E] [--evaluate] [--perturb-areas SEED] [--json OUT] [--uff OUT.unv]",
                      desc, pos, vm, rc))
     return rc;
   const int n_targets = vm["target-modes"].as<int>();
@@ -139,6 +222,11 @@ int cmd_pretest(const Args& args) {
   if (n_exciters < 0) throw formats::InputError("--exciters: expected 0 or more, got " + std::to_string(n_exciters));
   const double zeta = vm["damping"].as<double>();
   if (!(zeta > 0 && zeta < 1)) throw formats::InputError("--damping: expected a ratio in (0, 1), got " + fmt(zeta));
+  const bool evaluate = vm["evaluate"].as<bool>();
+  const double noise_pct = vm["noise"].as<double>();
+  if (!(noise_pct >= 0)) throw formats::InputError("--noise: expected a percentage ≥ 0, got " + fmt(noise_pct));
+  if (evaluate && n_exciters == 0 && !vm.count("exciter-at"))
+    throw formats::InputError("--evaluate: needs exciters (--exciters E for the GA's, or --exciter-at GRID:X,Y,Z)");
 
   // --- the model and its modes
   LoadedModel lm = load_model(vm["deck"].as<std::string>());
@@ -170,33 +258,64 @@ int cmd_pretest(const Args& args) {
   const auto groups = pt::group_by_grid(cand);
   std::vector<Eigen::Index> cand_rows;
   for (const auto& c : cand) cand_rows.push_back(c.row);
-  const Eigen::MatrixXd Phi_c = pt::take_rows(Phi, cand_rows);
 
   // --- sensor placement
   const int keep = triax ? n_sensors / 3 : n_sensors;
   const std::vector<std::vector<Eigen::Index>> no_groups;
   const auto& place_groups = triax ? groups : no_groups;
-  pt::Placement placement;
-  if (method == pt::PlacementMethod::EffectiveIndependence) {
-    placement = pt::effective_independence(Phi_c, keep, place_groups);
-  } else {
-    Eigen::MatrixXd ke;
-    if (method == pt::PlacementMethod::KineticEnergy || method == pt::PlacementMethod::AverageKineticEnergy) {
-      if (ke_mass == "fe") {
-        ke = pt::kinetic_energy_fractions(Phi, op.M, cand_rows);
-      } else {
-        const estimator::ReducedModel g = estimator::guyan_reduce(op.K, op.M, cand_rows);
-        if (g.status != estimator::ReductionStatus::Ok)
-          throw formats::NumericalError("--ke-mass guyan: " + g.message);
-        std::vector<Eigen::Index> all(cand_rows.size());
-        for (std::size_t i = 0; i < all.size(); ++i) all[i] = static_cast<Eigen::Index>(i);
-        ke = pt::kinetic_energy_fractions(Phi_c, g.M.sparseView(), all);
+  // One placement of the targets `Phi_t` of a model (K, M): the run's, and the perturbed model's.
+  auto place = [&](const Eigen::SparseMatrix<double>& K_, const Eigen::SparseMatrix<double>& M_,
+                   const Eigen::MatrixXd& Phi_t) {
+    const Eigen::MatrixXd Phi_c = pt::take_rows(Phi_t, cand_rows);
+    pt::Placement placement;
+    if (method == pt::PlacementMethod::EffectiveIndependence) {
+      placement = pt::effective_independence(Phi_c, keep, place_groups);
+    } else {
+      Eigen::MatrixXd ke;
+      if (method == pt::PlacementMethod::KineticEnergy || method == pt::PlacementMethod::AverageKineticEnergy) {
+        if (ke_mass == "fe") {
+          ke = pt::kinetic_energy_fractions(Phi_t, M_, cand_rows);
+        } else {
+          const estimator::ReducedModel g = estimator::guyan_reduce(K_, M_, cand_rows);
+          if (g.status != estimator::ReductionStatus::Ok)
+            throw formats::NumericalError("--ke-mass guyan: " + g.message);
+          std::vector<Eigen::Index> all(cand_rows.size());
+          for (std::size_t i = 0; i < all.size(); ++i) all[i] = static_cast<Eigen::Index>(i);
+          ke = pt::kinetic_energy_fractions(Phi_c, g.M.sparseView(), all);
+        }
       }
+      placement = pt::rank_placement(method, Phi_c, pt::placement_metric(method, Phi_c, ke), keep, place_groups);
     }
-    placement = pt::rank_placement(method, Phi_c, pt::placement_metric(method, Phi_c, ke), keep, place_groups);
-  }
+    return placement;
+  };
+  const pt::Placement placement = place(op.K, op.M, Phi);
   std::vector<Eigen::Index> sensor_rows;
   for (auto s : placement.selected) sensor_rows.push_back(cand[static_cast<std::size_t>(s)].row);
+
+  // --- model error: the same placement on the perturbed model
+  struct ModelError {
+    pt::AreaPerturbation perturbation;
+    Eigen::VectorXd hz;
+    pt::Placement placement;
+  };
+  std::optional<ModelError> model_error;
+  if (vm.count("perturb-areas")) {
+    formats::Deck pdeck = formats::read_deck(lm.path);
+    ModelError me;
+    me.perturbation = pt::perturb_strut_areas(pdeck, vm["perturb-areas"].as<std::uint64_t>());
+    const auto pmodel = translators::assemble_deck(pdeck, lm.path);
+    const translators::FeOperators pop = pmodel->operators(pmodel->initial_parameters(), false);
+    const estimator::EigenResult per = solve_model(pop, eo, dofs);
+    const auto ptargets = pt::select_target_modes(per.eigenvalues, n_targets, min_hz);
+    Eigen::MatrixXd Phi_p(n, n_targets);
+    me.hz.resize(n_targets);
+    for (int t = 0; t < n_targets; ++t) {
+      Phi_p.col(t) = per.modes.col(ptargets[static_cast<std::size_t>(t)]);
+      me.hz(t) = per.cycles(static_cast<int>(ptargets[static_cast<std::size_t>(t)]));
+    }
+    me.placement = place(pop.K, pop.M, Phi_p);
+    model_error = std::move(me);
+  }
 
   // --- TAMs on the sensor set
   std::vector<pt::TamCheck> tams;
@@ -225,6 +344,30 @@ int cmd_pretest(const Args& args) {
     }
   }
   auto grid_of_group = [&](int g) { return cand[static_cast<std::size_t>(groups[static_cast<std::size_t>(g)][0])].dof.point; };
+
+  // --- the simulated test (on modes of the full model reaching above the test's band)
+  std::optional<pt::PlacementEvaluation> evaluation, given_evaluation;
+  pt::SimulatedTestOptions so;
+  so.damping = zeta;
+  so.noise_pct = noise_pct;
+  so.seed = vm["noise-seed"].as<std::uint64_t>();
+  if (evaluate) {
+    estimator::EigenResult full = er;
+    const double band = pt::evaluation_bandwidth(er.eigenvalues, target_cols, so);
+    int n_full = n_solve;
+    while (full.size() < n && full.cycles(static_cast<int>(full.size()) - 1) <= band && n_full < n - 1) {
+      n_full = static_cast<int>(std::min<long>(2L * n_full, n - 1));
+      std::string src;
+      full = solve_model(op, eigen_options(model, n_full, n, src), dofs);
+    }
+    const auto full_targets = pt::select_target_modes(full.eigenvalues, n_targets, min_hz);
+    auto run = [&](const std::vector<pt::Exciter>& ex) {
+      return pt::evaluate_placement(op.K, op.M, full.modes, full.eigenvalues, full_targets, sensor_rows,
+                                    pt::exciter_inputs(n, cand, groups, ex), so);
+    };
+    if (xp) evaluation = run(xp->exciters);
+    if (!given.empty()) (xp ? given_evaluation : evaluation) = run(given);
+  }
 
   // --- JSON
   nlohmann::json j;
@@ -282,6 +425,50 @@ int cmd_pretest(const Args& args) {
     j["given_exciters"] = g;
   }
   j["damping_ratio"] = zeta;
+  if (evaluation) j["evaluation"] = evaluation_json(*evaluation, target_cols, hz, so);
+  // Model error: the sensors (triaxes: grids) of the nominal set missing from the perturbed one, and those added.
+  using Key = std::pair<std::int64_t, int>;
+  auto keys = [&](const pt::Placement& pl) {
+    std::set<Key> k;
+    for (auto s : pl.selected) {
+      const auto& c = cand[static_cast<std::size_t>(s)];
+      k.insert({c.dof.point, triax ? 0 : c.dof.component});
+    }
+    return k;
+  };
+  std::vector<Key> removed, added;
+  if (model_error) {
+    const auto a = keys(placement), b = keys(model_error->placement);
+    std::set_difference(a.begin(), a.end(), b.begin(), b.end(), std::back_inserter(removed));
+    std::set_difference(b.begin(), b.end(), a.begin(), a.end(), std::back_inserter(added));
+    auto list = [&](const std::vector<Key>& v) {
+      nlohmann::json l = nlohmann::json::array();
+      for (const auto& [g, c] : v) l.push_back(triax ? nlohmann::json{{"grid", g}} : nlohmann::json{{"grid", g}, {"component", c}});
+      return l;
+    };
+    nlohmann::json m;
+    m["seed"] = vm["perturb-areas"].as<std::uint64_t>();
+    m["struts"] = model_error->perturbation.struts;
+    m["areas_decreased"] = model_error->perturbation.decreased;
+    m["areas_increased"] = model_error->perturbation.increased;
+    m["area_change"] = 0.2;
+    std::vector<double> change;
+    for (int t = 0; t < n_targets; ++t) change.push_back(100 * (model_error->hz(t) - hz(t)) / hz(t));
+    m["target_hz"] = std::vector<double>(model_error->hz.data(), model_error->hz.data() + n_targets);
+    m["frequency_change_pct"] = change;
+    m["sensors"] = nlohmann::json::array();
+    for (auto s : model_error->placement.selected) {
+      const auto& c = cand[static_cast<std::size_t>(s)];
+      m["sensors"].push_back({{"grid", c.dof.point}, {"component", c.dof.component}});
+    }
+    m["changed"] = removed.size();
+    m["of"] = a.size();
+    m["unit"] = triax ? "triaxes" : "sensors";
+    m["removed"] = list(removed);
+    m["added"] = list(added);
+    j["model_error"] = m;
+  }
+  if (given_evaluation) j["given_exciters"]["evaluation"] = evaluation_json(*given_evaluation, target_cols, hz, so);
 
   // --- report
   const std::string json_path = vm.count("json") ? vm["json"].as<std::string>() : "";
@@ -332,6 +519,27 @@ int cmd_pretest(const Args& args) {
     };
     if (xp) print_exciters("exciters placed by the GA", xp->exciters, xp->dropoffs);
     if (given_drop) print_exciters("exciters given (--exciter-at)", given, *given_drop);
+    if (evaluation)
+      print_evaluation(o, xp ? "simulated test with the GA's exciters" : "simulated test with the given exciters",
+                       *evaluation, target_cols, hz, so);
+    if (given_evaluation) print_evaluation(o, "simulated test with the given exciters", *given_evaluation, target_cols, hz, so);
+    if (model_error) {
+      const auto& pe = model_error->perturbation;
+      o << "\nmodel error (--perturb-areas " << vm["perturb-areas"].as<std::uint64_t>() << "): of " << pe.struts
+        << " strut(s), " << pe.decreased << " area(s) -20 %, " << pe.increased << " +20 %; target frequency change (%):";
+      for (int t = 0; t < n_targets; ++t)
+        o << (t % 6 == 0 ? "\n  " : "  ") << std::fixed << std::setprecision(2) << 100 * (model_error->hz(t) - hz(t)) / hz(t);
+      o << std::defaultfloat << "\n  " << removed.size() << " of " << keys(placement).size()
+        << (triax ? " triax(es)" : " sensor(s)") << " changed";
+      auto name = [&](const Key& k) { return std::to_string(k.first) + (triax ? "" : " T" + std::to_string(k.second)); };
+      if (!removed.empty()) {
+        o << "; dropped:";
+        for (const auto& k : removed) o << " " << name(k);
+        o << "; added:";
+        for (const auto& k : added) o << " " << name(k);
+      }
+      o << "\n";
+    }
   }
   if (!json_path.empty()) write_json(json_path, j);
 

@@ -115,3 +115,63 @@ TEST_CASE("ssid pretest: refusals are bad input", "[cli][pretest]") {
   CHECK_THAT(r.err, Catch::EndsWith("\nssid: error: --exciter-at \"41:0,1\": expected GRID:X,Y,Z (a grid id and three "
                                     "direction cosines)\n"));
 }
+
+TEST_CASE("ssid pretest --evaluate: without noise the EI set identifies all 12 rod targets exactly", "[cli][pretest]") {
+  const fs::path dir = scratch();
+  const fs::path pj = dir / "eval.json";
+  auto r = run_ssid("pretest " + rod() + " --target-modes 12 --min-hz 1 --sensors 18 --method ei "
+                    "--exciter-at 24:0,1,1 --exciter-at 65:1,0,-1 --evaluate --noise 0 --json " + pj.string());
+  INFO(r.err);
+  REQUIRE(r.code == 0);
+  const auto j = read_json(pj);
+  const auto& ev = j["evaluation"];
+  CHECK(ev["identified"] == 12);
+  CHECK(ev["max_frequency_error_pct"].get<double>() < 1e-3);
+  CHECK(ev["max_offdiagonal_xor"].get<double>() < 1e-3);
+  CHECK(ev["min_diagonal_xor"].get<double>() > 0.999);
+  REQUIRE(ev["targets"].size() == 12);
+  for (std::size_t t = 0; t < 12; ++t) {
+    CHECK(ev["targets"][t]["fe_hz"] == j["target_modes"][t]["hz"]);
+    CHECK(ev["targets"][t]["damping_ratio"].get<double>() == Approx(0.01).epsilon(1e-3));
+  }
+  CHECK(ev["test"]["noise_pct"] == 0.0);
+  CHECK_THAT(r.out, Catch::Contains("identified 12 of 12 target(s)"));
+}
+
+TEST_CASE("ssid pretest --evaluate: refused without exciters", "[cli][pretest]") {
+  auto r = run_ssid("pretest " + rod() + " --target-modes 12 --min-hz 1 --sensors 18 --evaluate");
+  CHECK(r.code == 2);
+  CHECK(r.err == "ssid: error: --evaluate: needs exciters (--exciters E for the GA's, or --exciter-at GRID:X,Y,Z)\n");
+  r = run_ssid("pretest " + rod() + " --target-modes 12 --min-hz 1 --sensors 18 --exciters 1 --evaluate --noise -1");
+  CHECK(r.code == 2);
+  CHECK(r.err == "ssid: error: --noise: expected a percentage ≥ 0, got -1\n");
+}
+
+TEST_CASE("ssid pretest --perturb-areas: the model-error study is seeded and counts the changed sensors", "[cli][pretest]") {
+  const fs::path dir = scratch();
+  const std::string base = "pretest " + rod() + " --target-modes 12 --min-hz 1 --sensors 18 --method ei --perturb-areas 3 --json ";
+  auto a = run_ssid(base + (dir / "pa.json").string());
+  INFO(a.err);
+  REQUIRE(a.code == 0);
+  auto b = run_ssid(base + (dir / "pb.json").string());
+  REQUIRE(b.code == 0);
+  const auto ja = read_json(dir / "pa.json"), jb = read_json(dir / "pb.json");
+  const auto& m = ja["model_error"];
+  CHECK(m == jb["model_error"]);
+  const long struts = m["struts"].get<long>();
+  CHECK(struts > 100);
+  CHECK(m["areas_decreased"].get<long>() == struts / 3);
+  CHECK(m["areas_increased"].get<long>() == struts / 3);
+  // The sets differ by exactly the listed sensors.
+  std::set<std::pair<long, int>> nominal, perturbed;
+  for (const auto& s : ja["sensors"]) nominal.insert({s["grid"].get<long>(), s["component"].get<int>()});
+  for (const auto& s : m["sensors"]) perturbed.insert({s["grid"].get<long>(), s["component"].get<int>()});
+  REQUIRE(perturbed.size() == 18);
+  std::size_t missing = 0;
+  for (const auto& k : nominal) missing += perturbed.count(k) == 0;
+  CHECK(m["changed"].get<std::size_t>() == missing);
+  CHECK(m["removed"].size() == missing);
+  CHECK(m["added"].size() == missing);
+  // A stiffness change moves every target.
+  for (const auto& c : m["frequency_change_pct"]) CHECK(std::abs(c.get<double>()) > 1e-3);
+}

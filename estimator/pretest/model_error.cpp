@@ -1,0 +1,80 @@
+#include "estimator/pretest/model_error.hpp"
+
+#include <algorithm>
+#include <fmt/format.h>
+#include <map>
+#include <random>
+#include <vector>
+
+#include "formats/bulk_model.hpp"
+#include "formats/parse_error.hpp"
+
+namespace ssid::estimator::pretest {
+
+AreaPerturbation perturb_strut_areas(formats::Deck& deck, std::uint64_t seed, double change) {
+  if (!(change > 0 && change < 1))
+    throw formats::InputError(fmt::format("area perturbation: change {} (expected in (0, 1))", change));
+  formats::BulkModel bulk = formats::parse_bulk(deck);
+  formats::resolve(deck, bulk);
+  std::map<std::int64_t, const formats::Prod*> prods;
+  std::map<std::int64_t, const formats::Pbar*> pbars;
+  std::int64_t max_pid = 0;
+  for (const auto& p : bulk.prods) prods[p.pid] = &p;
+  for (const auto& p : bulk.pbars) pbars[p.pid] = &p;
+  auto props = [&](const auto& v) { for (const auto& x : v) max_pid = std::max(max_pid, x.pid); };
+  props(bulk.prods); props(bulk.pbars); props(bulk.pbarls); props(bulk.pbeams); props(bulk.pbeamls);
+  props(bulk.pelases); props(bulk.pmasses); props(bulk.pbushes);
+
+  enum class Kind { Crod, Conrod, Cbar };
+  std::vector<std::pair<Kind, std::size_t>> struts;
+  for (std::size_t i = 0; i < bulk.crods.size(); ++i) struts.emplace_back(Kind::Crod, i);
+  for (std::size_t i = 0; i < bulk.conrods.size(); ++i) struts.emplace_back(Kind::Conrod, i);
+  for (std::size_t i = 0; i < bulk.cbars.size(); ++i) struts.emplace_back(Kind::Cbar, i);
+  if (struts.empty()) throw formats::InputError("area perturbation: the deck has no CROD, CONROD or CBAR");
+
+  // Fisher–Yates with our own index mapping (std::uniform_int_distribution differs between libraries).
+  std::mt19937_64 rng(seed);
+  for (std::size_t i = struts.size() - 1; i > 0; --i) std::swap(struts[i], struts[rng() % (i + 1)]);
+
+  AreaPerturbation out;
+  out.struts = static_cast<std::int64_t>(struts.size());
+  const std::size_t third = struts.size() / 3;
+  std::int64_t next_pid = max_pid + 1;
+  for (std::size_t s = 0; s < 2 * third; ++s) {
+    const double factor = s < third ? 1 - change : 1 + change;
+    ++(s < third ? out.decreased : out.increased);
+    const auto [kind, i] = struts[s];
+    if (kind == Kind::Crod) {
+      formats::Crod c = bulk.crods[i];
+      const auto it = prods.find(c.pid);
+      if (it == prods.end())
+        throw formats::InputError(fmt::format("area perturbation: CROD {} refers to PROD {}, which is missing", c.eid, c.pid));
+      formats::Prod p = *it->second;
+      p.pid = next_pid++;
+      p.a *= factor;
+      deck.append_card(0, "PROD", formats::write_prod(p));
+      c.pid = p.pid;
+      c.pid_blank = false;
+      deck.set_values(c.card, formats::write_crod(c));
+    } else if (kind == Kind::Conrod) {
+      formats::Conrod c = bulk.conrods[i];
+      c.a *= factor;
+      deck.set_values(c.card, formats::write_conrod(c));
+    } else {
+      formats::Cbar c = bulk.cbars[i];
+      const auto it = pbars.find(c.pid);
+      if (it == pbars.end())
+        throw formats::InputError(fmt::format("area perturbation: CBAR {} refers to PBAR {}, which is missing", c.eid, c.pid));
+      formats::Pbar p = *it->second;
+      p.pid = next_pid++;
+      p.a *= factor;
+      deck.append_card(0, "PBAR", formats::write_pbar(p));
+      c.pid = p.pid;
+      c.pid_blank = false;
+      deck.set_values(c.card, formats::write_cbar(c));
+    }
+  }
+  return out;
+}
+
+}  // namespace ssid::estimator::pretest
