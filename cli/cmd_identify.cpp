@@ -312,7 +312,12 @@ int identify_modes(const Args& args) {
       const int m = vm.count("arx-order") ? vm["arx-order"].as<int>() : (90 + p - 1) / p;
       std::cout << fmt::format("ARMAX orders s = {}, m = {} on all responses, then {}, {} on each\n", s, m, p * s,
                                p * m);
-      r = armax_modes(t, s, m, so, warnings);
+      try {
+        r = armax_modes(t, s, m, so, warnings);
+      } catch (const formats::InputError& e) {
+        // The estimator names the records by column; the file is what the user can act on.
+        throw formats::InputError(file.path + ": " + e.what());
+      }
     }
   }
 

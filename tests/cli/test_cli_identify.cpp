@@ -282,6 +282,15 @@ TEST_CASE("ssid identify: time histories it cannot use exit 2 with the cause", "
   CHECK(o.err == "ssid: error: " + one.string() +
                      ": --method armax needs at least two response records (the order rule compares the "
                      "identification from all of them with each one's)\n");
+  // Two responses but 64 samples: too few for the prior ARX model; the file is named.
+  const fs::path short_records =
+      write("short.unv", {time_record(1, 1, 1, 13, samples, 1e-3), time_record(2, 2, 1, 8, samples, 1e-3),
+                          time_record(3, 3, 1, 8, samples, 1e-3)});
+  const auto s = run_ssid("identify modes " + short_records.string() + " --method armax");
+  CHECK(s.code == 2);
+  CHECK(s.err == "ssid: error: " + short_records.string() +
+                     ": ARMAX: 64 samples are too few for a prior ARX model of order 45 (136 unknowns per output; at "
+                     "least twice as many equations are required)\n");
   // ERA on time data shorter than a Welch segment.
   const auto e = run_ssid("identify modes " + one.string() + " --method era");
   CHECK(e.code == 2);
