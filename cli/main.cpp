@@ -27,7 +27,7 @@ const std::vector<Command>& commands() {
       {"translate", "gather operators, priors and measured modes into a problem file", cmd_translate},
       {"update-deck", "write estimated parameters into a deck (DESVAR and designed fields)", cmd_update_deck},
       {"diagnose", "find what the model form gets wrong: test extensions, name the cause, measure the gain", cmd_diagnose},
-      {"identify", "modes from a modal test's FRFs (UFF 58): ERA over model orders, stabilisation, JSON and UFF 55", cmd_identify},
+      {"identify", "modes from a modal test's FRFs or time histories (UFF 58): ERA or the seed's ARMAX, stabilisation, JSON and UFF 55", cmd_identify},
       {"pretest", "plan a modal test: sensor placement (EI, KE, AKE, EVP), TAMs, exciters by MIF and a GA", cmd_pretest},
   };
   return list;
