@@ -237,203 +237,249 @@ std::vector<ElementBlock> ElementSet::derivative_blocks(const BulkModel& values,
   return out;
 }
 
+namespace {
+
+/// The property index of each property and material id (ElementSet's maps).
+using IdIndex = std::unordered_map<std::int64_t, std::size_t>;
+struct PropertyIndex {
+  const IdIndex &prod, &pbar, &pbarl, &pbeam, &pbeaml, &pelas, &pmass, &pbush, &mat1;
+};
+
+/// What one element's block is computed from: its card, the model's values,
+/// the direction of the derivative (null: the matrices themselves), the geometry.
+struct BlockInputs {
+  const ElementRef& r;
+  const BulkModel& v;
+  const ValueDelta* d;
+  const ModelGeometry& geo;
+  const ElementSettings& settings;
+  const PropertyIndex& at;
+  /// The rate of a designed value of the element's property / of the element itself (0 without a delta).
+  double P(const char* name) const { return d ? d->get(ValueOwner::Property, r.pid, name) : 0.0; }
+  double E(const char* name) const { return d ? d->get(ValueOwner::Element, r.eid, name) : 0.0; }
+  el::GridPair pair(std::int64_t ga, std::int64_t gb) const {
+    const auto& a = geo.grid(ga, r.label);
+    const auto& bb = geo.grid(gb, r.label);
+    return el::GridPair{a.x, bb.x, a.frame, bb.frame};
+  }
+};
+
+void set_both(ElementBlock& b, const el::ElementMatrices& em) {
+  b.k = em.k;
+  b.m = em.m;
+}
+
+/// CROD (PROD) and CONROD: axial and torsional rod.
+void rod_block(const BlockInputs& in, ElementBlock& b) {
+  el::GridPair g;
+  el::RodSection s, ds;
+  if (in.r.kind == ElementKind::Crod) {
+    const auto& c = in.v.crods[in.r.index];
+    const auto& p = in.v.prods[in.at.prod.at(in.r.pid)];
+    g = in.pair(c.g1, c.g2);
+    s = {p.a, p.j, p.nsm};
+    ds = {in.P("A"), in.P("J"), in.P("NSM")};
+  } else {
+    const auto& c = in.v.conrods[in.r.index];
+    g = in.pair(c.g1, c.g2);
+    s = {c.a, c.j, c.nsm};
+    ds = {in.E("A"), in.E("J"), in.E("NSM")};
+  }
+  const auto& mat = in.v.mat1s[in.at.mat1.at(in.r.mid)];
+  if (!in.d) set_both(b, el::rod_matrices(g, s, material(mat), in.settings.mass));
+  else set_both(b, el::rod_directional_derivative(g, s, material(mat), in.settings.mass, ds, material_rate(mat, *in.d)));
+}
+
+/// CBAR and CBEAM with a PBAR/PBEAM or a PBARL/PBEAML section: orientation
+/// (G0 or X, OFFT), offsets, pin flags.
+void bar_or_beam_block(const BlockInputs& in, ElementBlock& b) {
+  const bool bar = in.r.kind == ElementKind::Cbar;
+  std::int64_t ga, gb, g0;
+  std::array<double, 3> x, wa, wb;
+  std::string offt, pa, pb;
+  if (bar) {
+    const auto& c = in.v.cbars[in.r.index];
+    ga = c.ga; gb = c.gb; g0 = c.g0; x = c.x; wa = c.wa; wb = c.wb; offt = c.offt; pa = c.pa; pb = c.pb;
+  } else {
+    const auto& c = in.v.cbeams[in.r.index];
+    ga = c.ga; gb = c.gb; g0 = c.g0; x = c.x; wa = c.wa; wb = c.wb; offt = c.offt; pa = c.pa; pb = c.pb;
+  }
+  if (offt.size() < 3) offt.append(3 - offt.size(), 'G');
+  el::BarGeometry g;
+  g.grids = in.pair(ga, gb);
+  // Orientation: from GA to G0 in basic, or X in GA's displacement system (OFFT 'G') or basic ('B').
+  g.v = g0 > 0 ? Eigen::Vector3d(in.geo.grid(g0, in.r.label).x - g.grids.xa)
+               : Eigen::Vector3d(offt[0] == 'B' ? vec(x) : Eigen::Vector3d(g.grids.ta * vec(x)));
+  g.wa = offt[1] == 'B' ? vec(wa) : Eigen::Vector3d(g.grids.ta * vec(wa));
+  g.wb = offt[2] == 'B' ? vec(wb) : Eigen::Vector3d(g.grids.tb * vec(wb));
+  g.pa = pin_flags(pa);
+  g.pb = pin_flags(pb);
+  el::BarSection s, ds;
+  if (in.at.pbar.count(in.r.pid) && bar) {
+    const auto& p = in.v.pbars[in.at.pbar.at(in.r.pid)];
+    s = {p.a, p.i1, p.i2, p.i12, p.j, p.nsm, p.k1, p.k2};
+    ds = {in.P("A"), in.P("I1"), in.P("I2"), in.P("I12"), in.P("J"), in.P("NSM"), in.P("K1"), in.P("K2")};
+  } else if (in.at.pbeam.count(in.r.pid) && !bar) {
+    const auto& p = in.v.pbeams[in.at.pbeam.at(in.r.pid)];
+    s = {p.a, p.i1, p.i2, p.i12, p.j, p.nsm, p.k1, p.k2};
+    ds = {in.P("A"), in.P("I1"), in.P("I2"), in.P("I12"), in.P("J"), in.P("NSM"), in.P("K1"), in.P("K2")};
+  } else {
+    const std::vector<double>* dims;
+    std::string type;
+    double nsm;
+    if (bar) {
+      const auto& p = in.v.pbarls[in.at.pbarl.at(in.r.pid)];
+      dims = &p.dims; type = p.type; nsm = p.nsm;
+    } else {
+      const auto& p = in.v.pbeamls[in.at.pbeaml.at(in.r.pid)];
+      dims = &p.dims(); type = p.type; nsm = p.nsm();
+    }
+    s = dims_section(type, *dims, nsm, in.r.label);
+    if (in.d) {
+      std::vector<double> dd(dims->size());
+      for (std::size_t i = 0; i < dd.size(); ++i) dd[i] = in.P(("DIM" + std::to_string(i + 1)).c_str());
+      ds = dims_section(type, *dims, nsm, in.r.label, &dd, in.P("NSM"));
+    }
+  }
+  const auto& mat = in.v.mat1s[in.at.mat1.at(in.r.mid)];
+  if (bar) {
+    if (!in.d) set_both(b, el::bar_matrices(g, s, material(mat), in.settings.mass, in.settings.barmass));
+    else set_both(b, el::bar_directional_derivative(g, s, material(mat), in.settings.mass, ds, material_rate(mat, *in.d),
+                                              in.settings.barmass));
+  } else {
+    if (!in.d) set_both(b, el::beam_matrices(g, s, material(mat), in.settings.mass));
+    else set_both(b, el::beam_directional_derivative(g, s, material(mat), in.settings.mass, ds, material_rate(mat, *in.d)));
+  }
+}
+
+/// CONM2: mass and inertia at an offset (the offset derivative by a central
+/// difference, exact for the quadratic mass matrix).
+void conm2_block(const BlockInputs& in, ElementBlock& b) {
+  const auto& c = in.v.conm2s[in.r.index];
+  const auto& grid = in.geo.grid(c.g, in.r.label);
+  auto make = [&](const formats::Conm2& cc) {
+    el::Conm2 m;
+    m.mass = cc.m;
+    m.i11 = cc.i11; m.i21 = cc.i21; m.i22 = cc.i22; m.i31 = cc.i31; m.i32 = cc.i32; m.i33 = cc.i33;
+    m.t = grid.frame;
+    if (cc.cid < 0) {
+      m.offset = vec(cc.x) - grid.x;  // CID = −1: X is the CG's basic position
+    } else {
+      const Eigen::Matrix3d f = in.geo.systems().displacement_frame(static_cast<long>(cc.cid), grid.x);
+      m.offset = f * vec(cc.x);
+      m.inertia_frame = f;
+    }
+    return m;
+  };
+  const el::Conm2 m0 = make(c);
+  b.k = Eigen::MatrixXd::Zero(6, 6);
+  if (!in.d) {
+    b.m = el::conm2_matrix(m0);
+    return;
+  }
+  b.m = in.E("M") * el::conm2_derivative(m0, el::Conm2Param::Mass) + in.E("I11") * el::conm2_derivative(m0, el::Conm2Param::I11) +
+        in.E("I21") * el::conm2_derivative(m0, el::Conm2Param::I21) + in.E("I22") * el::conm2_derivative(m0, el::Conm2Param::I22) +
+        in.E("I31") * el::conm2_derivative(m0, el::Conm2Param::I31) + in.E("I32") * el::conm2_derivative(m0, el::Conm2Param::I32) +
+        in.E("I33") * el::conm2_derivative(m0, el::Conm2Param::I33);
+  // The mass matrix is quadratic in the offset: the central difference is exact.
+  for (int k = 0; k < 3; ++k) {
+    const double rate = in.E(k == 0 ? "X1" : k == 1 ? "X2" : "X3");
+    if (rate == 0.0) continue;
+    const double h = 1e-3 * (std::abs(c.x[static_cast<std::size_t>(k)]) + 1.0);
+    formats::Conm2 up = c, dn = c;
+    up.x[static_cast<std::size_t>(k)] += h;
+    dn.x[static_cast<std::size_t>(k)] -= h;
+    b.m += rate * (el::conm2_matrix(make(up)) - el::conm2_matrix(make(dn))) / (2.0 * h);
+  }
+}
+
+/// CMASS1/2, CELAS1/2: scalar mass or spring, grounded or between two DOFs.
+void scalar_block(const BlockInputs& in, ElementBlock& b) {
+  const bool grounded = in.r.dofs.size() == 1;
+  double value = 0;
+  if (in.r.kind == ElementKind::Cmass1) value = in.d ? in.P("M") : in.v.pmasses[in.at.pmass.at(in.r.pid)].m;
+  if (in.r.kind == ElementKind::Cmass2) value = in.d ? in.E("M") : in.v.cmass2s[in.r.index].m;
+  // A DVPREL1 names the PELAS stiffness "K" or, as NASTRAN does, "K1": both are rates of k.
+  if (in.r.kind == ElementKind::Celas1) value = in.d ? in.P("K") + in.P("K1") : in.v.pelases[in.at.pelas.at(in.r.pid)].k;
+  if (in.r.kind == ElementKind::Celas2) value = in.d ? in.E("K") : in.v.celas2s[in.r.index].k;
+  const Eigen::MatrixXd s = el::scalar_element_matrix(value, grounded);
+  const Eigen::MatrixXd z = Eigen::MatrixXd::Zero(s.rows(), s.cols());
+  const bool mass = in.r.kind == ElementKind::Cmass1 || in.r.kind == ElementKind::Cmass2;
+  b.k = mass ? z : s;
+  b.m = mass ? s : z;
+}
+
+/// CBUSH (PBUSH K1-K6): element axes from CID, G0/X, or the basic system.
+void bush_block(const BlockInputs& in, ElementBlock& b) {
+  const auto& c = in.v.cbushes[in.r.index];
+  const auto& p = in.v.pbushes[in.at.pbush.at(in.r.pid)];
+  el::BushGeometry g;
+  const auto& ga = in.geo.grid(c.ga, in.r.label);
+  g.grids.xa = ga.x;
+  g.grids.ta = ga.frame;
+  g.grounded = c.gb <= 0;
+  if (!g.grounded) {
+    const auto& gb = in.geo.grid(c.gb, in.r.label);
+    g.grids.xb = gb.x;
+    g.grids.tb = gb.frame;
+  } else {
+    g.grids.xb = ga.x;
+    g.grids.tb = ga.frame;
+  }
+  g.s = c.s;
+  if (c.cid >= 0) {
+    // CID overrides the orientation; a curvilinear system is evaluated at GA.
+    g.axes = in.geo.systems().displacement_frame(static_cast<long>(c.cid), ga.x).transpose();
+  } else if (!c.orientation_blank) {
+    const Eigen::Vector3d v0 = c.g0 > 0 ? Eigen::Vector3d(in.geo.grid(c.g0, in.r.label).x - ga.x)
+                                        : Eigen::Vector3d(ga.frame * vec(c.x));
+    g.axes = el::bush_axes_from_vector(g.grids.xa, g.grids.xb, v0);
+  } else {
+    g.axes = Eigen::Matrix3d::Identity();  // no CID, no orientation: the basic system
+  }
+  if (!in.d) {
+    Eigen::Matrix<double, 6, 1> k;
+    for (int i = 0; i < 6; ++i) k(i) = p.k[static_cast<std::size_t>(i)];
+    b.k = el::bush_stiffness(g, k);
+  } else {
+    b.k = Eigen::MatrixXd::Zero(static_cast<Eigen::Index>(in.r.dofs.size()), static_cast<Eigen::Index>(in.r.dofs.size()));
+    for (int i = 1; i <= 6; ++i)
+      if (const double rate = in.P(("K" + std::to_string(i)).c_str()); rate != 0.0) b.k += rate * el::bush_derivative(g, i);
+  }
+  b.m = Eigen::MatrixXd::Zero(b.k.rows(), b.k.cols());
+}
+
+}  // namespace
+
 ElementBlock ElementSet::evaluate(std::size_t e, const BulkModel& v, const ValueDelta* d) const {
   const ElementRef& r = m_elements[e];
   ElementBlock b;
   b.element = e;
   b.dofs = r.dofs;
-  const auto& geo = m_geometry;
-  auto pair = [&](std::int64_t ga, std::int64_t gb) {
-    const auto& a = geo.grid(ga, r.label);
-    const auto& bb = geo.grid(gb, r.label);
-    return el::GridPair{a.x, bb.x, a.frame, bb.frame};
-  };
-  auto P = [&](const char* name) { return d ? d->get(ValueOwner::Property, r.pid, name) : 0.0; };
-  auto E = [&](const char* name) { return d ? d->get(ValueOwner::Element, r.eid, name) : 0.0; };
-  auto set12 = [&](const el::ElementMatrices& em) {
-    b.k = em.k;
-    b.m = em.m;
-  };
+  const PropertyIndex at{m_prod, m_pbar, m_pbarl, m_pbeam, m_pbeaml, m_pelas, m_pmass, m_pbush, m_mat1};
+  const BlockInputs in{r, v, d, m_geometry, m_settings, at};
   try {
     switch (r.kind) {
       case ElementKind::Crod:
-      case ElementKind::Conrod: {
-        el::GridPair g;
-        el::RodSection s, ds;
-        if (r.kind == ElementKind::Crod) {
-          const auto& c = v.crods[r.index];
-          const auto& p = v.prods[m_prod.at(r.pid)];
-          g = pair(c.g1, c.g2);
-          s = {p.a, p.j, p.nsm};
-          ds = {P("A"), P("J"), P("NSM")};
-        } else {
-          const auto& c = v.conrods[r.index];
-          g = pair(c.g1, c.g2);
-          s = {c.a, c.j, c.nsm};
-          ds = {E("A"), E("J"), E("NSM")};
-        }
-        const auto& mat = v.mat1s[m_mat1.at(r.mid)];
-        if (!d) set12(el::rod_matrices(g, s, material(mat), m_settings.mass));
-        else set12(el::rod_directional_derivative(g, s, material(mat), m_settings.mass, ds, material_rate(mat, *d)));
+      case ElementKind::Conrod:
+        rod_block(in, b);
         break;
-      }
       case ElementKind::Cbar:
-      case ElementKind::Cbeam: {
-        const bool bar = r.kind == ElementKind::Cbar;
-        std::int64_t ga, gb, g0;
-        std::array<double, 3> x, wa, wb;
-        std::string offt, pa, pb;
-        if (bar) {
-          const auto& c = v.cbars[r.index];
-          ga = c.ga; gb = c.gb; g0 = c.g0; x = c.x; wa = c.wa; wb = c.wb; offt = c.offt; pa = c.pa; pb = c.pb;
-        } else {
-          const auto& c = v.cbeams[r.index];
-          ga = c.ga; gb = c.gb; g0 = c.g0; x = c.x; wa = c.wa; wb = c.wb; offt = c.offt; pa = c.pa; pb = c.pb;
-        }
-        if (offt.size() < 3) offt.append(3 - offt.size(), 'G');
-        el::BarGeometry g;
-        g.grids = pair(ga, gb);
-        // Orientation: from GA to G0 in basic, or X in GA's displacement system (OFFT 'G') or basic ('B').
-        g.v = g0 > 0 ? Eigen::Vector3d(geo.grid(g0, r.label).x - g.grids.xa)
-                     : Eigen::Vector3d(offt[0] == 'B' ? vec(x) : Eigen::Vector3d(g.grids.ta * vec(x)));
-        g.wa = offt[1] == 'B' ? vec(wa) : Eigen::Vector3d(g.grids.ta * vec(wa));
-        g.wb = offt[2] == 'B' ? vec(wb) : Eigen::Vector3d(g.grids.tb * vec(wb));
-        g.pa = pin_flags(pa);
-        g.pb = pin_flags(pb);
-        el::BarSection s, ds;
-        if (m_pbar.count(r.pid) && bar) {
-          const auto& p = v.pbars[m_pbar.at(r.pid)];
-          s = {p.a, p.i1, p.i2, p.i12, p.j, p.nsm, p.k1, p.k2};
-          ds = {P("A"), P("I1"), P("I2"), P("I12"), P("J"), P("NSM"), P("K1"), P("K2")};
-        } else if (m_pbeam.count(r.pid) && !bar) {
-          const auto& p = v.pbeams[m_pbeam.at(r.pid)];
-          s = {p.a, p.i1, p.i2, p.i12, p.j, p.nsm, p.k1, p.k2};
-          ds = {P("A"), P("I1"), P("I2"), P("I12"), P("J"), P("NSM"), P("K1"), P("K2")};
-        } else {
-          const std::vector<double>* dims;
-          std::string type;
-          double nsm;
-          if (bar) {
-            const auto& p = v.pbarls[m_pbarl.at(r.pid)];
-            dims = &p.dims; type = p.type; nsm = p.nsm;
-          } else {
-            const auto& p = v.pbeamls[m_pbeaml.at(r.pid)];
-            dims = &p.dims(); type = p.type; nsm = p.nsm();
-          }
-          s = dims_section(type, *dims, nsm, r.label);
-          if (d) {
-            std::vector<double> dd(dims->size());
-            for (std::size_t i = 0; i < dd.size(); ++i) dd[i] = P(("DIM" + std::to_string(i + 1)).c_str());
-            ds = dims_section(type, *dims, nsm, r.label, &dd, P("NSM"));
-          }
-        }
-        const auto& mat = v.mat1s[m_mat1.at(r.mid)];
-        if (bar) {
-          if (!d) set12(el::bar_matrices(g, s, material(mat), m_settings.mass, m_settings.barmass));
-          else set12(el::bar_directional_derivative(g, s, material(mat), m_settings.mass, ds, material_rate(mat, *d),
-                                                    m_settings.barmass));
-        } else {
-          if (!d) set12(el::beam_matrices(g, s, material(mat), m_settings.mass));
-          else set12(el::beam_directional_derivative(g, s, material(mat), m_settings.mass, ds, material_rate(mat, *d)));
-        }
+      case ElementKind::Cbeam:
+        bar_or_beam_block(in, b);
         break;
-      }
-      case ElementKind::Conm2: {
-        const auto& c = v.conm2s[r.index];
-        const auto& grid = geo.grid(c.g, r.label);
-        auto make = [&](const formats::Conm2& cc) {
-          el::Conm2 m;
-          m.mass = cc.m;
-          m.i11 = cc.i11; m.i21 = cc.i21; m.i22 = cc.i22; m.i31 = cc.i31; m.i32 = cc.i32; m.i33 = cc.i33;
-          m.t = grid.frame;
-          if (cc.cid < 0) {
-            m.offset = vec(cc.x) - grid.x;  // CID = −1: X is the CG's basic position
-          } else {
-            const Eigen::Matrix3d f = geo.systems().displacement_frame(static_cast<long>(cc.cid), grid.x);
-            m.offset = f * vec(cc.x);
-            m.inertia_frame = f;
-          }
-          return m;
-        };
-        const el::Conm2 m0 = make(c);
-        b.k = Eigen::MatrixXd::Zero(6, 6);
-        if (!d) {
-          b.m = el::conm2_matrix(m0);
-          break;
-        }
-        b.m = E("M") * el::conm2_derivative(m0, el::Conm2Param::Mass) + E("I11") * el::conm2_derivative(m0, el::Conm2Param::I11) +
-              E("I21") * el::conm2_derivative(m0, el::Conm2Param::I21) + E("I22") * el::conm2_derivative(m0, el::Conm2Param::I22) +
-              E("I31") * el::conm2_derivative(m0, el::Conm2Param::I31) + E("I32") * el::conm2_derivative(m0, el::Conm2Param::I32) +
-              E("I33") * el::conm2_derivative(m0, el::Conm2Param::I33);
-        // The mass matrix is quadratic in the offset: the central difference is exact.
-        for (int k = 0; k < 3; ++k) {
-          const double rate = E(k == 0 ? "X1" : k == 1 ? "X2" : "X3");
-          if (rate == 0.0) continue;
-          const double h = 1e-3 * (std::abs(c.x[static_cast<std::size_t>(k)]) + 1.0);
-          formats::Conm2 up = c, dn = c;
-          up.x[static_cast<std::size_t>(k)] += h;
-          dn.x[static_cast<std::size_t>(k)] -= h;
-          b.m += rate * (el::conm2_matrix(make(up)) - el::conm2_matrix(make(dn))) / (2.0 * h);
-        }
+      case ElementKind::Conm2:
+        conm2_block(in, b);
         break;
-      }
       case ElementKind::Cmass1:
       case ElementKind::Cmass2:
       case ElementKind::Celas1:
-      case ElementKind::Celas2: {
-        const bool grounded = r.dofs.size() == 1;
-        double value = 0;
-        if (r.kind == ElementKind::Cmass1) value = d ? P("M") : v.pmasses[m_pmass.at(r.pid)].m;
-        if (r.kind == ElementKind::Cmass2) value = d ? E("M") : v.cmass2s[r.index].m;
-        // A DVPREL1 names the PELAS stiffness "K" or, as NASTRAN does, "K1": both are rates of k.
-        if (r.kind == ElementKind::Celas1) value = d ? P("K") + P("K1") : v.pelases[m_pelas.at(r.pid)].k;
-        if (r.kind == ElementKind::Celas2) value = d ? E("K") : v.celas2s[r.index].k;
-        const Eigen::MatrixXd s = el::scalar_element_matrix(value, grounded);
-        const Eigen::MatrixXd z = Eigen::MatrixXd::Zero(s.rows(), s.cols());
-        const bool mass = r.kind == ElementKind::Cmass1 || r.kind == ElementKind::Cmass2;
-        b.k = mass ? z : s;
-        b.m = mass ? s : z;
+      case ElementKind::Celas2:
+        scalar_block(in, b);
         break;
-      }
-      case ElementKind::Cbush: {
-        const auto& c = v.cbushes[r.index];
-        const auto& p = v.pbushes[m_pbush.at(r.pid)];
-        el::BushGeometry g;
-        const auto& ga = geo.grid(c.ga, r.label);
-        g.grids.xa = ga.x;
-        g.grids.ta = ga.frame;
-        g.grounded = c.gb <= 0;
-        if (!g.grounded) {
-          const auto& gb = geo.grid(c.gb, r.label);
-          g.grids.xb = gb.x;
-          g.grids.tb = gb.frame;
-        } else {
-          g.grids.xb = ga.x;
-          g.grids.tb = ga.frame;
-        }
-        g.s = c.s;
-        if (c.cid >= 0) {
-          // CID overrides the orientation; a curvilinear system is evaluated at GA.
-          g.axes = geo.systems().displacement_frame(static_cast<long>(c.cid), ga.x).transpose();
-        } else if (!c.orientation_blank) {
-          const Eigen::Vector3d v0 = c.g0 > 0 ? Eigen::Vector3d(geo.grid(c.g0, r.label).x - ga.x)
-                                              : Eigen::Vector3d(ga.frame * vec(c.x));
-          g.axes = el::bush_axes_from_vector(g.grids.xa, g.grids.xb, v0);
-        } else {
-          g.axes = Eigen::Matrix3d::Identity();  // no CID, no orientation: the basic system
-        }
-        if (!d) {
-          Eigen::Matrix<double, 6, 1> k;
-          for (int i = 0; i < 6; ++i) k(i) = p.k[static_cast<std::size_t>(i)];
-          b.k = el::bush_stiffness(g, k);
-        } else {
-          b.k = Eigen::MatrixXd::Zero(static_cast<Eigen::Index>(r.dofs.size()), static_cast<Eigen::Index>(r.dofs.size()));
-          for (int i = 1; i <= 6; ++i)
-            if (const double rate = P(("K" + std::to_string(i)).c_str()); rate != 0.0) b.k += rate * el::bush_derivative(g, i);
-        }
-        b.m = Eigen::MatrixXd::Zero(b.k.rows(), b.k.cols());
+      case ElementKind::Cbush:
+        bush_block(in, b);
         break;
-      }
     }
   } catch (const ModelError&) {
     throw;
