@@ -137,7 +137,9 @@ void FeModel::refuse_unassembled_cards(const Deck& deck) {
                         " ignored: no effect on K or M");
       continue;
     }
-    const auto first = std::find_if(deck.cards.begin(), deck.cards.end(), [&](const auto& c) { return c.name == name; });
+    const std::string& card_name = name;  // a structured binding cannot be captured in C++17 (clang refuses)
+    const auto first =
+        std::find_if(deck.cards.begin(), deck.cards.end(), [&](const auto& c) { return c.name == card_name; });
     const formats::SourceLocation at = first != deck.cards.end() ? deck.location(*first) : formats::SourceLocation{};
     throw ModelError(at, name + " (" + std::to_string(count) + " card" + (count > 1 ? "s" : "") +
                              (at.file.empty() ? "" : ", first at " + at.str()) +
