@@ -57,6 +57,21 @@ struct RealFormat {
 };
 RealFormat single_format(Precision p) { return p == Precision::Standard ? RealFormat{6, 13, 5} : RealFormat{3, 25, 16}; }
 
+/// Node i's values of a 55/2414 dataset in file order: real and imaginary
+/// parts interleaved when complex.
+void node_row(const NodalData55& d, std::size_t i, int ndv, bool cplx, std::vector<double>& row) {
+  const auto ii = static_cast<Eigen::Index>(i);
+  for (int c = 0; c < ndv; ++c) {
+    if (cplx) {
+      row[2 * c] = d.complex_values(ii, c).real();
+      row[2 * c + 1] = d.complex_values(ii, c).imag();
+    } else {
+      row[c] = d.values(ii, c);
+    }
+  }
+}
+
+
 void write_151(std::string& o, const Header151& h) {
   for (const auto& l : h.lines) o += l + "\n";
 }
@@ -114,15 +129,7 @@ void write_55(std::string& o, const NodalData55& d, Precision p) {
   for (std::size_t i = 0; i < nn; ++i) {
     put_int(o, d.nodes[i], 10);
     o += '\n';
-    const auto ii = static_cast<Eigen::Index>(i);
-    for (int c = 0; c < ndv; ++c) {
-      if (cplx) {
-        row[2 * c] = d.complex_values(ii, c).real();
-        row[2 * c + 1] = d.complex_values(ii, c).imag();
-      } else {
-        row[c] = d.values(ii, c);
-      }
-    }
+    node_row(d, i, ndv, cplx, row);
     put_reals(o, row.data(), row.size(), f.per_line, f.width, f.decimals);
   }
 }
@@ -315,15 +322,7 @@ void write_2414(std::string& o, const NodalData55& d, Precision p) {
   for (std::size_t i = 0; i < d.nodes.size(); ++i) {
     put_int(o, d.nodes[i], 10);
     o += '\n';
-    const auto ii = static_cast<Eigen::Index>(i);
-    for (int c = 0; c < ndv; ++c) {
-      if (cplx) {
-        row[2 * c] = d.complex_values(ii, c).real();
-        row[2 * c + 1] = d.complex_values(ii, c).imag();
-      } else {
-        row[c] = d.values(ii, c);
-      }
-    }
+    node_row(d, i, ndv, cplx, row);
     if (dbl) {
       for (std::size_t k = 0; k < row.size(); ++k) {
         put_real(o, row[k], 25, 16, true);
