@@ -71,7 +71,6 @@ void node_row(const NodalData55& d, std::size_t i, int ndv, bool cplx, std::vect
   }
 }
 
-
 void write_151(std::string& o, const Header151& h) {
   for (const auto& l : h.lines) o += l + "\n";
 }

@@ -14,8 +14,7 @@ namespace ssid::estimator::pretest {
 AreaPerturbation perturb_strut_areas(formats::Deck& deck, std::uint64_t seed, double change) {
   if (!(change > 0 && change < 1))
     throw formats::InputError(fmt::format("area perturbation: change {} (expected in (0, 1))", change));
-  formats::BulkModel bulk = formats::parse_bulk(deck);
-  formats::resolve(deck, bulk);
+  const formats::BulkModel bulk = formats::resolved_bulk(deck, "area perturbation");
   std::map<std::int64_t, const formats::Prod*> prods;
   std::map<std::int64_t, const formats::Pbar*> pbars;
   std::int64_t max_pid = 0;
@@ -40,38 +39,33 @@ AreaPerturbation perturb_strut_areas(formats::Deck& deck, std::uint64_t seed, do
   out.struts = static_cast<std::int64_t>(struts.size());
   const std::size_t third = struts.size() / 3;
   std::int64_t next_pid = max_pid + 1;
+  // The element gets a copy of its property of its own, with A scaled.
+  auto own_property = [&](auto element, const auto& properties, const char* element_name, const char* property_name,
+                          auto write_property, auto write_element, double factor) {
+    const auto it = properties.find(element.pid);
+    if (it == properties.end())
+      throw formats::InputError(fmt::format("area perturbation: {} {} refers to {} {}, which is missing", element_name,
+                                            element.eid, property_name, element.pid));
+    auto p = *it->second;
+    p.pid = next_pid++;
+    p.a *= factor;
+    deck.append_card(0, property_name, write_property(p));
+    element.pid = p.pid;
+    element.pid_blank = false;
+    deck.set_values(element.card, write_element(element));
+  };
   for (std::size_t s = 0; s < 2 * third; ++s) {
     const double factor = s < third ? 1 - change : 1 + change;
     ++(s < third ? out.decreased : out.increased);
     const auto [kind, i] = struts[s];
     if (kind == Kind::Crod) {
-      formats::Crod c = bulk.crods[i];
-      const auto it = prods.find(c.pid);
-      if (it == prods.end())
-        throw formats::InputError(fmt::format("area perturbation: CROD {} refers to PROD {}, which is missing", c.eid, c.pid));
-      formats::Prod p = *it->second;
-      p.pid = next_pid++;
-      p.a *= factor;
-      deck.append_card(0, "PROD", formats::write_prod(p));
-      c.pid = p.pid;
-      c.pid_blank = false;
-      deck.set_values(c.card, formats::write_crod(c));
+      own_property(bulk.crods[i], prods, "CROD", "PROD", formats::write_prod, formats::write_crod, factor);
     } else if (kind == Kind::Conrod) {
       formats::Conrod c = bulk.conrods[i];
       c.a *= factor;
       deck.set_values(c.card, formats::write_conrod(c));
     } else {
-      formats::Cbar c = bulk.cbars[i];
-      const auto it = pbars.find(c.pid);
-      if (it == pbars.end())
-        throw formats::InputError(fmt::format("area perturbation: CBAR {} refers to PBAR {}, which is missing", c.eid, c.pid));
-      formats::Pbar p = *it->second;
-      p.pid = next_pid++;
-      p.a *= factor;
-      deck.append_card(0, "PBAR", formats::write_pbar(p));
-      c.pid = p.pid;
-      c.pid_blank = false;
-      deck.set_values(c.card, formats::write_cbar(c));
+      own_property(bulk.cbars[i], pbars, "CBAR", "PBAR", formats::write_pbar, formats::write_cbar, factor);
     }
   }
   return out;
