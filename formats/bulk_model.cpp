@@ -1,6 +1,7 @@
 #include "formats/bulk_model.hpp"
 
 #include "formats/bulk_catalogue.hpp"
+#include "formats/card_traits.hpp"
 #include "formats/nastran_number.hpp"
 
 #include <algorithm>
@@ -15,74 +16,6 @@ namespace ssid::formats {
 
 namespace {
 
-using ParseFn = void (*)(const FieldReader&, std::size_t card, BulkModel&);
-
-template <typename T, T (*Parse)(const FieldReader&), std::vector<T> BulkModel::*Member>
-void add(const FieldReader& r, std::size_t card, BulkModel& m) {
-  T v = Parse(r);
-  v.card = card;
-  (m.*Member).push_back(std::move(v));
-}
-
-/// Cards holding several entries (PELAS, PMASS).
-template <typename T, std::vector<T> (*Parse)(const FieldReader&), std::vector<T> BulkModel::*Member>
-void add_many(const FieldReader& r, std::size_t card, BulkModel& m) {
-  for (T& v : Parse(r)) {
-    v.card = card;
-    (m.*Member).push_back(std::move(v));
-  }
-}
-
-/// Cards counted as supported but parsed elsewhere (DMIG: formats/dmig.*).
-void skip(const FieldReader&, std::size_t, BulkModel&) {}
-
-const std::unordered_map<std::string, ParseFn>& parsers() {
-  static const std::unordered_map<std::string, ParseFn> table = {
-      {"GRID", add<Grid, parse_grid, &BulkModel::grids>},
-      {"CROD", add<Crod, parse_crod, &BulkModel::crods>},
-      {"CONROD", add<Conrod, parse_conrod, &BulkModel::conrods>},
-      {"PROD", add<Prod, parse_prod, &BulkModel::prods>},
-      {"CBAR", add<Cbar, parse_cbar, &BulkModel::cbars>},
-      {"BAROR", add<Baror, parse_baror, &BulkModel::barors>},
-      {"PBAR", add<Pbar, parse_pbar, &BulkModel::pbars>},
-      {"PBARL", add<Pbarl, parse_pbarl, &BulkModel::pbarls>},
-      {"CBEAM", add<Cbeam, parse_cbeam, &BulkModel::cbeams>},
-      {"BEAMOR", add<Beamor, parse_beamor, &BulkModel::beamors>},
-      {"PBEAM", add<Pbeam, parse_pbeam, &BulkModel::pbeams>},
-      {"PBEAML", add<Pbeaml, parse_pbeaml, &BulkModel::pbeamls>},
-      {"MAT1", add<Mat1, parse_mat1, &BulkModel::mat1s>},
-      {"GRDSET", add<Grdset, parse_grdset, &BulkModel::grdsets>},
-      {"CORD2R", add<Cord2, parse_cord2, &BulkModel::cord2s>},
-      {"CORD2C", add<Cord2, parse_cord2, &BulkModel::cord2s>},
-      {"CORD2S", add<Cord2, parse_cord2, &BulkModel::cord2s>},
-      {"SPOINT", add<Spoint, parse_spoint, &BulkModel::spoints>},
-      {"CONM2", add<Conm2, parse_conm2, &BulkModel::conm2s>},
-      {"CMASS1", add<Cmass1, parse_cmass1, &BulkModel::cmass1s>},
-      {"CMASS2", add<Cmass2, parse_cmass2, &BulkModel::cmass2s>},
-      {"PMASS", add_many<Pmass, parse_pmass, &BulkModel::pmasses>},
-      {"CELAS1", add<Celas1, parse_celas1, &BulkModel::celas1s>},
-      {"CELAS2", add<Celas2, parse_celas2, &BulkModel::celas2s>},
-      {"PELAS", add_many<Pelas, parse_pelas, &BulkModel::pelases>},
-      {"CBUSH", add<Cbush, parse_cbush, &BulkModel::cbushes>},
-      {"PBUSH", add<Pbush, parse_pbush, &BulkModel::pbushes>},
-      {"RBAR", add<Rbar, parse_rbar, &BulkModel::rbars>},
-      {"RBE2", add<Rbe2, parse_rbe2, &BulkModel::rbe2s>},
-      {"RBE3", add<Rbe3, parse_rbe3, &BulkModel::rbe3s>},
-      {"SPC", add<Spc, parse_spc, &BulkModel::spcs>},
-      {"SPC1", add<Spc1, parse_spc1, &BulkModel::spc1s>},
-      {"SPCADD", add<Spcadd, parse_spcadd, &BulkModel::spcadds>},
-      {"MPC", add<Mpc, parse_mpc, &BulkModel::mpcs>},
-      {"EIGRL", add<Eigrl, parse_eigrl, &BulkModel::eigrls>},
-      {"EIGR", add<Eigr, parse_eigr, &BulkModel::eigrs>},
-      {"PARAM", add<Param, parse_param, &BulkModel::params>},
-      {"DESVAR", add<Desvar, parse_desvar, &BulkModel::desvars>},
-      {"DVPREL1", add<Dvprel1, parse_dvprel1, &BulkModel::dvprel1s>},
-      {"DVMREL1", add<Dvmrel1, parse_dvmrel1, &BulkModel::dvmrel1s>},
-      {"DMIG", skip},
-  };
-  return table;
-}
-
 Problem error_at(const Deck& deck, const Card& card, std::size_t field, const std::string& msg) {
   return {Problem::Severity::Error, deck.location(card, field), msg};
 }
@@ -95,6 +28,18 @@ std::string label(const Deck& deck, std::size_t card) {
   const Card& c = deck.cards[card];
   std::string_view id = c.field(1);
   return id.empty() ? c.name : c.name + " " + std::string(id);
+}
+
+/// The typed cards' entries by name (DMIG included: counted, read elsewhere).
+const std::unordered_map<std::string, const CardTraits*>& parsers() {
+  static const std::unordered_map<std::string, const CardTraits*> table = [] {
+    std::unordered_map<std::string, const CardTraits*> m;
+    for (const CardTraits& t : card_traits())
+      if (t.typed())
+        for (const std::string& name : t.names) m.emplace(name, &t);
+    return m;
+  }();
+  return table;
 }
 
 /// Only one BAROR/BEAMOR (GRDSET) is allowed; returns the first, reports the others.
@@ -128,7 +73,7 @@ bool is_supported_card(const std::string& name) { return parsers().count(name) >
 
 std::vector<std::string> supported_card_names() {
   std::vector<std::string> names;
-  for (const auto& [name, fn] : parsers()) names.push_back(name);
+  for (const auto& [name, traits] : parsers()) names.push_back(name);
   std::sort(names.begin(), names.end());
   return names;
 }
@@ -152,7 +97,7 @@ BulkModel parse_bulk(const Deck& deck) {
   const auto& table = parsers();
   // Decks come in runs of one card type: remember the last lookup.
   const std::string* last_name = nullptr;
-  ParseFn fn = nullptr;
+  const CardTraits* traits = nullptr;
   bool known = false;  ///< the name is a bulk data entry (typed or kept verbatim)
   std::unordered_map<std::string, std::string> unknown_messages;
   std::size_t* counter = nullptr;
@@ -160,18 +105,18 @@ BulkModel parse_bulk(const Deck& deck) {
     const Card& c = deck.cards[i];
     if (!last_name || *last_name != c.name) {
       auto it = table.find(c.name);
-      fn = it == table.end() ? nullptr : it->second;
-      counter = fn ? &m.supported[c.name] : &m.unsupported[c.name];
-      known = fn || is_bulk_entry_name(c.name);
+      traits = it == table.end() ? nullptr : it->second;
+      counter = traits ? &m.supported[c.name] : &m.unsupported[c.name];
+      known = traits || is_bulk_entry_name(c.name);
       last_name = &c.name;
     }
     ++*counter;
-    if (!fn) {
+    if (!traits) {
       if (!known) m.problems.push_back(unknown_card(deck, c, unknown_messages));
       continue;
     }
     try {
-      fn(FieldReader(deck, c), i, m);
+      traits->parse(FieldReader(deck, c), i, m);
     } catch (const ParseError& e) {
       m.problems.push_back({Problem::Severity::Error, e.where(), e.detail()});
     }
@@ -180,75 +125,24 @@ BulkModel parse_bulk(const Deck& deck) {
   return m;
 }
 
-namespace {
-
-template <typename T>
-void write_all(const std::vector<T>& v, std::vector<FieldValue> (*write)(const T&),
-               std::map<std::size_t, std::vector<FieldValue>>& out) {
-  for (const T& x : v) {
-    std::vector<FieldValue> values = write(x);
-    auto [it, fresh] = out.emplace(x.card, values);
-    // A card holding several entries (PELAS, PMASS): append this entry's fields.
-    if (!fresh) it->second.insert(it->second.end(), values.begin() + 1, values.end());
-  }
-}
-
-}  // namespace
-
 std::map<std::size_t, std::vector<FieldValue>> write_bulk(const BulkModel& m) {
   std::map<std::size_t, std::vector<FieldValue>> out;
-  write_all(m.grids, write_grid, out);
-  write_all(m.crods, write_crod, out);
-  write_all(m.conrods, write_conrod, out);
-  write_all(m.prods, write_prod, out);
-  write_all(m.cbars, write_cbar, out);
-  write_all(m.barors, write_baror, out);
-  write_all(m.pbars, write_pbar, out);
-  write_all(m.pbarls, write_pbarl, out);
-  write_all(m.cbeams, write_cbeam, out);
-  write_all(m.beamors, write_beamor, out);
-  write_all(m.pbeams, write_pbeam, out);
-  write_all(m.pbeamls, write_pbeaml, out);
-  write_all(m.mat1s, write_mat1, out);
-  write_all(m.spoints, write_spoint, out);
-  write_all(m.grdsets, write_grdset, out);
-  write_all(m.cord2s, write_cord2, out);
-  write_all(m.conm2s, write_conm2, out);
-  write_all(m.cmass1s, write_cmass1, out);
-  write_all(m.cmass2s, write_cmass2, out);
-  write_all(m.pmasses, write_pmass, out);
-  write_all(m.celas1s, write_celas1, out);
-  write_all(m.celas2s, write_celas2, out);
-  write_all(m.pelases, write_pelas, out);
-  write_all(m.cbushes, write_cbush, out);
-  write_all(m.pbushes, write_pbush, out);
-  write_all(m.rbars, write_rbar, out);
-  write_all(m.rbe2s, write_rbe2, out);
-  write_all(m.rbe3s, write_rbe3, out);
-  write_all(m.spcs, write_spc, out);
-  write_all(m.spc1s, write_spc1, out);
-  write_all(m.spcadds, write_spcadd, out);
-  write_all(m.mpcs, write_mpc, out);
-  write_all(m.eigrls, write_eigrl, out);
-  write_all(m.eigrs, write_eigr, out);
-  write_all(m.params, write_param, out);
-  write_all(m.desvars, write_desvar, out);
-  write_all(m.dvprel1s, write_dvprel1, out);
-  write_all(m.dvmrel1s, write_dvmrel1, out);
+  for (const CardTraits& t : card_traits())
+    if (t.write) t.write(m, out);
   return out;
 }
 
 namespace {
 
 /// One id space (grids, elements, properties, ...): every definition, by id.
-class IdSpace {
+class IdRegistry {
 public:
   struct Def {
     std::size_t card;  ///< index in Deck::cards
     const std::string* type;  ///< card name
   };
 
-  IdSpace(const Deck& deck, std::vector<Problem>& problems, std::string noun)
+  IdRegistry(const Deck& deck, std::vector<Problem>& problems, std::string noun)
       : m_deck(deck), m_problems(problems), m_noun(std::move(noun)) {}
 
   /// Adds `id` defined by card `card` (field `field`); a second definition is a problem.
@@ -333,7 +227,7 @@ private:
 /// Typed cards: CELAS1/2, CMASS1/2 (G, C pairs); cards kept verbatim: CDAMP1/2
 /// (G, C pairs), CELAS3/4, CMASS3/4, CDAMP3/4 (scalar points S1, S2 in fields
 /// 4-5). Each becomes a scalar point of the model (BulkModel::implied_spoints).
-void define_implied_spoints(const Deck& deck, BulkModel& m, IdSpace& grids) {
+void define_implied_spoints(const Deck& deck, BulkModel& m, IdRegistry& grids) {
   std::map<std::int64_t, std::size_t> implied;  // id -> the first card naming it
   auto end = [&](std::int64_t g, std::int64_t c, std::size_t card) {
     if (g > 0 && c == 0 && !grids.find(g)) {
@@ -374,12 +268,12 @@ void resolve(const Deck& deck, BulkModel& m) {
   std::vector<Problem>& out = m.problems;
 
   // --- id spaces ------------------------------------------------------------
-  IdSpace grids(deck, out, "grid or scalar point");
+  IdRegistry grids(deck, out, "grid or scalar point");
   for (const Grid& g : m.grids) grids.define(g.id, g.card);
   // SPOINT remark: "duplicate scalar point numbers are allowed" (not a GRID's).
   for (const Spoint& s : m.spoints)
     for (std::int64_t id : s.ids) {
-      const IdSpace::Def* d = grids.find(id);
+      const IdRegistry::Def* d = grids.find(id);
       if (!d || *d->type != "SPOINT") grids.define(id, s.card);
     }
   grids.define_verbatim({"EPOINT"});
@@ -390,7 +284,7 @@ void resolve(const Deck& deck, BulkModel& m) {
   // MSC/NX decks reuse ids across them): structural elements (with springs,
   // dampers and bushings), mass elements, rigid elements, plot elements. An RBE2
   // and a CQUAD4 may both be 1; two CBARs may not.
-  IdSpace elements(deck, out, "element");
+  IdRegistry elements(deck, out, "element");
   for (const auto& e : m.crods) elements.define(e.eid, e.card);
   for (const auto& e : m.conrods) elements.define(e.eid, e.card);
   for (const auto& e : m.cbars) elements.define(e.eid, e.card);
@@ -402,20 +296,20 @@ void resolve(const Deck& deck, BulkModel& m) {
   elements.define_verbatim({"CQUAD4", "CQUAD8", "CQUADR", "CTRIA3", "CTRIA6", "CTRIAR", "CSHEAR", "CHEXA", "CPENTA",
                             "CTETRA", "CPYRAM", "CTUBE", "CBEND", "CGAP", "CDAMP1", "CDAMP2", "CDAMP3", "CDAMP4",
                             "CVISC", "CELAS3", "CELAS4", "CBUSH1D", "CFAST", "CWELD"});
-  IdSpace masses(deck, out, "mass element");
+  IdRegistry masses(deck, out, "mass element");
   for (const auto& e : m.conm2s) masses.define(e.eid, e.card);
   for (const auto& e : m.cmass1s) masses.define(e.eid, e.card);
   for (const auto& e : m.cmass2s) masses.define(e.eid, e.card);
   masses.define_verbatim({"CMASS3", "CMASS4", "CONM1"});
-  IdSpace rigids(deck, out, "rigid element");
+  IdRegistry rigids(deck, out, "rigid element");
   for (const auto& e : m.rbars) rigids.define(e.eid, e.card);
   for (const auto& e : m.rbe2s) rigids.define(e.eid, e.card);
   for (const auto& e : m.rbe3s) rigids.define(e.eid, e.card);
   rigids.define_verbatim({"RBAR1", "RBE1", "RROD", "RSPLINE", "RSSCON", "RTRPLT"});
-  IdSpace plot_elements(deck, out, "plot element");
+  IdRegistry plot_elements(deck, out, "plot element");
   plot_elements.define_verbatim({"PLOTEL"});
 
-  IdSpace properties(deck, out, "property");
+  IdRegistry properties(deck, out, "property");
   for (const auto& p : m.prods) properties.define(p.pid, p.card);
   for (const auto& p : m.pbars) properties.define(p.pid, p.card);
   for (const auto& p : m.pbarls) properties.define(p.pid, p.card);
@@ -427,11 +321,11 @@ void resolve(const Deck& deck, BulkModel& m) {
   properties.define_verbatim({"PSHELL", "PCOMP", "PCOMPG", "PSOLID", "PSHEAR", "PTUBE", "PBEND", "PGAP", "PDAMP",
                               "PVISC", "PBUSH1D", "PBCOMP", "PFAST", "PWELD"});
 
-  IdSpace materials(deck, out, "material");
+  IdRegistry materials(deck, out, "material");
   for (const auto& mt : m.mat1s) materials.define(mt.mid, mt.card);
   materials.define_verbatim({"MAT2", "MAT3", "MAT8", "MAT9", "MAT10"});
 
-  IdSpace coords(deck, out, "coordinate system");
+  IdRegistry coords(deck, out, "coordinate system");
   for (const auto& c : m.cord2s) coords.define(c.cid, c.card);
   coords.define_verbatim({"CORD1R", "CORD1C", "CORD1S", "CORD3G", "CORD3R"});
 
@@ -501,7 +395,7 @@ void resolve(const Deck& deck, BulkModel& m) {
   auto scalar_end = [&](std::int64_t g, std::int64_t c, std::size_t card, std::size_t field, const char* gname) {
     if (g == 0) return;
     grids.need(g, {}, card, field, gname);
-    const IdSpace::Def* d = grids.find(g);
+    const IdRegistry::Def* d = grids.find(g);
     if (!d) return;
     bool is_spoint = *d->type != "GRID";
     if (is_spoint && c > 0)
@@ -586,7 +480,7 @@ void resolve(const Deck& deck, BulkModel& m) {
                              "... and " + std::to_string(missing - 5) + " more grids or scalar points required by " +
                                  label(deck, s.card) + " do not exist"));
   }
-  IdSpace spcadd_ids(deck, out, "SPCADD set");
+  IdRegistry spcadd_ids(deck, out, "SPCADD set");
   for (const Spcadd& s : m.spcadds) {
     spcadd_ids.define(s.sid, s.card);
     // NASTRAN warns (USER WARNING MESSAGE 2053, UNDEFINED SINGLE-POINT
@@ -601,7 +495,7 @@ void resolve(const Deck& deck, BulkModel& m) {
     for (const MpcTerm& t : mp.terms) scalar_end(t.g, t.c, mp.card, 0, "Gj");
 
   // --- eigenvalue methods, parameters -------------------------------------------
-  IdSpace methods(deck, out, "eigenvalue method (EIGRL/EIGR SID)");
+  IdRegistry methods(deck, out, "eigenvalue method (EIGRL/EIGR SID)");
   for (const auto& e : m.eigrls) methods.define(e.sid, e.card);
   for (const auto& e : m.eigrs) methods.define(e.sid, e.card);
   {
@@ -616,12 +510,12 @@ void resolve(const Deck& deck, BulkModel& m) {
   }
 
   // --- design model -------------------------------------------------------------
-  IdSpace desvars(deck, out, "DESVAR");
+  IdRegistry desvars(deck, out, "DESVAR");
   for (const auto& d : m.desvars) desvars.define(d.id, d.card);
-  IdSpace dvprels(deck, out, "DVPREL");
+  IdRegistry dvprels(deck, out, "DVPREL");
   for (const auto& d : m.dvprel1s) dvprels.define(d.id, d.card);
   dvprels.define_verbatim({"DVPREL2"});
-  IdSpace dvmrels(deck, out, "DVMREL");
+  IdRegistry dvmrels(deck, out, "DVMREL");
   for (const auto& d : m.dvmrel1s) dvmrels.define(d.id, d.card);
   dvmrels.define_verbatim({"DVMREL2"});
   for (const auto& d : m.dvprel1s) {
