@@ -2,6 +2,7 @@
 
 #include "formats/bulk_catalogue.hpp"
 #include "formats/card_traits.hpp"
+#include "formats/resolve_context.hpp"
 #include "formats/nastran_number.hpp"
 
 #include <algorithm>
@@ -14,21 +15,10 @@
 
 namespace ssid::formats {
 
+using detail::error_at;
+using detail::label;
+
 namespace {
-
-Problem error_at(const Deck& deck, const Card& card, std::size_t field, const std::string& msg) {
-  return {Problem::Severity::Error, deck.location(card, field), msg};
-}
-Problem warning_at(const Deck& deck, const Card& card, std::size_t field, const std::string& msg) {
-  return {Problem::Severity::Warning, deck.location(card, field), msg};
-}
-
-/// "CBAR 10": the card's name and first field, as written.
-std::string label(const Deck& deck, std::size_t card) {
-  const Card& c = deck.cards[card];
-  std::string_view id = c.field(1);
-  return id.empty() ? c.name : c.name + " " + std::string(id);
-}
 
 /// The typed cards' entries by name (DMIG included: counted, read elsewhere).
 const std::unordered_map<std::string, const CardTraits*>& parsers() {
@@ -134,99 +124,36 @@ std::map<std::size_t, std::vector<FieldValue>> write_bulk(const BulkModel& m) {
 
 namespace {
 
-/// One id space (grids, elements, properties, ...): every definition, by id.
-class IdRegistry {
-public:
-  struct Def {
-    std::size_t card;  ///< index in Deck::cards
-    const std::string* type;  ///< card name
-  };
+using detail::IdRegistry;
+using detail::ResolveContext;
 
-  IdRegistry(const Deck& deck, std::vector<Problem>& problems, std::string noun)
-      : m_deck(deck), m_problems(problems), m_noun(std::move(noun)) {}
-
-  /// Adds `id` defined by card `card` (field `field`); a second definition is a problem.
-  void define(std::int64_t id, std::size_t card, std::size_t field = 1) {
-    const Card& c = m_deck.cards[card];
-    auto [it, fresh] = m_defs.emplace(id, Def{card, &c.name});
-    if (fresh) return;
-    // Card types are defined in turn, not in deck order: the earlier card is the first definition.
-    std::size_t later = card;
-    if (card < it->second.card) {
-      later = it->second.card;
-      it->second = Def{card, &c.name};
+/// Defines every id of `space`: the typed cards in table order, then the cards
+/// kept verbatim (their field 2), in deck order.
+void fill_space(const Deck& deck, const BulkModel& m, IdSpace space, ResolveContext& ctx) {
+  IdRegistry& ids = ctx.ids(space);
+  std::unordered_map<std::string, bool> verbatim;  // name -> repeats allowed
+  for (const CardTraits& t : card_traits()) {
+    if (t.space != space) continue;
+    if (!t.typed()) {
+      for (const std::string& n : t.names) verbatim.emplace(n, t.repeats_allowed);
+      continue;
     }
-    const Card& first = m_deck.cards[it->second.card];
-    const Card& dup = m_deck.cards[later];
-    m_problems.push_back(error_at(m_deck, dup, field,
-                                  "duplicate " + m_noun + " " + std::to_string(id) + " (" + dup.name +
-                                      "; first defined by " + first.name + " at " + m_deck.location(first).str() +
-                                      ")"));
+    if (t.each_id) t.each_id(m, [&](std::int64_t id, std::size_t card) { ids.define(id, card, t.repeats_allowed); });
   }
-
-  const Def* find(std::int64_t id) const {
-    auto it = m_defs.find(id);
-    return it == m_defs.end() ? nullptr : &it->second;
+  if (verbatim.empty()) return;
+  for (std::size_t i = 0; i < deck.cards.size(); ++i) {
+    const Card& c = deck.cards[i];
+    auto it = verbatim.find(c.name);
+    if (it == verbatim.end()) continue;
+    if (auto id = parse_integer(c.field(1))) ids.define(*id, i, it->second);
   }
-
-  /// Checks that `id` exists and, when `types` is not empty, is one of them.
-  /// Messages: "PROD 3 required by CROD 10 does not exist";
-  /// "CROD 10 refers to PID 3, which is a PBAR, expected PROD".
-  void need(std::int64_t id, std::initializer_list<const char*> types, std::size_t by, std::size_t field,
-            const char* field_name) const {
-    need_of(id, types, by, field, field_name);
-  }
-  /// The same with the expected card type known only at run time (DVPREL1 TYPE).
-  void need(std::int64_t id, const std::string& type, std::size_t by, std::size_t field, const char* field_name) const {
-    need_of(id, std::array<std::string, 1>{type}, by, field, field_name);
-  }
-
-  template <typename Types>
-  void need_of(std::int64_t id, const Types& types, std::size_t by, std::size_t field, const char* field_name) const {
-    std::string expect;
-    for (const auto& t : types) expect += (expect.empty() ? "" : "/") + std::string(t);
-    const Card& c = m_deck.cards[by];
-    const Def* d = find(id);
-    if (!d) {
-      m_problems.push_back(error_at(m_deck, c, field,
-                                    (expect.empty() ? m_noun : expect) + " " + std::to_string(id) + " required by " +
-                                        label(m_deck, by) + " does not exist"));
-      return;
-    }
-    if (types.size() == 0) return;
-    for (const auto& t : types)
-      if (*d->type == t) return;
-    m_problems.push_back(error_at(m_deck, c, field,
-                                  label(m_deck, by) + " refers to " + field_name + " " + std::to_string(id) +
-                                      ", which is a " + *d->type + ", expected " + expect));
-  }
-
-  /// Defines the ids in field 1 of cards kept verbatim whose name is in `names`.
-  void define_verbatim(const std::initializer_list<const char*>& names) {
-    for (std::size_t i = 0; i < m_deck.cards.size(); ++i) {
-      const Card& c = m_deck.cards[i];
-      for (const char* n : names)
-        if (c.name == n) {
-          if (auto id = parse_integer(c.field(1))) define(*id, i);
-          break;
-        }
-    }
-  }
-
-private:
-  const Deck& m_deck;
-  std::vector<Problem>& m_problems;
-  std::string m_noun;
-  std::unordered_map<std::int64_t, Def> m_defs;
-};
-
-}  // namespace
+}
 
 /// The scalar points scalar elements define by naming them (SPOINT remark 2):
 /// an end with component 0 or blank that no GRID, SPOINT or EPOINT defines.
-/// Typed cards: CELAS1/2, CMASS1/2 (G, C pairs); cards kept verbatim: CDAMP1/2
-/// (G, C pairs), CELAS3/4, CMASS3/4, CDAMP3/4 (scalar points S1, S2 in fields
-/// 4-5). Each becomes a scalar point of the model (BulkModel::implied_spoints).
+/// Typed cards give their G, C pairs; cards kept verbatim are read by their
+/// ScalarConnection (G1 C1 G2 C2 in fields 4-7, or S1 S2 in fields 4-5). Each
+/// becomes a scalar point of the model (BulkModel::implied_spoints).
 void define_implied_spoints(const Deck& deck, BulkModel& m, IdRegistry& grids) {
   std::map<std::int64_t, std::size_t> implied;  // id -> the first card naming it
   auto end = [&](std::int64_t g, std::int64_t c, std::size_t card) {
@@ -235,24 +162,24 @@ void define_implied_spoints(const Deck& deck, BulkModel& m, IdRegistry& grids) {
       if (!fresh && card < it->second) it->second = card;
     }
   };
-  auto typed = [&](const auto& elements) {
-    for (const auto& e : elements) end(e.g1, e.c1, e.card), end(e.g2, e.c2, e.card);
-  };
-  typed(m.celas1s);
-  typed(m.celas2s);
-  typed(m.cmass1s);
-  typed(m.cmass2s);
+  std::unordered_map<std::string, ScalarConnection> verbatim;
+  for (const CardTraits& t : card_traits()) {
+    if (t.each_scalar_end) t.each_scalar_end(m, end);
+    if (!t.typed() && t.scalar_connection != ScalarConnection::None)
+      for (const std::string& n : t.names) verbatim.emplace(n, t.scalar_connection);
+  }
   auto field_id = [&](const Card& c, std::size_t i) -> std::int64_t {
     auto v = parse_integer(c.field(i));
     return v ? *v : 0;
   };
   for (std::size_t i = 0; i < deck.cards.size(); ++i) {
     const Card& c = deck.cards[i];
-    if (c.name == "CDAMP1" || c.name == "CDAMP2") {
+    auto it = verbatim.find(c.name);
+    if (it == verbatim.end()) continue;
+    if (it->second == ScalarConnection::GridComponentPairs) {
       end(field_id(c, 3), field_id(c, 4), i);
       end(field_id(c, 5), field_id(c, 6), i);
-    } else if (c.name == "CELAS3" || c.name == "CELAS4" || c.name == "CMASS3" || c.name == "CMASS4" ||
-               c.name == "CDAMP3" || c.name == "CDAMP4") {
+    } else {
       end(field_id(c, 3), 0, i);
       end(field_id(c, 4), 0, i);
     }
@@ -264,285 +191,33 @@ void define_implied_spoints(const Deck& deck, BulkModel& m, IdRegistry& grids) {
   }
 }
 
+}  // namespace
+
 void resolve(const Deck& deck, BulkModel& m) {
-  std::vector<Problem>& out = m.problems;
+  ResolveContext ctx(deck, m.problems);
 
-  // --- id spaces ------------------------------------------------------------
-  IdRegistry grids(deck, out, "grid or scalar point");
-  for (const Grid& g : m.grids) grids.define(g.id, g.card);
-  // SPOINT remark: "duplicate scalar point numbers are allowed" (not a GRID's).
-  for (const Spoint& s : m.spoints)
-    for (std::int64_t id : s.ids) {
-      const IdRegistry::Def* d = grids.find(id);
-      if (!d || *d->type != "SPOINT") grids.define(id, s.card);
+  // The model's id spaces first (grids, the element families, properties,
+  // materials, coordinate systems): every reference may point into them.
+  for (std::size_t s = 0; s < kIdSpaceCount; ++s) {
+    const auto space = static_cast<IdSpace>(s);
+    if (!is_model_space(space)) continue;
+    fill_space(deck, m, space, ctx);
+    if (space == IdSpace::GridPoint) define_implied_spoints(deck, m, ctx.ids(space));
+  }
+
+  // References to coordinate systems (and CORD2 RID chains), then every other
+  // reference and check, card type by card type in table order. A set space
+  // (SPC, SPCADD, methods, design model) is filled at the first type of its own.
+  for (const CardTraits& t : card_traits())
+    if (t.resolve) t.resolve(m, ctx, true);
+  std::array<bool, kIdSpaceCount> filled{};
+  for (const CardTraits& t : card_traits()) {
+    const auto s = static_cast<std::size_t>(t.space);
+    if (t.space != IdSpace::None && !is_model_space(t.space) && !filled[s]) {
+      fill_space(deck, m, t.space, ctx);
+      filled[s] = true;
     }
-  grids.define_verbatim({"EPOINT"});
-  define_implied_spoints(deck, m, grids);
-
-  // NASTRAN keeps four element id spaces apart (the QRG's "unique with respect
-  // to all other element identification numbers" is said of each family, and
-  // MSC/NX decks reuse ids across them): structural elements (with springs,
-  // dampers and bushings), mass elements, rigid elements, plot elements. An RBE2
-  // and a CQUAD4 may both be 1; two CBARs may not.
-  IdRegistry elements(deck, out, "element");
-  for (const auto& e : m.crods) elements.define(e.eid, e.card);
-  for (const auto& e : m.conrods) elements.define(e.eid, e.card);
-  for (const auto& e : m.cbars) elements.define(e.eid, e.card);
-  for (const auto& e : m.cbeams) elements.define(e.eid, e.card);
-  for (const auto& e : m.celas1s) elements.define(e.eid, e.card);
-  for (const auto& e : m.celas2s) elements.define(e.eid, e.card);
-  for (const auto& e : m.cbushes) elements.define(e.eid, e.card);
-  // Element cards kept verbatim share the id space of their family.
-  elements.define_verbatim({"CQUAD4", "CQUAD8", "CQUADR", "CTRIA3", "CTRIA6", "CTRIAR", "CSHEAR", "CHEXA", "CPENTA",
-                            "CTETRA", "CPYRAM", "CTUBE", "CBEND", "CGAP", "CDAMP1", "CDAMP2", "CDAMP3", "CDAMP4",
-                            "CVISC", "CELAS3", "CELAS4", "CBUSH1D", "CFAST", "CWELD"});
-  IdRegistry masses(deck, out, "mass element");
-  for (const auto& e : m.conm2s) masses.define(e.eid, e.card);
-  for (const auto& e : m.cmass1s) masses.define(e.eid, e.card);
-  for (const auto& e : m.cmass2s) masses.define(e.eid, e.card);
-  masses.define_verbatim({"CMASS3", "CMASS4", "CONM1"});
-  IdRegistry rigids(deck, out, "rigid element");
-  for (const auto& e : m.rbars) rigids.define(e.eid, e.card);
-  for (const auto& e : m.rbe2s) rigids.define(e.eid, e.card);
-  for (const auto& e : m.rbe3s) rigids.define(e.eid, e.card);
-  rigids.define_verbatim({"RBAR1", "RBE1", "RROD", "RSPLINE", "RSSCON", "RTRPLT"});
-  IdRegistry plot_elements(deck, out, "plot element");
-  plot_elements.define_verbatim({"PLOTEL"});
-
-  IdRegistry properties(deck, out, "property");
-  for (const auto& p : m.prods) properties.define(p.pid, p.card);
-  for (const auto& p : m.pbars) properties.define(p.pid, p.card);
-  for (const auto& p : m.pbarls) properties.define(p.pid, p.card);
-  for (const auto& p : m.pbeams) properties.define(p.pid, p.card);
-  for (const auto& p : m.pbeamls) properties.define(p.pid, p.card);
-  for (const auto& p : m.pmasses) properties.define(p.pid, p.card);
-  for (const auto& p : m.pelases) properties.define(p.pid, p.card);
-  for (const auto& p : m.pbushes) properties.define(p.pid, p.card);
-  properties.define_verbatim({"PSHELL", "PCOMP", "PCOMPG", "PSOLID", "PSHEAR", "PTUBE", "PBEND", "PGAP", "PDAMP",
-                              "PVISC", "PBUSH1D", "PBCOMP", "PFAST", "PWELD"});
-
-  IdRegistry materials(deck, out, "material");
-  for (const auto& mt : m.mat1s) materials.define(mt.mid, mt.card);
-  materials.define_verbatim({"MAT2", "MAT3", "MAT8", "MAT9", "MAT10"});
-
-  IdRegistry coords(deck, out, "coordinate system");
-  for (const auto& c : m.cord2s) coords.define(c.cid, c.card);
-  coords.define_verbatim({"CORD1R", "CORD1C", "CORD1S", "CORD3G", "CORD3R"});
-
-  // --- coordinate systems: RID chains end in the basic system ----------------
-  {
-    std::unordered_map<std::int64_t, const Cord2*> by_cid;
-    for (const auto& c : m.cord2s) by_cid.emplace(c.cid, &c);
-    for (const auto& c : m.cord2s) {
-      if (c.rid == 0) continue;
-      coords.need(c.rid, {}, c.card, 2, "RID");
-      // Follow the chain; a cycle is reported once, at its smallest CID.
-      std::string path = std::to_string(c.cid);
-      const Cord2* at = &c;
-      for (std::size_t steps = 0; steps <= by_cid.size(); ++steps) {
-        auto it = by_cid.find(at->rid);
-        if (at->rid == 0 || it == by_cid.end()) break;
-        at = it->second;
-        path += " -> " + std::to_string(at->cid);
-        if (at->cid < c.cid) break;  // reported (or not a cycle) from a smaller CID
-        if (at == &c) {
-          out.push_back(error_at(deck, deck.cards[c.card], 2,
-                                 label(deck, c.card) + ": RID chain " + path + " is a cycle (it must end in the basic system)"));
-          break;
-        }
-      }
-    }
-  }
-  auto need_coord = [&](std::int64_t cid, std::size_t card, std::size_t field, const char* name) {
-    if (cid > 0) coords.need(cid, {}, card, field, name);
-  };
-  for (const Grid& g : m.grids) {
-    need_coord(g.cp, g.card, 2, "CP");
-    need_coord(g.cd, g.card, 6, "CD");
-  }
-  for (const auto& e : m.conm2s) need_coord(e.cid, e.card, 3, "CID");
-  for (const auto& e : m.cbushes) {
-    need_coord(e.cid, e.card, 8, "CID");
-    need_coord(e.ocid, e.card, 10, "OCID");
-  }
-
-  // --- element -> grid, element -> property, property -> material -----------
-  for (const Crod& c : m.crods) {
-    grids.need(c.g1, {"GRID"}, c.card, 3, "G1");
-    grids.need(c.g2, {"GRID"}, c.card, 4, "G2");
-    properties.need(c.pid, {"PROD"}, c.card, 2, "PID");
-  }
-  for (const Conrod& c : m.conrods) {
-    grids.need(c.g1, {"GRID"}, c.card, 2, "G1");
-    grids.need(c.g2, {"GRID"}, c.card, 3, "G2");
-    materials.need(c.mid, {"MAT1"}, c.card, 4, "MID");
-  }
-  for (const Cbar& c : m.cbars) {
-    properties.need(c.pid, {"PBAR", "PBARL"}, c.card, 2, "PID");
-    grids.need(c.ga, {"GRID"}, c.card, 3, "GA");
-    grids.need(c.gb, {"GRID"}, c.card, 4, "GB");
-    if (c.g0 > 0) grids.need(c.g0, {"GRID"}, c.card, 5, "G0");
-  }
-  for (const Cbeam& c : m.cbeams) {
-    properties.need(c.pid, {"PBEAM", "PBEAML"}, c.card, 2, "PID");
-    grids.need(c.ga, {"GRID"}, c.card, 3, "GA");
-    grids.need(c.gb, {"GRID"}, c.card, 4, "GB");
-    if (c.g0 > 0) grids.need(c.g0, {"GRID"}, c.card, 5, "G0");
-    if (c.sa > 0) grids.need(c.sa, {"SPOINT"}, c.card, 17, "SA");
-    if (c.sb > 0) grids.need(c.sb, {"SPOINT"}, c.card, 18, "SB");
-  }
-  // Scalar elements: each end a grid (component 1-6) or a scalar point (component 0).
-  auto scalar_end = [&](std::int64_t g, std::int64_t c, std::size_t card, std::size_t field, const char* gname) {
-    if (g == 0) return;
-    grids.need(g, {}, card, field, gname);
-    const IdRegistry::Def* d = grids.find(g);
-    if (!d) return;
-    bool is_spoint = *d->type != "GRID";
-    if (is_spoint && c > 0)
-      out.push_back(error_at(deck, deck.cards[card], field + 1,
-                             label(deck, card) + ": " + gname + " " + std::to_string(g) + " is a scalar point (" +
-                                 *d->type + "), its component must be 0 or blank, got " + std::to_string(c)));
-    if (!is_spoint && c == 0)
-      out.push_back(error_at(deck, deck.cards[card], field + 1,
-                             label(deck, card) + ": " + gname + " " + std::to_string(g) +
-                                 " is a GRID, its component must be 1-6, got blank or 0"));
-  };
-  auto scalar_ends = [&](const auto& e) {
-    scalar_end(e.g1, e.c1, e.card, 3, "G1");
-    scalar_end(e.g2, e.c2, e.card, 5, "G2");
-  };
-  for (const auto& e : m.cmass1s) {
-    properties.need(e.pid, {"PMASS"}, e.card, 2, "PID");
-    scalar_ends(e);
-  }
-  for (const auto& e : m.celas1s) {
-    properties.need(e.pid, {"PELAS"}, e.card, 2, "PID");
-    scalar_ends(e);
-  }
-  for (const auto& e : m.cmass2s) scalar_ends(e);
-  for (const auto& e : m.celas2s) scalar_ends(e);
-  for (const auto& e : m.conm2s) grids.need(e.g, {"GRID"}, e.card, 2, "G");
-  for (const auto& e : m.cbushes) {
-    properties.need(e.pid, {"PBUSH"}, e.card, 2, "PID");
-    grids.need(e.ga, {"GRID"}, e.card, 3, "GA");
-    if (e.gb > 0) grids.need(e.gb, {"GRID"}, e.card, 4, "GB");
-    if (e.g0 > 0) grids.need(e.g0, {"GRID"}, e.card, 5, "G0");
-  }
-
-  for (const auto& p : m.prods) materials.need(p.mid, {"MAT1"}, p.card, 2, "MID");
-  for (const auto& p : m.pbars) materials.need(p.mid, {"MAT1"}, p.card, 2, "MID");
-  for (const auto& p : m.pbarls) {
-    materials.need(p.mid, {"MAT1"}, p.card, 2, "MID");
-    if (!pbarl_type_sectioned(p.type))
-      out.push_back(warning_at(deck, deck.cards[p.card], 4,
-                               label(deck, p.card) + ": TYPE " + p.type +
-                                   " is kept with its dimensions but not sectioned (ssid sections ROD, TUBE, BAR, BOX, I)"));
-  }
-  for (const auto& p : m.pbeams) materials.need(p.mid, {"MAT1"}, p.card, 2, "MID");
-  for (const auto& p : m.pbeamls) {
-    materials.need(p.mid, {"MAT1"}, p.card, 2, "MID");
-    if (!pbarl_type_sectioned(p.type))
-      out.push_back(warning_at(deck, deck.cards[p.card], 4,
-                               label(deck, p.card) + ": TYPE " + p.type +
-                                   " is kept with its dimensions but not sectioned (ssid sections ROD, TUBE, BAR, BOX, I)"));
-  }
-
-  // --- rigid elements --------------------------------------------------------
-  for (const Rbar& e : m.rbars) {
-    grids.need(e.ga, {"GRID"}, e.card, 2, "GA");
-    grids.need(e.gb, {"GRID"}, e.card, 3, "GB");
-  }
-  for (const Rbe2& e : m.rbe2s) {
-    grids.need(e.gn, {"GRID"}, e.card, 2, "GN");
-    for (std::int64_t g : e.gm) grids.need(g, {"GRID"}, e.card, 0, "GM");
-  }
-  for (const Rbe3& e : m.rbe3s) {
-    grids.need(e.refgrid, {"GRID"}, e.card, 3, "REFGRID");
-    for (const auto& grp : e.groups)
-      for (std::int64_t g : grp.grids) grids.need(g, {"GRID"}, e.card, 0, "Gi,j");
-    for (const auto& [g, c] : e.um) grids.need(g, {"GRID"}, e.card, 0, "GM");
-  }
-
-  // --- constraints ------------------------------------------------------------
-  std::unordered_set<std::int64_t> spc_sets;
-  for (const Spc& s : m.spcs) {
-    spc_sets.insert(s.sid);
-    for (std::size_t k = 0; k < s.entries.size(); ++k) grids.need(s.entries[k].g, {}, s.card, 2 + 3 * k, "G");
-  }
-  for (const Spc1& s : m.spc1s) {
-    spc_sets.insert(s.sid);
-    // A THRU range over missing grids is one mistake: name the first few, count the rest.
-    std::size_t missing = 0;
-    for (std::int64_t g : s.grids)
-      if (!grids.find(g) && ++missing <= 5) grids.need(g, {}, s.card, 0, "G");
-    if (missing > 5)
-      out.push_back(error_at(deck, deck.cards[s.card], 0,
-                             "... and " + std::to_string(missing - 5) + " more grids or scalar points required by " +
-                                 label(deck, s.card) + " do not exist"));
-  }
-  IdRegistry spcadd_ids(deck, out, "SPCADD set");
-  for (const Spcadd& s : m.spcadds) {
-    spcadd_ids.define(s.sid, s.card);
-    // NASTRAN warns (USER WARNING MESSAGE 2053, UNDEFINED SINGLE-POINT
-    // CONSTRAINT SET) and runs: the set adds no constraint.
-    for (std::int64_t set : s.sets)
-      if (!spc_sets.count(set))
-        out.push_back(warning_at(deck, deck.cards[s.card], 0,
-                                 "SPC set " + std::to_string(set) + " required by " + label(deck, s.card) +
-                                     " does not exist (no SPC or SPC1 with that SID); it adds no constraint"));
-  }
-  for (const Mpc& mp : m.mpcs)
-    for (const MpcTerm& t : mp.terms) scalar_end(t.g, t.c, mp.card, 0, "Gj");
-
-  // --- eigenvalue methods, parameters -------------------------------------------
-  IdRegistry methods(deck, out, "eigenvalue method (EIGRL/EIGR SID)");
-  for (const auto& e : m.eigrls) methods.define(e.sid, e.card);
-  for (const auto& e : m.eigrs) methods.define(e.sid, e.card);
-  {
-    std::unordered_map<std::string, std::size_t> seen;
-    for (const Param& p : m.params) {
-      auto [it, fresh] = seen.emplace(p.name, p.card);
-      if (!fresh)
-        out.push_back(warning_at(deck, deck.cards[p.card], 1,
-                                 "PARAM " + p.name + " given again (first at " +
-                                     deck.location(deck.cards[it->second]).str() + ")"));
-    }
-  }
-
-  // --- design model -------------------------------------------------------------
-  IdRegistry desvars(deck, out, "DESVAR");
-  for (const auto& d : m.desvars) desvars.define(d.id, d.card);
-  IdRegistry dvprels(deck, out, "DVPREL");
-  for (const auto& d : m.dvprel1s) dvprels.define(d.id, d.card);
-  dvprels.define_verbatim({"DVPREL2"});
-  IdRegistry dvmrels(deck, out, "DVMREL");
-  for (const auto& d : m.dvmrel1s) dvmrels.define(d.id, d.card);
-  dvmrels.define_verbatim({"DVMREL2"});
-  for (const auto& d : m.dvprel1s) {
-    // Element-valued designs (CONM2 M, CELAS2 K, …): the PID field holds the element id.
-    if (d.type == "CONM2" || d.type == "CMASS2")
-      masses.need(d.pid, d.type, d.card, 3, "EID");
-    else if (d.type == "CELAS2" || d.type == "CONROD")
-      elements.need(d.pid, d.type, d.card, 3, "EID");
-    else
-      properties.need(d.pid, d.type, d.card, 3, "PID");
-    for (const auto& [dvid, coef] : d.terms) desvars.need(dvid, {}, d.card, 9, "DVID");
-  }
-  for (const auto& d : m.dvmrel1s) {
-    materials.need(d.mid, d.type, d.card, 3, "MID");
-    for (const auto& [dvid, coef] : d.terms) desvars.need(dvid, {}, d.card, 9, "DVID");
-  }
-
-  // --- material consistency -------------------------------------------------
-  for (const Mat1& mt : m.mat1s) {
-    // NASTRAN warns when the three given values disagree by more than 1 %.
-    if (mt.e_given && mt.g_given && mt.nu_given && mt.g > 0.0) {
-      double ratio = mt.e / (2.0 * (1.0 + mt.nu) * mt.g);
-      if (std::abs(1.0 - ratio) > 0.01)
-        out.push_back(warning_at(deck, deck.cards[mt.card], 2,
-                                 label(deck, mt.card) + ": E, G and NU are not related by E = 2(1+NU)G (E/(2(1+NU)G) = " +
-                                     std::to_string(ratio) + ")"));
-    }
+    if (t.resolve) t.resolve(m, ctx, false);
   }
 }
 
