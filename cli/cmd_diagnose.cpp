@@ -51,10 +51,9 @@ nlohmann::json fit_json(const dx::Fit& f) {
   return {{"freq_rms_pct", f.freq_rms_pct}, {"mean_mac", f.mean_mac}, {"paired", f.paired}, {"measured", f.measured}};
 }
 
-}  // namespace
 
-int cmd_diagnose(const Args& args) {
-  po::options_description desc("ssid diagnose options");
+/// The command line's options.
+void add_diagnose_options(po::options_description& desc) {
   desc.add_options()("deck", po::value<std::string>()->required(), "the nominal deck with its DESVAR parameters")(
       "measured", po::value<std::string>()->required(), "measured modes: universal file, dataset 55 at grid ids")(
       "study", po::value<std::string>(), "study file (JSON, docs/diagnosis.md): noise, priors, kinds, configurations")(
@@ -70,15 +69,13 @@ int cmd_diagnose(const Args& args) {
       "margin", po::value<double>(), "decision margin in nats (default 3)")(
       "hold-back", po::value<int>(), "hold back the N highest test modes and report their prediction")(
       "quiet,q", "no progress lines on stderr (phases, counts of candidates, the time left)");
-  po::positional_options_description pos;
-  pos.add("deck", 1).add("measured", 1);
-  po::variables_map vm;
-  int rc = 0;
-  if (!parse_options(args, "ssid diagnose DECK MEASURED.unv [--study FILE] [--json FILE] [-o DIR]", desc, pos, vm, rc))
-    return rc;
+}
 
-  dx::DiagnosisOptions opt;
-  std::vector<std::pair<std::string, std::string>> extra;
+/// The diagnosis options from the study file and the flags (flags win), and the
+/// further configurations (`extra`: DECK, MEASURED). Returns false with the exit
+/// code in `rc` for an unknown kind or a malformed --also.
+bool diagnosis_options(const po::variables_map& vm, dx::DiagnosisOptions& opt,
+                       std::vector<std::pair<std::string, std::string>>& extra, int& rc) {
   if (vm.count("study")) {
     const std::string path = vm["study"].as<std::string>();
     nlohmann::json s;
@@ -131,53 +128,39 @@ int cmd_diagnose(const Args& args) {
   for (const auto& k : opt.kinds)
     if (!kinds.count(k)) {
       print_error("unknown extension kind \"" + k + "\" (" + kind_list + ")");
-      return kExitBadInput;
+      rc = kExitBadInput;
+      return false;
     }
   if (vm.count("also"))
     for (const auto& a : vm["also"].as<std::vector<std::string>>()) {
       const auto eq = a.find('=');
       if (eq == std::string::npos) {
         print_error("--also: expected DECK=MEASURED.unv, got \"" + a + "\"");
-        return kExitBadInput;
+        rc = kExitBadInput;
+        return false;
       }
       extra.emplace_back(a.substr(0, eq), a.substr(eq + 1));
     }
-  const std::string json_path = vm.count("json") ? vm["json"].as<std::string>() : "";
-  const bool quiet_json = json_path == "-";
-  // Candidates can number hundreds: their counts at most every 2 s.
-  ProgressLines lines("ssid diagnose", vm.count("quiet") != 0, 2.0);
-  opt.progress = lines.callback();
+  return true;
+}
 
-  std::vector<dx::ConfigurationInput> configs;
-  configs.push_back(load_configuration(vm["deck"].as<std::string>(), vm["measured"].as<std::string>()));
-  for (const auto& [d, m] : extra) configs.push_back(load_configuration(d, m));
-
-  const InterruptFlag interrupt;
-  dx::Diagnosis dg;
-  try {
-    dg = dx::diagnose(configs, opt);
-  } catch (const estimator::Interrupted& e) {
-    const std::string why = std::string(e.what()) + " before the ordinary update's first cycle was complete";
-    if (!json_path.empty())
-      write_json(json_path, {{"partial", true}, {"partial_reason", why}, {"cause", nullptr}, {"ranking", nlohmann::json::array()}});
-    print_error("diagnose: " + why + ": no diagnosis" +
-                (json_path.empty() || quiet_json ? "" : " (" + json_path + " is marked \"partial\": true)"));
-    return kExitInterrupted;
-  }
-  const dx::Hypothesis& cause = dg.cause >= 0 ? dg.ranking[static_cast<std::size_t>(dg.cause)] : dg.nominal;
-
-  // The extended, updated deck.
+/// Writes the extended, updated deck into the -o folder; returns its path ("" without -o).
+std::string write_diagnosed_deck(const po::variables_map& vm, const dx::ConfigurationInput& first, const dx::Diagnosis& dg) {
   std::string deck_path;
   if (vm.count("output")) {
     const std::filesystem::path dir = vm["output"].as<std::string>();
     std::filesystem::create_directories(dir);
-    const auto stem = std::filesystem::path(configs.front().name).stem().string();
+    const auto stem = std::filesystem::path(first.name).stem().string();
     deck_path = (dir / (stem + "_diagnosed.bdf")).string();
     std::ofstream out(deck_path, std::ios::binary);
     out << dg.updated_deck;
     if (!out) throw formats::InputError(deck_path + ": cannot write");
   }
+  return deck_path;
+}
 
+/// The diagnosis as JSON (docs/diagnosis.md), without "partial".
+nlohmann::json diagnosis_json(const dx::Diagnosis& dg, const dx::Hypothesis& cause, const std::string& deck_path) {
   nlohmann::json j;
   {
     nlohmann::json c;
@@ -250,29 +233,35 @@ int cmd_diagnose(const Args& args) {
   }
   j["notes"] = dg.notes;
   j["deck"] = deck_path.empty() ? nlohmann::json(nullptr) : nlohmann::json(deck_path);
-  // Not trustworthy: stopped early, or the cause's own estimate did not converge.
+  return j;
+}
+
+/// Why the result is not to be trusted ("" when it is): stopped early, or the
+/// cause's own estimate did not converge.
+std::string untrusted_reason(const dx::Diagnosis& dg, const dx::Hypothesis& cause) {
   std::string untrusted = dg.partial_reason;
   if (untrusted.empty() && cause.kind != "none" && !cause.converged)
     untrusted = "the estimate of the cause (" + cause.kind + (cause.kind == "parameter" ? "" : " at " + cause.location.text) +
                 ") did not converge";
-  j["partial"] = !untrusted.empty();
-  if (!untrusted.empty()) j["partial_reason"] = untrusted;
-  auto exit_code = [&] {
-    if (untrusted.empty()) return static_cast<int>(kExitSuccess);
-    const std::string marked =
-        json_path.empty() || quiet_json ? "" : "; " + json_path + " is marked \"partial\": true";
-    print_error("diagnose: " + untrusted + ": " +
-                (dg.interrupted ? "the ranking holds the hypotheses tested so far"
-                                : "the diagnosis is not trustworthy (more cycles: \"max_iterations\" in --study)") +
-                marked);
-    return static_cast<int>(dg.interrupted ? kExitInterrupted : kExitUntrusted);
-  };
+  return untrusted;
+}
 
-  if (quiet_json) {
-    write_json("-", j);
-    return exit_code();
-  }
-  std::cout << "ssid diagnose: " << configs.front().name << " against " << vm["measured"].as<std::string>();
+/// The exit code, with its message on stderr when the result is not trusted.
+int exit_code(const dx::Diagnosis& dg, const std::string& untrusted, const std::string& json_path) {
+  if (untrusted.empty()) return static_cast<int>(kExitSuccess);
+  const std::string marked =
+    json_path.empty() || json_path == "-" ? "" : "; " + json_path + " is marked \"partial\": true";
+  print_error("diagnose: " + untrusted + ": " +
+            (dg.interrupted ? "the ranking holds the hypotheses tested so far"
+                            : "the diagnosis is not trustworthy (more cycles: \"max_iterations\" in --study)") +
+            marked);
+  return static_cast<int>(dg.interrupted ? kExitInterrupted : kExitUntrusted);
+}
+
+/// The report on stdout: evidence, hypotheses, cause and gain.
+void print_report(const dx::Diagnosis& dg, const dx::Hypothesis& cause, const std::vector<dx::ConfigurationInput>& configs,
+                  const std::string& measured, const std::string& untrusted, const std::string& deck_path) {
+  std::cout << "ssid diagnose: " << configs.front().name << " against " << measured;
   if (configs.size() > 1) std::cout << " (+" << configs.size() - 1 << " configuration(s))";
   std::cout << "\n";
   if (!untrusted.empty()) std::cout << "PARTIAL RESULT (" << untrusted << ")\n";
@@ -316,8 +305,58 @@ int cmd_diagnose(const Args& args) {
             << "\n";
   for (const auto& n : dg.notes) std::cout << "note: " << n << "\n";
   if (!deck_path.empty()) std::cout << "\nextended, updated deck: " << deck_path << "\n";
+}
+
+}  // namespace
+
+int cmd_diagnose(const Args& args) {
+  po::options_description desc("ssid diagnose options");
+  add_diagnose_options(desc);
+  po::positional_options_description pos;
+  pos.add("deck", 1).add("measured", 1);
+  po::variables_map vm;
+  int rc = 0;
+  if (!parse_options(args, "ssid diagnose DECK MEASURED.unv [--study FILE] [--json FILE] [-o DIR]", desc, pos, vm, rc))
+    return rc;
+
+  dx::DiagnosisOptions opt;
+  std::vector<std::pair<std::string, std::string>> extra;
+  if (!diagnosis_options(vm, opt, extra, rc)) return rc;
+  const std::string json_path = vm.count("json") ? vm["json"].as<std::string>() : "";
+  const bool quiet_json = json_path == "-";
+  // Candidates can number hundreds: their counts at most every 2 s.
+  ProgressLines lines("ssid diagnose", vm.count("quiet") != 0, 2.0);
+  opt.progress = lines.callback();
+
+  std::vector<dx::ConfigurationInput> configs;
+  configs.push_back(load_configuration(vm["deck"].as<std::string>(), vm["measured"].as<std::string>()));
+  for (const auto& [d, m] : extra) configs.push_back(load_configuration(d, m));
+
+  const InterruptFlag interrupt;
+  dx::Diagnosis dg;
+  try {
+    dg = dx::diagnose(configs, opt);
+  } catch (const estimator::Interrupted& e) {
+    const std::string why = std::string(e.what()) + " before the ordinary update's first cycle was complete";
+    if (!json_path.empty())
+      write_json(json_path, {{"partial", true}, {"partial_reason", why}, {"cause", nullptr}, {"ranking", nlohmann::json::array()}});
+    print_error("diagnose: " + why + ": no diagnosis" +
+                (json_path.empty() || quiet_json ? "" : " (" + json_path + " is marked \"partial\": true)"));
+    return kExitInterrupted;
+  }
+  const dx::Hypothesis& cause = dg.cause >= 0 ? dg.ranking[static_cast<std::size_t>(dg.cause)] : dg.nominal;
+  const std::string deck_path = write_diagnosed_deck(vm, configs.front(), dg);
+  nlohmann::json j = diagnosis_json(dg, cause, deck_path);
+  const std::string untrusted = untrusted_reason(dg, cause);
+  j["partial"] = !untrusted.empty();
+  if (!untrusted.empty()) j["partial_reason"] = untrusted;
+  if (quiet_json) {
+    write_json("-", j);
+    return exit_code(dg, untrusted, json_path);
+  }
+  print_report(dg, cause, configs, vm["measured"].as<std::string>(), untrusted, deck_path);
   if (!json_path.empty()) write_json(json_path, j);
-  return exit_code();
+  return exit_code(dg, untrusted, json_path);
 }
 
 }  // namespace ssid::cli

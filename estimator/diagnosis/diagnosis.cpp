@@ -339,14 +339,71 @@ std::string deck_at(const std::string& deck_text, const std::string& name, const
   return formats::render_file(deck, 0);
 }
 
-Diagnosis diagnose(const std::vector<ConfigurationInput>& configurations, const DiagnosisOptions& options) {
-  Engine engine(configurations, options);
-  const auto& est = engine.setup().est;
-  Diagnosis dg;
-  // An estimate's cycles, reported as items of `phase` (also to the caller's own
-  // update_progress, which sees every solve of every estimate).
-  auto forward_cycles = [&](const std::string& phase, long done, long total, const std::string& item, double f0,
-                            double f1) {
+namespace {
+
+/// One diagnosis, one phase per member function (docs/diagnosis.md §1–4):
+/// ordinary_update, gather, nominal_likelihood, prepare_screening,
+/// list_candidates, screen, test_shortlist, keep_best_per_place, decide.
+/// run() calls them in that order.
+class Diagnoser {
+ public:
+  Diagnoser(const std::vector<ConfigurationInput>& configurations, const DiagnosisOptions& options)
+      : m_options(options), m_engine(configurations, options), m_est(m_engine.setup().est) {}
+
+  Diagnosis run() {
+    ordinary_update();
+    gather();
+    nominal_likelihood();
+    m_dg.ranking.push_back(m_param);
+    // Phases 2 and 3 stop at an interruption; the decision is then made among the
+    // hypotheses tested so far. `m_stage` says where, for the partial reason.
+    try {
+      if (m_dg.interrupted) throw Interrupted(m_dg.partial_reason);
+      prepare_screening();
+      list_candidates();
+      screen();
+      test_shortlist();
+    } catch (const Interrupted& ex) {
+      if (!m_dg.interrupted) {
+        m_dg.interrupted = true;
+        m_dg.partial_reason = std::string(ex.what()) + " " + m_stage;
+      }
+    }
+    keep_best_per_place();
+    decide();
+    if (!m_dg.interrupted) report(m_options.progress, "done", 1.0);
+    return std::move(m_dg);
+  }
+
+ private:
+  struct Shortlisted {
+    const ext::ModelExtension* kind;
+    ext::Candidate cand;
+    double screening;
+    double look;
+  };
+
+  const DiagnosisOptions& m_options;
+  Engine m_engine;
+  const std::vector<ConfigurationInput>& m_est;
+  Diagnosis m_dg;
+  std::vector<std::string> m_base_texts;
+  std::vector<DeckProblem> m_base;
+  UpdateResult m_base_res;
+  Hypothesis m_param;
+  std::string m_stage;
+  ext::ExtensionOptions m_eo;
+  Screen m_screen;
+  ModalSolution m_sol_star;
+  std::vector<std::unique_ptr<ext::ModelExtension>> m_kinds;
+  std::vector<std::vector<ext::Candidate>> m_cands;
+  std::vector<Shortlisted> m_shortlist;
+
+  /// An estimate's cycles, reported as items of `phase` (also to the caller's own
+  /// update_progress, which sees every solve of every estimate).
+  Progress forward_cycles(const std::string& phase, long done, long total, const std::string& item, double f0,
+                          double f1) const {
+    const DiagnosisOptions& options = m_options;
     return [&options, phase, done, total, item, f0, f1](const ProgressEvent& e) {
       if (options.problem.update_progress) options.problem.update_progress(e);
       if (!options.progress) return;
@@ -363,250 +420,270 @@ Diagnosis diagnose(const std::vector<ConfigurationInput>& configurations, const 
       }
       options.progress(out);
     };
-  };
-
-  // 1. The ordinary update and the evidence.
-  report(options.progress, "ordinary update of the deck's parameters", 0.0);
-  engine.set_update_progress(forward_cycles("ordinary update: cycle", -1, -1, "", 0.0, 0.1));
-  std::vector<std::string> base_texts;
-  for (const auto& c : est) base_texts.push_back(c.deck_text);
-  std::vector<DeckProblem> base;
-  Hypothesis param = engine.evaluate("parameter", base_texts, {}, &base);
-  if (engine.interrupted()) {
-    dg.interrupted = true;
-    dg.partial_reason = engine.last().stopped + " during the ordinary update (after " +
-                        std::to_string(engine.last().history.size()) + " cycle(s)): no extension tested";
   }
-  // Between the phases that stop with what they have: a report that is answered
-  // by Interrupted stops the diagnosis after this phase, with the update done.
-  auto between_phases = [&](const std::string& phase, double fraction) {
-    try {
-      report(options.progress, phase, fraction);
-    } catch (const Interrupted& ex) {
-      if (dg.interrupted) return;
-      dg.interrupted = true;
-      dg.partial_reason = std::string(ex.what()) + " after the ordinary update: no extension tested";
-    }
-  };
-  const UpdateResult base_res = engine.last();
-  engine.warm_start(param.names, base_res.r);
-  param.description = "the deck's own parameters re-estimated";
-  param.location.text = "deck parameters";
-  between_phases("evidence: what the updated model gets wrong", 0.1);
-  dg.evidence = gather_evidence(base.front(), base_res.r, [&] {
-    std::vector<UpdatePair> v;
-    for (const auto& p : base_res.history.back().pairs)
-      if (p.config == 0) v.push_back(p);
-    return v;
-  }());
 
-  // The nominal model (no estimate): likelihood at the prior mean, pairs of cycle 0.
-  between_phases("the deck as given: its likelihood", 0.1);
-  {
-    Hypothesis& h = dg.nominal;
+  /// Between the phases that stop with what they have: a report that is answered
+  /// by Interrupted stops the diagnosis after this phase, with the update done.
+  void between_phases(const std::string& phase, double fraction) {
+    try {
+      report(m_options.progress, phase, fraction);
+    } catch (const Interrupted& ex) {
+      if (m_dg.interrupted) return;
+      m_dg.interrupted = true;
+      m_dg.partial_reason = std::string(ex.what()) + " after the ordinary update: no extension tested";
+    }
+  }
+
+  /// 1. The ordinary update of the deck's own parameters ("parameter").
+  void ordinary_update() {
+    report(m_options.progress, "ordinary update of the deck's parameters", 0.0);
+    m_engine.set_update_progress(forward_cycles("ordinary update: cycle", -1, -1, "", 0.0, 0.1));
+    for (const auto& c : m_est) m_base_texts.push_back(c.deck_text);
+    m_param = m_engine.evaluate("parameter", m_base_texts, {}, &m_base);
+    if (m_engine.interrupted()) {
+      m_dg.interrupted = true;
+      m_dg.partial_reason = m_engine.last().stopped + " during the ordinary update (after " +
+                            std::to_string(m_engine.last().history.size()) + " cycle(s)): no extension tested";
+    }
+    m_base_res = m_engine.last();
+    m_engine.warm_start(m_param.names, m_base_res.r);
+    m_param.description = "the deck's own parameters re-estimated";
+    m_param.location.text = "deck parameters";
+  }
+
+  /// 1. The evidence: what the updated model gets wrong.
+  void gather() {
+    between_phases("evidence: what the updated model gets wrong", 0.1);
+    m_dg.evidence = gather_evidence(m_base.front(), m_base_res.r, [&] {
+      std::vector<UpdatePair> v;
+      for (const auto& p : m_base_res.history.back().pairs)
+        if (p.config == 0) v.push_back(p);
+      return v;
+    }());
+  }
+
+  /// The nominal model (no estimate): likelihood at the prior mean, pairs of cycle 0.
+  void nominal_likelihood() {
+    between_phases("the deck as given: its likelihood", 0.1);
+    Hypothesis& h = m_dg.nominal;
     h.kind = "none";
     h.description = "the deck as given";
-    h.names = param.names;
-    h.estimate = base.front().prior.mean;
+    h.names = m_param.names;
+    h.estimate = m_base.front().prior.mean;
     h.prior_mean = h.estimate;
-    h.before = h.after = param.before;
-    const bool shapes = options.problem.update.shape_derivatives;
+    h.before = h.after = m_param.before;
+    const bool shapes = m_options.problem.update.shape_derivatives;
     double ll = 0;
-    for (std::size_t k = 0; k < base.size(); ++k) {
-      const ModalSolution sol = base[k].model->solve(base[k].prior.mean);
-      std::vector<UpdatePair> pairs = pair_for_update(base[k].test, sol, options.problem.update);
-      ll += pair_loglik(base[k].test, sol, pairs, shapes);
+    for (std::size_t k = 0; k < m_base.size(); ++k) {
+      const ModalSolution sol = m_base[k].model->solve(m_base[k].prior.mean);
+      std::vector<UpdatePair> pairs = pair_for_update(m_base[k].test, sol, m_options.problem.update);
+      ll += pair_loglik(m_base[k].test, sol, pairs, shapes);
       std::set<int> paired;
       for (const auto& p : pairs) paired.insert(p.test);
-      for (std::size_t i = 0; i < base[k].test.size(); ++i)
-        if (!paired.count(static_cast<int>(i))) h.miss_penalty += miss_loglik(base[k].test[i], options.miss_frequency_pct, shapes);
+      for (std::size_t i = 0; i < m_base[k].test.size(); ++i)
+        if (!paired.count(static_cast<int>(i)))
+          h.miss_penalty += miss_loglik(m_base[k].test[i], m_options.miss_frequency_pct, shapes);
     }
     h.log_evidence = ll;
     h.score = ll + h.miss_penalty;
-    h.deck_text = base_texts.front();
+    h.deck_text = m_base_texts.front();
   }
-  dg.ranking.push_back(param);
 
-  // Phases 2 and 3 stop at an interruption; the decision is then made among the
-  // hypotheses tested so far. `stage` says where, for the partial reason.
-  std::string stage;
-  try {
-    if (dg.interrupted) throw Interrupted(dg.partial_reason);
-    // 2. Candidates and screening.
-    stage = "while listing the candidates";
-    ext::ExtensionOptions eo = options.extension;
-    eo.unexplained_hz.clear();
-    for (const auto& u : dg.evidence.unpaired_test) eo.unexplained_hz.push_back(u.frequency_hz);
-    const auto& measured_hz = est.front().measured.frequency_hz;
-    eo.lowest_test_hz = *std::min_element(measured_hz.begin(), measured_hz.end());
-    eo.highest_test_hz = *std::max_element(measured_hz.begin(), measured_hz.end());
-    if (!(eo.total_mass > 0)) eo.total_mass = ext::total_mass(*base.front().fe);
-    const translators::FeModel& nominal = *base.front().fe;
-    report(options.progress, "screening: sensitivities of the " + std::to_string(base_res.history.back().pairs.size()) +
-                                 " paired modes at the updated parameters",
+  /// 2. What the screening needs at the updated parameters: the weighted
+  /// residual and sensitivities, the analysis modes nearest the unexplained ones.
+  void prepare_screening() {
+    m_stage = "while listing the candidates";
+    m_eo = m_options.extension;
+    m_eo.unexplained_hz.clear();
+    for (const auto& u : m_dg.evidence.unpaired_test) m_eo.unexplained_hz.push_back(u.frequency_hz);
+    const auto& measured_hz = m_est.front().measured.frequency_hz;
+    m_eo.lowest_test_hz = *std::min_element(measured_hz.begin(), measured_hz.end());
+    m_eo.highest_test_hz = *std::max_element(measured_hz.begin(), measured_hz.end());
+    if (!(m_eo.total_mass > 0)) m_eo.total_mass = ext::total_mass(*m_base.front().fe);
+    report(m_options.progress, "screening: sensitivities of the " + std::to_string(m_base_res.history.back().pairs.size()) +
+                                   " paired modes at the updated parameters",
            0.1);
-    const Screen sc = prepare_screen(base.front(), base_res.r, base_res.history.back().pairs, options.problem);
-    const ModalSolution sol_star = base.front().model->solve(base_res.r);
-    eo.unexplained_neighbours = neighbours_of_unexplained(base.front(), sol_star, dg.evidence);
-    std::vector<std::unique_ptr<ext::ModelExtension>> kinds;
-    for (auto& kind : ext::standard_extensions(eo))
-      if (options.kinds.empty() || std::find(options.kinds.begin(), options.kinds.end(), kind->kind()) != options.kinds.end())
-        kinds.push_back(std::move(kind));
-    std::map<std::int64_t, double> grid_weight;
-    for (const auto& g : dg.evidence.grid_misfit) grid_weight[g.grid] += g.share;
-    for (const auto& u : dg.evidence.unpaired_test)
-      for (const auto& g : u.moves) grid_weight[g.grid] += g.share;
-    const auto a_size = nominal.reduction().a_to_g.size();
+    m_screen = prepare_screen(m_base.front(), m_base_res.r, m_base_res.history.back().pairs, m_options.problem);
+    m_sol_star = m_base.front().model->solve(m_base_res.r);
+    m_eo.unexplained_neighbours = neighbours_of_unexplained(m_base.front(), m_sol_star, m_dg.evidence);
+  }
 
-    // Every kind's candidates first, so that the screening is counted over all of them.
-    std::vector<std::vector<ext::Candidate>> cands(kinds.size());
-    for (std::size_t q = 0; q < kinds.size(); ++q) {
-      report(options.progress, "listing candidates", static_cast<long>(q), static_cast<long>(kinds.size()),
-             kinds[q]->kind(), 0.1);
+  /// 2. Every kind's candidates first, so that the screening is counted over all of them.
+  void list_candidates() {
+    const translators::FeModel& nominal = *m_base.front().fe;
+    for (auto& kind : ext::standard_extensions(m_eo))
+      if (m_options.kinds.empty() ||
+          std::find(m_options.kinds.begin(), m_options.kinds.end(), kind->kind()) != m_options.kinds.end())
+        m_kinds.push_back(std::move(kind));
+    m_cands.assign(m_kinds.size(), {});
+    for (std::size_t q = 0; q < m_kinds.size(); ++q) {
+      report(m_options.progress, "listing candidates", static_cast<long>(q), static_cast<long>(m_kinds.size()),
+             m_kinds[q]->kind(), 0.1);
       try {
-        cands[q] = kinds[q]->candidates(nominal);
+        m_cands[q] = m_kinds[q]->candidates(nominal);
       } catch (const formats::InputError& ex) {  // a deck this kind cannot extend (e.g. cards in an INCLUDE)
-        dg.notes.push_back(kinds[q]->kind() + ": no candidates (" + ex.what() + ")");
+        m_dg.notes.push_back(m_kinds[q]->kind() + ": no candidates (" + ex.what() + ")");
       }
     }
-    long total = 0, screened_so_far = 0;
-    for (std::size_t q = 0; q < kinds.size(); ++q) total += static_cast<long>(cands[q].size());
-    stage = "while screening the candidates";
+  }
 
-    struct Shortlisted { const ext::ModelExtension* kind; ext::Candidate cand; double screening; double look; };
-    std::vector<Shortlisted> shortlist;
-    for (std::size_t q = 0; q < kinds.size(); ++q) {
-      const auto& kind = kinds[q];
-      if (cands[q].empty()) continue;
+  /// 2. First-order screening of each candidate (kinds that add no DOF), the
+  /// others ranked by their priority or the misfit at their grids; the shortlist.
+  void screen() {
+    const translators::FeModel& nominal = *m_base.front().fe;
+    const Screen& sc = m_screen;
+    const ModalSolution& sol_star = m_sol_star;
+    std::map<std::int64_t, double> grid_weight;
+    for (const auto& g : m_dg.evidence.grid_misfit) grid_weight[g.grid] += g.share;
+    for (const auto& u : m_dg.evidence.unpaired_test)
+      for (const auto& g : u.moves) grid_weight[g.grid] += g.share;
+    const auto a_size = nominal.reduction().a_to_g.size();
+    long total = 0, screened_so_far = 0;
+    for (std::size_t q = 0; q < m_kinds.size(); ++q) total += static_cast<long>(m_cands[q].size());
+    m_stage = "while screening the candidates";
+
+    for (std::size_t q = 0; q < m_kinds.size(); ++q) {
+      const auto& kind = m_kinds[q];
+      if (m_cands[q].empty()) continue;
       std::set<std::string> places;
-      for (const auto& c : cands[q]) places.insert(c.location.text);
-      dg.searched[kind->kind()] = static_cast<int>(places.size());
+      for (const auto& c : m_cands[q]) places.insert(c.location.text);
+      m_dg.searched[kind->kind()] = static_cast<int>(places.size());
       const double look = std::log(static_cast<double>(places.size()));
       std::vector<std::pair<double, std::size_t>> scored;
       bool screened = false;
-      for (std::size_t i = 0; i < cands[q].size(); ++i, ++screened_so_far) {
-        report(options.progress, "screening candidates", screened_so_far, total, kind->kind(),
+      for (std::size_t i = 0; i < m_cands[q].size(); ++i, ++screened_so_far) {
+        report(m_options.progress, "screening candidates", screened_so_far, total, kind->kind(),
                0.1 + 0.05 * static_cast<double>(screened_so_far) / static_cast<double>(total));
-        auto deriv = kind->screening(nominal, cands[q][i]);
+        auto deriv = kind->screening(nominal, m_cands[q][i]);
         if (deriv) {
           screened = true;
           const double sd = deriv->prior_std.at(0);
-          scored.push_back({screen_score(sc, *base.front().model, sol_star.eigenvalues, base.front().sensors, deriv->dK[0],
-                                         deriv->dM[0], sd),
+          scored.push_back({screen_score(sc, *m_base.front().model, sol_star.eigenvalues, m_base.front().sensors,
+                                         deriv->dK[0], deriv->dM[0], sd),
                             i});
-        } else if (!std::isnan(cands[q][i].priority)) {
-          scored.push_back({cands[q][i].priority, i});
+        } else if (!std::isnan(m_cands[q][i].priority)) {
+          scored.push_back({m_cands[q][i].priority, i});
         } else {
           double w = 0;
-          for (auto g : cands[q][i].location.grids)
+          for (auto g : m_cands[q][i].location.grids)
             if (auto it = grid_weight.find(g); it != grid_weight.end()) w += it->second;
           scored.push_back({w, i});
         }
       }
       std::stable_sort(scored.begin(), scored.end(), [](const auto& a, const auto& b) { return a.first > b.first; });
-      std::size_t n = static_cast<std::size_t>(options.shortlist);
-      if (!screened && cands[q].size() <= static_cast<std::size_t>(options.exhaustive_limit) && a_size < 3000) n = cands[q].size();
-      else if (!screened) n = static_cast<std::size_t>(2 * options.shortlist);
+      std::size_t n = static_cast<std::size_t>(m_options.shortlist);
+      if (!screened && m_cands[q].size() <= static_cast<std::size_t>(m_options.exhaustive_limit) && a_size < 3000)
+        n = m_cands[q].size();
+      else if (!screened) n = static_cast<std::size_t>(2 * m_options.shortlist);
       // Kinds with several candidates per place (start values): keep all starts of the chosen places.
       for (std::size_t k = 0; k < std::min(n, scored.size()); ++k)
-        shortlist.push_back({kind.get(), cands[q][scored[k].second], screened ? scored[k].first : 0.0, look});
+        m_shortlist.push_back({kind.get(), m_cands[q][scored[k].second], screened ? scored[k].first : 0.0, look});
     }
-    report(options.progress, "screening candidates", total, total, "", 0.15);
+    report(m_options.progress, "screening candidates", total, total, "", 0.15);
+  }
 
-    // 3. Exact re-estimation of the shortlist.
-    const auto n_short = static_cast<long>(shortlist.size());
-    for (std::size_t k = 0; k < shortlist.size(); ++k) {
-      const auto& s = shortlist[k];
+  /// 3. Exact re-estimation of the shortlist.
+  void test_shortlist() {
+    const translators::FeModel& nominal = *m_base.front().fe;
+    const auto n_short = static_cast<long>(m_shortlist.size());
+    for (std::size_t k = 0; k < m_shortlist.size(); ++k) {
+      const auto& s = m_shortlist[k];
       const std::string item = s.kind->kind() + " at " + s.cand.location.text;
       const double f0 = 0.15 + 0.8 * static_cast<double>(k) / static_cast<double>(n_short),
                    f1 = 0.15 + 0.8 * static_cast<double>(k + 1) / static_cast<double>(n_short);
-      stage = "while testing candidates (" + std::to_string(k) + " of " + std::to_string(n_short) + " tested)";
-      report(options.progress, "testing candidates", static_cast<long>(k), n_short, item, f0);
-      engine.set_update_progress(forward_cycles("testing candidates", static_cast<long>(k), n_short, item, f0, f1));
+      m_stage = "while testing candidates (" + std::to_string(k) + " of " + std::to_string(n_short) + " tested)";
+      report(m_options.progress, "testing candidates", static_cast<long>(k), n_short, item, f0);
+      m_engine.set_update_progress(forward_cycles("testing candidates", static_cast<long>(k), n_short, item, f0, f1));
       try {
         std::vector<std::string> texts;
         std::vector<ext::NewParameter> added;
         std::string description;
-        for (const auto& c : est) {
+        for (const auto& c : m_est) {
           ext::ExtendedDeck xd = s.kind->apply(c.deck_text, c.name, nominal, s.cand);
           texts.push_back(xd.text);
           added = xd.parameters;
           description = xd.description;
         }
-        Hypothesis h = engine.evaluate(s.kind->kind(), texts, added);
-        if (engine.interrupted()) throw Interrupted(engine.last().stopped);  // half-estimated: not ranked
+        Hypothesis h = m_engine.evaluate(s.kind->kind(), texts, added);
+        if (m_engine.interrupted()) throw Interrupted(m_engine.last().stopped);  // half-estimated: not ranked
         h.location = s.cand.location;
         h.description = description;
         h.screening = s.screening;
         h.look_elsewhere = s.look;
         h.score -= h.look_elsewhere;
-        dg.ranking.push_back(std::move(h));
+        m_dg.ranking.push_back(std::move(h));
       } catch (const formats::InputError& ex) {  // the extended deck cannot be built or solved
-        dg.notes.push_back(item + ": not tested (" + ex.what() + ")");
+        m_dg.notes.push_back(item + ": not tested (" + ex.what() + ")");
       } catch (const formats::NumericalError& ex) {  // its estimate failed
-        dg.notes.push_back(item + ": not tested (" + ex.what() + ")");
+        m_dg.notes.push_back(item + ": not tested (" + ex.what() + ")");
       }
     }
-    if (n_short > 0) report(options.progress, "testing candidates", n_short, n_short, "", 0.95);
-  } catch (const Interrupted& ex) {
-    if (!dg.interrupted) {
-      dg.interrupted = true;
-      dg.partial_reason = std::string(ex.what()) + " " + stage;
-    }
-  }
-  // Same place tried from several starts: keep its best.
-  std::stable_sort(dg.ranking.begin(), dg.ranking.end(), [](const Hypothesis& a, const Hypothesis& b) { return a.score > b.score; });
-  {
-    std::set<std::string> seen;
-    std::vector<Hypothesis> unique;
-    for (auto& h : dg.ranking)
-      if (seen.insert(h.kind + "|" + h.location.text).second) unique.push_back(std::move(h));
-    dg.ranking = std::move(unique);
+    if (n_short > 0) report(m_options.progress, "testing candidates", n_short, n_short, "", 0.95);
   }
 
-  // 4. Decision.
-  int ip = -1, ie = -1;
-  for (std::size_t i = 0; i < dg.ranking.size(); ++i) {
-    if (dg.ranking[i].kind == "parameter" && ip < 0) ip = static_cast<int>(i);
-    if (dg.ranking[i].kind != "parameter" && ie < 0) ie = static_cast<int>(i);
+  /// Same place tried from several starts: keep its best.
+  void keep_best_per_place() {
+    std::stable_sort(m_dg.ranking.begin(), m_dg.ranking.end(),
+                     [](const Hypothesis& a, const Hypothesis& b) { return a.score > b.score; });
+    std::set<std::string> seen;
+    std::vector<Hypothesis> unique;
+    for (auto& h : m_dg.ranking)
+      if (seen.insert(h.kind + "|" + h.location.text).second) unique.push_back(std::move(h));
+    m_dg.ranking = std::move(unique);
   }
-  const Hypothesis& P = dg.ranking[static_cast<std::size_t>(ip)];
-  if (ie >= 0 && dg.ranking[static_cast<std::size_t>(ie)].score - P.score >= options.decision_margin) {
-    dg.cause = ie;
-    dg.margin = dg.ranking[static_cast<std::size_t>(ie)].score - P.score;
-  } else if (P.score - dg.nominal.score >= options.decision_margin) {
-    dg.cause = ip;
-    dg.margin = P.score - std::max(dg.nominal.score, ie >= 0 ? dg.ranking[static_cast<std::size_t>(ie)].score : -INFINITY);
-  } else {
-    dg.cause = -1;
-    dg.margin = dg.nominal.score - P.score;
-  }
-  const Hypothesis& C = dg.cause >= 0 ? dg.ranking[static_cast<std::size_t>(dg.cause)] : dg.nominal;
-  dg.cause_kind = C.kind;
-  if (C.kind == "none") {
-    dg.summary = "no change explains the test better than the deck as given (the update gains " +
-                 fixed(P.score - dg.nominal.score, 1) + " nats, below the " + fixed(options.decision_margin, 1) +
-                 "-nat margin)";
-  } else if (C.kind == "parameter") {
-    dg.summary = "the deck's parameters were wrong; no model-form extension beats the ordinary update (best: " +
-                 (ie >= 0 ? dg.ranking[static_cast<std::size_t>(ie)].kind + " at " +
-                                dg.ranking[static_cast<std::size_t>(ie)].location.text + ", " +
-                                fixed(dg.ranking[static_cast<std::size_t>(ie)].score - P.score, 1) + " nats"
-                          : std::string("none tested")) +
-                 ")";
-  } else {
-    std::string values;
-    const auto p0 = C.names.size() - C.added.size();
-    for (std::size_t j = 0; j < C.added.size(); ++j) {
-      values += (j ? ", " : "") + C.added[j].meaning + " = " + significant(C.estimate(static_cast<Eigen::Index>(p0 + j)), 5) +
-                " +- " + significant(C.posterior_std(static_cast<Eigen::Index>(p0 + j)), 2);
+
+  /// 4. Decision.
+  void decide() {
+    Diagnosis& dg = m_dg;
+    const DiagnosisOptions& options = m_options;
+    int ip = -1, ie = -1;
+    for (std::size_t i = 0; i < dg.ranking.size(); ++i) {
+      if (dg.ranking[i].kind == "parameter" && ip < 0) ip = static_cast<int>(i);
+      if (dg.ranking[i].kind != "parameter" && ie < 0) ie = static_cast<int>(i);
     }
-    dg.summary = C.kind + " at " + C.location.text + " (" + values + "), " + fixed(dg.margin, 1) +
-                 " nats above the ordinary update";
+    const Hypothesis& P = dg.ranking[static_cast<std::size_t>(ip)];
+    if (ie >= 0 && dg.ranking[static_cast<std::size_t>(ie)].score - P.score >= options.decision_margin) {
+      dg.cause = ie;
+      dg.margin = dg.ranking[static_cast<std::size_t>(ie)].score - P.score;
+    } else if (P.score - dg.nominal.score >= options.decision_margin) {
+      dg.cause = ip;
+      dg.margin = P.score - std::max(dg.nominal.score, ie >= 0 ? dg.ranking[static_cast<std::size_t>(ie)].score : -INFINITY);
+    } else {
+      dg.cause = -1;
+      dg.margin = dg.nominal.score - P.score;
+    }
+    const Hypothesis& C = dg.cause >= 0 ? dg.ranking[static_cast<std::size_t>(dg.cause)] : dg.nominal;
+    dg.cause_kind = C.kind;
+    if (C.kind == "none") {
+      dg.summary = "no change explains the test better than the deck as given (the update gains " +
+                   fixed(P.score - dg.nominal.score, 1) + " nats, below the " + fixed(options.decision_margin, 1) +
+                   "-nat margin)";
+    } else if (C.kind == "parameter") {
+      dg.summary = "the deck's parameters were wrong; no model-form extension beats the ordinary update (best: " +
+                   (ie >= 0 ? dg.ranking[static_cast<std::size_t>(ie)].kind + " at " +
+                                  dg.ranking[static_cast<std::size_t>(ie)].location.text + ", " +
+                                  fixed(dg.ranking[static_cast<std::size_t>(ie)].score - P.score, 1) + " nats"
+                            : std::string("none tested")) +
+                   ")";
+    } else {
+      std::string values;
+      const auto p0 = C.names.size() - C.added.size();
+      for (std::size_t j = 0; j < C.added.size(); ++j) {
+        values += (j ? ", " : "") + C.added[j].meaning + " = " +
+                  significant(C.estimate(static_cast<Eigen::Index>(p0 + j)), 5) + " +- " +
+                  significant(C.posterior_std(static_cast<Eigen::Index>(p0 + j)), 2);
+      }
+      dg.summary = C.kind + " at " + C.location.text + " (" + values + "), " + fixed(dg.margin, 1) +
+                   " nats above the ordinary update";
+    }
+    dg.updated_deck = deck_at(C.deck_text, m_est.front().name, C.estimate);
   }
-  dg.updated_deck = deck_at(C.deck_text, est.front().name, C.estimate);
-  if (!dg.interrupted) report(options.progress, "done", 1.0);
-  return dg;
+};
+
+}  // namespace
+
+Diagnosis diagnose(const std::vector<ConfigurationInput>& configurations, const DiagnosisOptions& options) {
+  return Diagnoser(configurations, options).run();
 }
 
 }  // namespace ssid::estimator::diagnosis
