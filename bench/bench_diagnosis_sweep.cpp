@@ -776,7 +776,7 @@ std::string report_text(const std::vector<json>& rows, const std::string& comman
   std::snprintf(line, sizeof line, "**False alarms** (null cases: parameter errors only, 1–3 DESVARs within ±15 %%): %d of %d = %.1f %%, "
                 "95 %% interval %.1f–%.1f %% (Clopper–Pearson). Target ≤ 1 %%: **%s**.",
                 alarms, nulls, nulls ? 100.0 * alarms / nulls : 0.0, 100 * lo, 100 * hi,
-                nulls == 0 ? "not measured" : (hi <= 0.01 ? "met" : (100.0 * alarms / nulls <= 1.0 ? "not shown (interval above 1 %)" : "failed")));
+                nulls == 0 ? "not measured" : (hi <= 0.01 ? "met" : (100.0 * alarms / nulls <= 1.0 ? "not shown (too few cases: the interval reaches above 1 %)" : "failed")));
   t << line;
   if (!alarm_kinds.empty()) {
     t << " Named instead:";
@@ -877,7 +877,7 @@ std::string report_text(const std::vector<json>& rows, const std::string& comman
   if (two) {
     t << "**Two effects at once** (" << two << " cases): one of the two named with the right kind in " << pct(two_any_kind, two)
       << ", with the right kind and location in " << pct(two_one, two)
-      << "; both named: 0 (today's `diagnose` names one cause).\n\n";
+      << " (the sweep reads the JSON's one `cause`: whether both were named is not measured).\n\n";
     t << "| structure | effects | sizes [σ; new modes] | named | right |\n|---|---|---|---|---|\n";
     for (const auto& r : ok)
       if (r["truth_kind"] == "two") {
@@ -891,15 +891,17 @@ std::string report_text(const std::vector<json>& rows, const std::string& comman
     t << "\n";
   }
 
-  // Fit before/after where a cause was named in a null case: did the named cause fit better?
+  // A cause that fits worse than the ordinary update must never be named (issue 26).
   int worse = 0, named_causes = 0;
   for (const auto& r : ok) {
     const std::string k = r["named"]["kind"];
     if (k == "parameter" || k == "none" || !r["fit"]["update"].is_object() || !r["fit"]["cause"].is_object()) continue;
     ++named_causes;
-    worse += r["fit"]["cause"].value("freq_rms_pct", 0.0) > r["fit"]["update"].value("freq_rms_pct", 0.0);
+    const json &c = r["fit"]["cause"], &u = r["fit"]["update"];
+    worse += c.value("freq_rms_pct", 0.0) > u.value("freq_rms_pct", 0.0) && c.value("paired", 0) <= u.value("paired", 0);
   }
-  t << "Named causes whose frequency RMS error is larger than the ordinary update's: " << worse << " of " << named_causes << ".\n";
+  t << "Named causes that fit worse than the ordinary update (a larger frequency RMS error with no more modes paired): "
+    << worse << " of " << named_causes << ".\n";
   return t.str();
 }
 
