@@ -8,9 +8,6 @@
 #include <algorithm>
 #include <array>
 #include <map>
-#include <cmath>
-#include <unordered_set>
-#include <functional>
 #include <unordered_map>
 
 namespace ssid::formats {

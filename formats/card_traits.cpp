@@ -14,7 +14,6 @@
 #include <algorithm>
 #include <cmath>
 #include <unordered_map>
-#include <unordered_set>
 #include <utility>
 
 #include "formats/bulk_model.hpp"
@@ -370,6 +369,8 @@ std::vector<CardTraits> make_table() {
   // Why SOL 103 (and the real-modes step of NASTRAN's modal solutions) runs
   // decks holding the ignored cards below without their changing K or M.
   const char* loads = "loads, enforced motion, temperatures";
+  // Extra points and transfer functions too: TF enters only the direct
+  // dynamic-response matrices, selected by TFL.
   const char* dynamic = "dynamic response (frequency, transient, random)";
   const char* optimisation = "optimisation";
   // The structure's modes come first; aerodynamic boxes, splines and flutter or
@@ -572,7 +573,6 @@ std::vector<CardTraits> make_table() {
       ignored("CORD1S", other, S::CoordinateSystem),
       verbatim("CORD3G", S::CoordinateSystem, E::StiffnessAndMass),
       verbatim("CORD3R", S::CoordinateSystem, E::StiffnessAndMass),
-      // TF enters only the direct dynamic-response matrices, selected by TFL.
       ignored("EPOINT", dynamic, S::GridPoint),
       ignored("DVPREL2", optimisation, S::Dvprel),
       ignored("DVMREL2", optimisation, S::Dvmrel),

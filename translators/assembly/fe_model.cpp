@@ -1,4 +1,5 @@
 #include "translators/assembly/fe_model.hpp"
+#include "formats/card_traits.hpp"
 #include "formats/text_util.hpp"
 
 #include <algorithm>
@@ -15,40 +16,13 @@ using formats::BulkModel;
 using formats::Deck;
 using formats::detail::upper;
 
-/// Cards that cannot change K or M in a real-eigenvalue analysis: ignored, with a
-/// note. NASTRAN's SOL 103 (and the real-modes step of its modal solutions) runs
-/// decks that hold them: loads, temperatures, dynamic-response and optimisation
-/// data, aeroelastic models (the structure's modes come first; the aerodynamic
-/// boxes, splines and flutter or trim requests act only in SOL 144-146), extra
-/// points and transfer functions (TF enters only the direct dynamic-response
-/// matrices, selected by TFL), plot elements and output requests.
-const std::set<std::string>& no_effect_cards() {
-  static const std::set<std::string> s = {
-      // loads, enforced motion, temperatures
-      "FORCE", "FORCE1", "FORCE2", "MOMENT", "MOMENT1", "MOMENT2", "LOAD", "PLOAD", "PLOAD1", "PLOAD2", "PLOAD4",
-      "GRAV", "RFORCE", "TEMP", "TEMPD", "TEMPP1", "SPCD",
-      // dynamic response (frequency, transient, random)
-      "DAREA", "DLOAD", "RLOAD1", "RLOAD2", "TLOAD1", "TLOAD2", "DPHASE", "DELAY", "FREQ", "FREQ1", "FREQ2", "FREQ3",
-      "FREQ4", "FREQ5", "TSTEP", "TABLED1", "TABLED2", "TABLED3", "TABLED4", "TABDMP1", "RANDPS", "TABRND1",
-      "EPOINT", "TF", "NOLIN1", "NOLIN2", "NOLIN3", "NOLIN4",
-      // optimisation
-      "DRESP1", "DRESP2", "DCONSTR", "DOPTPRM", "DEQATN", "DTABLE", "DVPREL2", "DVMREL2", "DLINK", "DCONADD",
-      // aeroelasticity (SOL 144-146)
-      "AERO", "AEROS", "CAERO1", "CAERO2", "CAERO3", "CAERO4", "CAERO5", "PAERO1", "PAERO2", "PAERO3", "PAERO4",
-      "PAERO5", "SPLINE1", "SPLINE2", "SPLINE3", "SPLINE4", "SPLINE5", "SPLINE6", "SPLINE7", "SET1", "SET2",
-      "AEFACT", "AELINK", "AELIST", "AEPARM", "AESTAT", "AESURF", "AESURFS", "AECOMP", "AECOMPL", "AEDW", "AEFORCE",
-      "AEPRESS", "CSSCHD", "DIVERG", "FLFACT", "FLUTTER", "GUST", "MKAERO1", "MKAERO2", "TRIM", "UXVEC", "MONPNT1",
-      "MONPNT2", "MONPNT3", "MONDSP1",
-      // other solutions' data, output and bookkeeping
-      "ENDDATA", "EIGB", "EIGC", "SUPORT", "SUPORT1", "CVISC", "PVISC", "CDAMP1", "CDAMP2", "CDAMP3", "CDAMP4",
-      "CDAMP5", "PDAMP", "PDAMP5", "NLPARM",
-      // direct matrix input by DMI (read by DMAP and the aerodynamics; K2GG and
-      // M2GG select DMIG, which ssid assembles)
-      "DMI", "DMIJ", "DMIJI", "DMIK",
-      "TABLES1", "MATS1", "CORD1R", "CORD1C", "CORD1S", "DMIG", "DTI", "USET", "USET1", "SEQGP", "PLOTEL", "CONM1X"};
-  return s;
+/// Cards kept verbatim that cannot change K or M in a real-eigenvalue analysis
+/// (Effect::IgnoredInSol103 in formats/card_traits.cpp, which says why for each):
+/// ignored, with a note. NASTRAN's SOL 103 runs decks that hold them.
+bool ignored_in_sol103(const std::string& name) {
+  const formats::CardTraits* traits = formats::find_card_traits(name);
+  return traits && traits->effect == formats::Effect::IgnoredInSol103;
 }
-
 
 /// `NAME = n` in case control (global, or the first subcase), e.g. SPC, MPC, METHOD;
 /// `where` receives the statement's place.
@@ -85,7 +59,7 @@ std::optional<std::int64_t> case_control(const Deck& deck, const std::string& na
   return global ? global : first_subcase;
 }
 
-/// CORD1x are ignored above only if no grid refers to them; geometry would fail otherwise.
+/// True when the deck has a case control section (selections then come from it).
 bool has_case_control(const Deck& deck) {
   for (const auto& st : deck.statements)
     if (st.section == formats::Section::CaseControl) return true;
@@ -132,7 +106,7 @@ FeModel::FeModel(const Deck& deck, BulkModel model, AssemblyOptions options) : m
 /// Cards we do not assemble: harmless ones are noted, the others refused, at the first of them.
 void FeModel::refuse_unassembled_cards(const Deck& deck) {
   for (const auto& [name, count] : m_model.unsupported) {
-    if (no_effect_cards().count(name)) {
+    if (ignored_in_sol103(name)) {
       m_notes.push_back(std::to_string(count) + " " + name + " card" + (count > 1 ? "s" : "") +
                         " ignored: no effect on K or M");
       continue;

@@ -2,6 +2,7 @@
 #include <cctype>
 #include <stdexcept>
 
+#include "formats/card_traits.hpp"
 #include "formats/deck_writer.hpp"
 #include "formats/parse_error.hpp"
 #include "estimator/diagnosis/hypotheses/model_extension.hpp"
@@ -22,29 +23,32 @@ DeckEditor::DeckEditor(const std::string& text, const std::string& name)
     : m_deck(std::make_unique<formats::Deck>(formats::read_deck_text(text, name))) {
   m_bulk = formats::parse_bulk(*m_deck);
   formats::resolve(*m_deck, m_bulk);
-  const auto& b = m_bulk;
-  std::int64_t g = 0, e = 0, p = 0, d = 0, r = 0;
-  for (const auto& x : b.grids) g = std::max(g, x.id);
-  for (const auto& x : b.spoints)
-    for (auto id : x.ids) g = std::max(g, id);
-  for (auto id : b.implied_spoints) g = std::max(g, id);
-  auto elements = [&](const auto& v) { for (const auto& x : v) e = std::max(e, x.eid); };
-  elements(b.crods); elements(b.conrods); elements(b.cbars); elements(b.cbeams); elements(b.conm2s);
-  elements(b.cmass1s); elements(b.cmass2s); elements(b.celas1s); elements(b.celas2s); elements(b.cbushes);
-  elements(b.rbars); elements(b.rbe2s); elements(b.rbe3s);
-  auto props = [&](const auto& v) { for (const auto& x : v) p = std::max(p, x.pid); };
-  props(b.prods); props(b.pbars); props(b.pbarls); props(b.pbeams); props(b.pbeamls); props(b.pelases);
-  props(b.pmasses); props(b.pbushes);
-  for (const auto& x : b.desvars) d = std::max(d, x.id);
-  for (const auto& x : b.dvprel1s) r = std::max(r, x.id);
-  for (const auto& x : b.dvmrel1s) r = std::max(r, x.id);
+  // The largest id of each kind, over the id spaces of the card traits: every
+  // element family shares one counter (generated ids stay unique across them).
+  std::int64_t g = 0, e = 0, p = 0, d = 0, r = 0, c = 0;
+  for (const formats::CardTraits& t : formats::card_traits()) {
+    if (!t.each_id) continue;
+    std::int64_t* counter = nullptr;
+    switch (t.space) {
+      case formats::IdSpace::GridPoint: counter = &g; break;
+      case formats::IdSpace::Element:
+      case formats::IdSpace::MassElement:
+      case formats::IdSpace::RigidElement: counter = &e; break;
+      case formats::IdSpace::Property: counter = &p; break;
+      case formats::IdSpace::Desvar: counter = &d; break;
+      case formats::IdSpace::Dvprel:
+      case formats::IdSpace::Dvmrel: counter = &r; break;
+      case formats::IdSpace::CoordinateSystem: counter = &c; break;
+      default: break;
+    }
+    if (counter) t.each_id(m_bulk, [counter](std::int64_t id, std::size_t) { *counter = std::max(*counter, id); });
+  }
+  for (auto id : m_bulk.implied_spoints) g = std::max(g, id);
   m_next_grid = fresh(g);
   m_next_element = fresh(e);
   m_next_property = fresh(p);
   m_next_desvar = fresh(d);
   m_next_relation = fresh(r);
-  std::int64_t c = 0;
-  for (const auto& x : b.cord2s) c = std::max(c, x.cid);
   m_next_coord = fresh(c);
 }
 
