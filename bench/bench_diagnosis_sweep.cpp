@@ -782,7 +782,19 @@ std::string report_text(const std::vector<json>& rows, const std::string& comman
     t << " Named instead:";
     for (const auto& [k, n] : alarm_kinds) t << " " << k << " " << n << ";";
   }
-  t << "\n\n";
+  t << "\n\n| null cases | every ball | sparse sensors |\n|---|---|---|\n";
+  for (const std::string s : {"rod", "frame", "beam"}) {
+    int n[2] = {0, 0}, k[2] = {0, 0};
+    for (const auto& r : ok)
+      if (r["truth_kind"] == "null" && r["structure"] == s) {
+        const int j = r["sensors"] == "all" ? 0 : 1;
+        ++n[j];
+        const std::string named = r["named"]["kind"];
+        k[j] += named != "parameter" && named != "none";
+      }
+    if (n[0] + n[1]) t << "| " << s << ": false alarms | " << pct(k[0], n[0]) << " | " << pct(k[1], n[1]) << " |\n";
+  }
+  t << "\n";
 
   // Confusion matrix of kinds.
   const std::vector<std::string> truths = {"null", "local_stiffness", "missing_mass", "support_dynamics", "local_modes",
