@@ -1,9 +1,10 @@
 #pragma once
 /// \file column_tiles.hpp
 /// Register tiles for the row-major block kernels (block_ops.cpp): a row of b
-/// values is covered by tiles of fixed width (four, two or one 64-byte vectors,
-/// then 32 and 16 bytes, then single values), and each tile's sum over the stored
-/// entries of a sparse row is kept in vector registers until it is written once.
+/// values is covered by tiles of fixed width (KMax vectors of the instruction
+/// set's width, one shorter tile, then half and quarter vectors, then single
+/// values: for_tiles), and each tile's sum over the stored entries of a sparse row
+/// is kept in vector registers until it is written once.
 ///
 /// Why: written as `y_i[c] += a · x_j[c]` over a runtime b, the compiler loads and
 /// stores y_i for every stored entry, a chain through memory; the kernels ran at
@@ -11,7 +12,7 @@
 /// bench_kernels). With fixed-width tiles the sums stay in registers and only x_j
 /// is read per entry. GCC's generic vectors (vector_size) are lowered to whatever
 /// the target has: SSE2 by default, AVX2 or AVX-512 in the kernels built for those
-/// (target_clones in block_ops.cpp).
+/// (one version per KernelIsa in block_ops.cpp, each with its own tile sizes).
 ///
 /// Internal to estimator/eigen/multilevel; every function here is always inlined, so it
 /// is compiled once per target of the kernel that uses it.
