@@ -8,11 +8,17 @@
 /// as MatrixMarket (lower triangle, "symmetric") and the shift, for
 /// bench/eigs_scipy.py and bench/eigs_slepc.py.
 ///
-/// usage: bench_eigen N [--nd ND] [--block B] [--ncv NCV] [--tol TOL] [--sturm] [--method auto|spectra|block]
+/// usage: bench_eigen N [--nd ND] [--block B] [--ncv NCV] [--tol TOL] [--sturm] [--method auto|direct|spectra|block]
 ///                      [--dof-ordering] [--export DIR] [--export-only]
 ///                      [--method multilevel [--radius R] [--psteps S] [--degree D] [--ratio R] [--guard G] [--start-smoothing K] [--derived-gram-bound B] [--lock-cluster-gap G] [--ml-tol T] [--no-deflate] [--no-strain] [--double-coarse]] [--compare] [--system-malloc]
 ///                      [--factor-only] [--analyze-only]
 ///   N = 12 → 10 368 DOF, 25 → 93 750 DOF, 55 → 998 250 DOF.
+///   --method auto (the default) gives the solver the rigid-body modes and strain
+///   fields, so that EigenMethod::Auto chooses between the direct and the
+///   multilevel method by predicted cost (the choice and its reason are printed);
+///   --method direct: Auto without them, the direct method (block Lanczos from
+///   50 000 DOF). SSID_KERNEL_ISA=generic|avx2|avx512 picks the multilevel
+///   kernels' version (block_ops.hpp; the one used is printed).
 ///   By default the ordering is computed on the grid-point graph (EigenOptions::
 ///   dof_groups = node of each DOF); --dof-ordering leaves it to CHOLMOD on the
 ///   DOF graph. --factor-only: analyse and factor K − σM and time one block solve
@@ -38,6 +44,7 @@
 #include "bench/lattice.hpp"
 #include "estimator/linalg/allocation_policy.hpp"
 #include "estimator/eigen/eigen_solver.hpp"
+#include "estimator/eigen/multilevel/block_ops.hpp"
 
 namespace {
 
@@ -106,11 +113,18 @@ int main(int argc, char** argv) {
                  "                   [--export DIR] [--export-only] [--factor-only] [--analyze-only]\n");
     return 2;
   }
+  try {
+    multilevel::apply_kernel_isa_environment();
+  } catch (const std::exception& e) {
+    std::fprintf(stderr, "bench_eigen: SSID_KERNEL_ISA: %s\n", e.what());
+    return 2;
+  }
   const int n = std::stoi(argv[1]);
   int nd = 41, ncv = 0, block = EigenOptions{}.block;
   EigenMethod method = EigenMethod::Auto;
   double tol = 1e-10;
   ssid::estimator::multilevel::MultilevelOptions ml;
+  bool direct = false;  // --method direct: Auto without the multilevel method (no rigid-body modes given)
   bool compare = false, no_deflate = false, keep_freed = true, no_strain = false;
   bool sturm = false, dof_ordering = false, export_only = false, factor_only = false, analyze_only = false;
   std::string export_dir;
@@ -127,6 +141,7 @@ int main(int argc, char** argv) {
                : m == "block"      ? EigenMethod::BlockLanczos
                : m == "multilevel" ? EigenMethod::Multilevel
                                    : EigenMethod::Auto;
+      direct = m == "direct";
     }
     else if (!std::strcmp(argv[i], "--radius") && i + 1 < argc) ml.amg.aggregate_radius = std::stoi(argv[++i]);
     else if (!std::strcmp(argv[i], "--system-malloc")) keep_freed = false;
@@ -219,17 +234,20 @@ int main(int argc, char** argv) {
   o.dof_groups = groups;
   o.multilevel = ml;
   o.multilevel.deflate = !no_deflate;
-  if (method == EigenMethod::Multilevel || method == EigenMethod::Auto) {
+  if (method == EigenMethod::Multilevel || (method == EigenMethod::Auto && !direct)) {
     o.near_null_space = rigid_body_modes(m);
     if (!no_strain) o.strain_fields = strain_fields(m);
-  }
-  if (method == EigenMethod::Multilevel) {
     const double t_start = now_s();
     o.progress = [t_start](const ssid::estimator::ProgressEvent& e) {
       std::fprintf(stderr, "  %7.1f s  %s\n", now_s() - t_start, e.text().c_str());
     };
-    EigenResult r;
-    const auto tsolve = timed([&] { r = EigenSolver(o).solve(m.K, m.M); });
+  }
+  std::printf("kernels: %s\n", ssid::estimator::multilevel::kernel_isa_name(ssid::estimator::multilevel::kernel_isa()));
+  EigenSolver solver(o);
+  EigenResult r;
+  const auto tsolve = timed([&] { r = solver.solve(m.K, m.M); });
+  std::printf("method choice: %s\n", r.method_reason.c_str());
+  if (r.method == "Multilevel") {
     std::printf("method Multilevel: %s; coarse %ld DOF, LOBPCG iterations %ld, preconditioned columns %ld\n",
                 r.ok() ? "converged" : r.message.c_str(), r.coarse_size, r.iterations, r.solves);
     std::printf("time: total %.3f s wall (%.3f s CPU) = setup %.3f + coarse modes and LOBPCG %.3f + checks %.3f\n",
@@ -258,9 +276,6 @@ int main(int argc, char** argv) {
     }
     return r.ok() ? 0 : 1;
   }
-  EigenSolver solver(o);
-  EigenResult r;
-  const auto tsolve = timed([&] { r = solver.solve(m.K, m.M); });
   if (!r.ok()) {
     std::printf("solve failed: %s\n", r.message.c_str());
     return 1;

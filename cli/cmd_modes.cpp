@@ -64,7 +64,8 @@ int cmd_modes(const Args& args) {
       "weight", po::value<std::int64_t>()->implicit_value(0),
       "print the grid point weight generator output about this grid (0: the origin; default: PARAM GRDPNT)")(
       "method", po::value<std::string>()->default_value("auto"),
-      "eigen-solver: auto (Lanczos over a Cholesky factor; multilevel when the factor would not fit in memory), "
+      "eigen-solver: auto (Lanczos over a Cholesky factor, or multilevel where that factor would not fit in memory "
+      "or is predicted slower; the choice and its reason on stderr), "
       "lanczos, block-lanczos, or multilevel (LOBPCG with an aggregation multigrid preconditioner: no factor, "
       "for the largest models; lowest N modes only)")(
       "uff-precision", po::value<std::string>()->default_value("extended"),
@@ -124,6 +125,10 @@ int cmd_modes(const Args& args) {
   eo.progress = lines.callback();
   const estimator::EigenResult r = solve_model(op, eo, a_set_dofs(model));
   for (const auto& w : r.warnings) std::cerr << "warning: " << w << "\n";
+  // Auto's choice between the direct and the multilevel method, and why (by
+  // predicted cost: estimator/eigen/method_choice.hpp).
+  if (eo.method == estimator::EigenMethod::Auto && !r.method_reason.empty() && !vm.count("quiet"))
+    std::cerr << "ssid modes: eigen-solver " << r.method_reason << "\n";
 
   nlohmann::json j;
   j["dof"] = n;

@@ -7,6 +7,7 @@
 
 #include "cli/cli_util.hpp"
 #include "cli/exit_codes.hpp"
+#include "estimator/eigen/multilevel/block_ops.hpp"
 #include "estimator/linalg/allocation_policy.hpp"
 #include "estimator/reporting/progress.hpp"
 #include "formats/parse_error.hpp"
@@ -47,7 +48,9 @@ void print_usage(std::ostream& o) {
   o << "\nenvironment:\n"
        "  SSID_HUGE_PAGE_HEAP=0  do not restart ssid with glibc's heap in transparent huge pages\n"
        "                         (it restarts once, with GLIBC_TUNABLES=glibc.malloc.hugetlb=1, unless\n"
-       "                         GLIBC_TUNABLES is already set: faster page faults on large models)\n";
+       "                         GLIBC_TUNABLES is already set: faster page faults on large models)\n"
+       "  SSID_KERNEL_ISA=NAME   run the multilevel eigen-solver's own kernels in the version for\n"
+       "                         generic, avx2 or avx512 (default: the widest this CPU supports)\n";
 }
 }  // namespace
 
@@ -70,6 +73,12 @@ int main(int argc, char** argv) {
   }
   // One job per process: freed blocks stay in the heap (allocation_policy.hpp).
   ssid::estimator::keep_freed_memory();
+  try {
+    ssid::estimator::multilevel::apply_kernel_isa_environment();
+  } catch (const ssid::formats::InputError& e) {
+    ssid::cli::print_error(std::string("SSID_KERNEL_ISA: ") + e.what());
+    return ssid::cli::kExitBadInput;
+  }
   ssid::cli::Args args(argv + 2, argv + argc);
   for (const auto& c : ssid::cli::commands()) {
     if (name != c.name) continue;

@@ -1,6 +1,7 @@
 #include "estimator/eigen/eigen_solver.hpp"
 
 #include "estimator/eigen/block_lanczos.hpp"
+#include "estimator/eigen/method_choice.hpp"
 #include "estimator/eigen/multilevel/block_ops.hpp"
 #include "formats/parse_error.hpp"
 
@@ -377,13 +378,40 @@ FactorStatus factor_shifted(CholmodFactor& factor, const SparseMatrix& K, const 
   const SparseMatrix A = SparseMatrix(K.triangularView<Eigen::Lower>()) - sigma * SparseMatrix(M.triangularView<Eigen::Lower>());
   const FactorStatus fs = factor.factorize(A, o.near_singular_rcond);
   res.factor_seconds = seconds_since(tf);
-  res.analyses = factor.analysis_count() - analyses_before;
-  res.analyze_seconds = res.analyses ? factor.last_analyze_seconds() : 0.0;
+  if (const int analyses = factor.analysis_count() - analyses_before; analyses > 0) {
+    res.analyses += analyses;
+    res.analyze_seconds = factor.last_analyze_seconds();
+  }
   res.factor_nnz = factor.factor_nnz();
   res.factor_flops = factor.factor_flops();
   res.factor_bytes = factor.factor_bytes();
   res.ordering = factor.ordering();
   return fs;
+}
+
+/// EigenMethod::Auto with both methods possible: the symbolic analysis of K − σM
+/// (kept for the factorisation that follows when the direct method wins), then
+/// the choice by predicted cost (method_choice.hpp), its reason in the result.
+/// True: the multilevel method.
+bool choose_by_cost(CholmodFactor& factor, const SparseMatrix& K, const SparseMatrix& M, double sigma,
+                    const EigenOptions& o, EigenResult& res) {
+  report(o.progress, "analysing K - sigma M (method choice)", 0.0);
+  const SparseMatrix A = SparseMatrix(K.triangularView<Eigen::Lower>()) - sigma * SparseMatrix(M.triangularView<Eigen::Lower>());
+  factor.analyze(A);
+  res.analyses = 1;
+  res.analyze_seconds = factor.last_analyze_seconds();
+  res.factor_nnz = factor.factor_nnz();
+  res.factor_flops = factor.factor_flops();
+  res.factor_bytes = factor.factor_bytes();
+  res.ordering = factor.ordering();
+  const MethodChoice c =
+      choose_method(K.rows(), o.nd, {res.factor_flops, res.factor_nnz, res.factor_bytes}, factor.memory_limit());
+  res.method_reason = c.reason;
+  if (!c.factor_fits)
+    res.warnings.push_back("the factor of K - sigma M would take " + std::to_string(res.factor_bytes / 1073741824.0) +
+                           " GiB (limit " + std::to_string(factor.memory_limit() / 1073741824.0) +
+                           " GiB): solved by the multilevel method instead");
+  return c.multilevel;
 }
 
 /// A failed factorisation as the result's status and a message saying what it means.
@@ -534,19 +562,20 @@ EigenResult EigenSolver::solve(const SparseMatrix& K, const SparseMatrix& M) {
       throw std::invalid_argument(
           "EigenSolver: the multilevel method needs dof_groups, near_null_space (the rigid-body modes) and ND, "
           "without a frequency band (V1/V2, F1/F2)");
+    res.method_reason = "requested";
     solve_multilevel(K, M, sigma, o, mass, n_massive, t0, res);
     return res;
   }
 
-  report(o.progress, "factorising K - sigma M", 0.0);
-  const FactorStatus fs = factor_shifted(m_factor, K, M, sigma, o, res);
-  if (fs.code == FactorStatus::Code::TooLarge && o.method == EigenMethod::Auto && multilevel_possible) {
-    res.warnings.push_back("the factor of K - sigma M would take " + std::to_string(res.factor_bytes / 1073741824.0) +
-                           " GiB (limit " + std::to_string(m_factor.memory_limit() / 1073741824.0) +
-                           " GiB): solved by the multilevel method instead");
+  if (o.method != EigenMethod::Auto) res.method_reason = "requested";
+  else if (!multilevel_possible)
+    res.method_reason = "direct: no multilevel method without ND, dof_groups and near_null_space, or with a band";
+  else if (choose_by_cost(m_factor, K, M, sigma, o, res)) {
     solve_multilevel(K, M, sigma, o, mass, n_massive, t0, res);
     return res;
   }
+  report(o.progress, "factorising K - sigma M", 0.0);
+  const FactorStatus fs = factor_shifted(m_factor, K, M, sigma, o, res);
   if (!fs.ok()) {
     record_factor_failure(fs, sigma, res);
     res.total_seconds = seconds_since(t0);

@@ -64,7 +64,8 @@ enum class EigenMethod {
   BlockLanczos,  ///< block Lanczos (block_lanczos.hpp): b solves per factor pass
   /// LOBPCG with a smoothed-aggregation preconditioner (multilevel/multilevel_eigen.hpp):
   /// no factor of the full model; needs dof_groups and near_null_space, lowest ND only.
-  /// Auto takes it when the factor would exceed max_factor_bytes and both are given.
+  /// Auto takes it, when both are given, where the factor would exceed
+  /// max_factor_bytes or the method is predicted faster (method_choice.hpp).
   Multilevel
 };
 
@@ -156,6 +157,10 @@ struct EigenResult {
   double shift = 0.0;
   int nev = 0, ncv = 0, lanczos_runs = 0;
   std::string method;    ///< "Spectra", "BlockLanczos" or "Multilevel"
+  /// Why that method: EigenMethod::Auto's choice by predicted cost and the figures
+  /// it was made by (method_choice.hpp), "requested" when the options named the
+  /// method, or "direct: no multilevel method without ..." when Auto had no choice.
+  std::string method_reason;
   long iterations = 0;   ///< Spectra restarts, block Lanczos block solves or LOBPCG iterations, summed over runs
   long coarse_size = 0;  ///< Multilevel: DOFs of the coarse model
   int deflated = 0;      ///< Multilevel: exact zero-energy modes taken from near_null_space first

@@ -1,11 +1,14 @@
 #include "estimator/eigen/multilevel/block_ops.hpp"
 
 #include "estimator/eigen/multilevel/column_tiles.hpp"
+#include "formats/parse_error.hpp"
 
 #include <sys/mman.h>
 
 #include <algorithm>
+#include <atomic>
 #include <cstdint>
+#include <cstdlib>
 #include <stdexcept>
 #include <thread>
 #include <vector>
@@ -69,9 +72,47 @@ struct RowsArgs {
   Into into;
 };
 
+template <class T>
+struct JacobiArgs;
+struct DenseArgs;
+struct GramArgs;
+
+/// One instruction set's versions of the kernels below (see KernelIsa).
+struct KernelTable {
+  void (*rows_float)(const RowsArgs<float>&, long, long);
+  void (*rows_double)(const RowsArgs<double>&, long, long);
+  void (*scatter_float)(const RowsArgs<float>&, long, long, float*);
+  void (*scatter_double)(const RowsArgs<double>&, long, long, double*);
+  void (*jacobi_float)(const JacobiArgs<float>&, long, long);
+  void (*jacobi_double)(const JacobiArgs<double>&, long, long);
+  void (*dense_double)(const DenseArgs&, long, long);
+  void (*gram_double)(const GramArgs&, long, long, double*, double*);
+};
+/// The table of the kernel instruction set in use (kernel_isa()).
+const KernelTable& kernels();
+
+// The register blocking of each instruction set's kernels: vb, the vector width in
+// bytes; *_k, the vectors of sums one tile keeps in registers per row; *_r, the rows
+// a dense kernel handles at once (its sums: r x k vectors, plus k vectors of the
+// other operand and one broadcast value, all within the register file).
+// AVX-512 (32 registers of 64 bytes): the blocking the kernels were tuned with,
+// 4 x 4 = 16 sums. AVX2 (16 of 32 bytes) and SSE2 (16 of 16): 4 x 3 = 12 sums + 3
+// + 1 = 16 registers; the same 4 x 4 there spilled sums to the stack on every
+// product (issue 25: gram_double, 46 % of an AVX2 multilevel solve, ran from the
+// stack). The sparse kernels keep one row's sums (k vectors) and stream the rest.
+struct IsaGeneric {
+  static constexpr int vb = 16, rows_k = 8, gram_r = 4, gram_k = 3, dense_r = 4, dense_k = 3;
+};
+struct IsaAvx2 {
+  static constexpr int vb = 32, rows_k = 8, gram_r = 4, gram_k = 3, dense_r = 4, dense_k = 3;
+};
+struct IsaAvx512 {
+  static constexpr int vb = 64, rows_k = 4, gram_r = 4, gram_k = 4, dense_r = 4, dense_k = 4;
+};
+
 // Rows [begin, end) of Y (per `into`) Σ over the stored entries (j, a) of outer index i
 // of a X.row(j), each row in register tiles (column_tiles.hpp).
-template <class T>
+template <class Isa, class T>
 [[gnu::always_inline]] inline void rows_kernel(const RowsArgs<T>& a, long begin, long end) {
   const long b = a.b;
   const T sign = (a.into == Into::Residual || a.into == Into::Subtract) ? T(-1) : T(1);
@@ -79,7 +120,7 @@ template <class T>
     T* yi = a.y + i * b;  // Y never overlaps X or the base
     const T* init = a.into == Into::Residual ? a.base + i * b : a.into == Into::Overwrite ? nullptr : yi;
     const int p0 = a.outer[i], p1 = a.outer[i + 1];
-    tiles::for_tiles<T>(b, [&](auto tag, long c) __attribute__((always_inline)) {
+    tiles::for_tiles<T, Isa::vb, Isa::rows_k>(b, [&](auto tag, long c) __attribute__((always_inline)) {
       tiles::TileFor<T, decltype(tag)> acc;
       if (init) acc.load(init + c);
       else acc.zero();
@@ -89,29 +130,18 @@ template <class T>
   }
 }
 
-// One copy of each kernel per instruction set, chosen when the program loads
-// (GCC function multi-versioning): the default build targets plain x86-64 (SSE2),
-// and the tiles' vectors are 2-4x wider with AVX2 or AVX-512. Elsewhere (arm64,
-// or a compiler without multi-versioning) one copy for the build's target.
-#if defined(__x86_64__) && defined(__GNUC__) && !defined(__clang__) && defined(__gnu_linux__)
-#define SSID_KERNEL_CLONES __attribute__((target_clones("arch=x86-64-v4", "arch=x86-64-v3", "default")))
-#else
-#define SSID_KERNEL_CLONES
-#endif
-SSID_KERNEL_CLONES void rows_float(const RowsArgs<float>& a, long begin, long end) { rows_kernel(a, begin, end); }
-SSID_KERNEL_CLONES void rows_double(const RowsArgs<double>& a, long begin, long end) { rows_kernel(a, begin, end); }
-void rows(const RowsArgs<float>& a, long begin, long end) { rows_float(a, begin, end); }
-void rows(const RowsArgs<double>& a, long begin, long end) { rows_double(a, begin, end); }
+void rows(const RowsArgs<float>& a, long begin, long end) { kernels().rows_float(a, begin, end); }
+void rows(const RowsArgs<double>& a, long begin, long end) { kernels().rows_double(a, begin, end); }
 
 // out.row(j) += a X.row(i) over the stored entries (j, a) of outer index i, rows
 // [begin, end): the transpose product of a row-major A, scattered.
-template <class T>
+template <class Isa, class T>
 [[gnu::always_inline]] inline void scatter_kernel(const RowsArgs<T>& a, long begin, long end, T* out) {
   const long b = a.b;
   for (long i = begin; i < end; ++i) {
     const int p0 = a.outer[i], p1 = a.outer[i + 1];
     if (p0 == p1) continue;
-    tiles::for_tiles<T>(b, [&](auto tag, long c) __attribute__((always_inline)) {
+    tiles::for_tiles<T, Isa::vb, Isa::rows_k>(b, [&](auto tag, long c) __attribute__((always_inline)) {
       tiles::TileFor<T, decltype(tag)> xi;
       xi.load(a.x + i * b + c);
       for (int p = p0; p < p1; ++p) xi.add_scaled_to(a.val[p], out + static_cast<long>(a.inner[p]) * b + c);
@@ -119,14 +149,10 @@ template <class T>
   }
 }
 
-SSID_KERNEL_CLONES void scatter_float(const RowsArgs<float>& a, long begin, long end, float* out) {
-  scatter_kernel(a, begin, end, out);
+void scatter(const RowsArgs<float>& a, long begin, long end, float* out) { kernels().scatter_float(a, begin, end, out); }
+void scatter(const RowsArgs<double>& a, long begin, long end, double* out) {
+  kernels().scatter_double(a, begin, end, out);
 }
-SSID_KERNEL_CLONES void scatter_double(const RowsArgs<double>& a, long begin, long end, double* out) {
-  scatter_kernel(a, begin, end, out);
-}
-void scatter(const RowsArgs<float>& a, long begin, long end, float* out) { scatter_float(a, begin, end, out); }
-void scatter(const RowsArgs<double>& a, long begin, long end, double* out) { scatter_double(a, begin, end, out); }
 
 // Y (per `into`) A X, A's outer index i giving Y's row i.
 template <class Sparse, class T>
@@ -157,7 +183,7 @@ struct JacobiArgs {
   bool alpha_zero, set_x;
 };
 
-template <class T>
+template <class Isa, class T>
 [[gnu::always_inline]] inline void jacobi_kernel(const JacobiArgs<T>& a, long begin, long end) {
   const long b = a.b;
   for (long g = begin; g < end; ++g) {
@@ -167,7 +193,7 @@ template <class T>
     for (long i = 0; i < k; ++i) {
       T* di = a.d + dofs[i] * b;
       T* xi = a.x + dofs[i] * b;
-      tiles::for_tiles<T>(b, [&](auto tag, long c) __attribute__((always_inline)) {
+      tiles::for_tiles<T, Isa::vb, Isa::rows_k>(b, [&](auto tag, long c) __attribute__((always_inline)) {
         tiles::TileFor<T, decltype(tag)> z;  // β (D⁻¹ res)_i, then d_i
         z.zero();
         for (long j = 0; j < k; ++j) z.fma(a.beta * dinv[i * k + j], a.res + dofs[j] * b + c);
@@ -180,10 +206,8 @@ template <class T>
   }
 }
 
-SSID_KERNEL_CLONES void jacobi_float(const JacobiArgs<float>& a, long begin, long end) { jacobi_kernel(a, begin, end); }
-SSID_KERNEL_CLONES void jacobi_double(const JacobiArgs<double>& a, long begin, long end) { jacobi_kernel(a, begin, end); }
-void jacobi(const JacobiArgs<float>& a, long begin, long end) { jacobi_float(a, begin, end); }
-void jacobi(const JacobiArgs<double>& a, long begin, long end) { jacobi_double(a, begin, end); }
+void jacobi(const JacobiArgs<float>& a, long begin, long end) { kernels().jacobi_float(a, begin, end); }
+void jacobi(const JacobiArgs<double>& a, long begin, long end) { kernels().jacobi_double(a, begin, end); }
 
 /// The arguments of a dense block product Y = β Y + Σ_s B_s C_s (see dense_kernel).
 struct DenseArgs {
@@ -199,11 +223,12 @@ struct DenseArgs {
 
 // Rows [i, i + R) of Y: each tile's sums over every row of the stacked C stay in
 // registers, for R rows at once so that a row of C is loaded once for R rows.
-template <int R>
+template <class Isa, int R>
 [[gnu::always_inline]] inline void dense_rows(const DenseArgs& a, long i) {
   const long q = a.q;
-  tiles::for_tiles<double>(q, [&](auto tag, long c) __attribute__((always_inline)) {
+  tiles::for_tiles<double, Isa::vb, Isa::dense_k>(q, [&](auto tag, long c) __attribute__((always_inline)) {
     tiles::TileFor<double, decltype(tag)> acc[R];
+    #pragma GCC unroll 8
     for (int r = 0; r < R; ++r) {
       if (a.beta == 0.0) {
         acc[r].zero();
@@ -217,19 +242,21 @@ template <int R>
       const long k = a.cols[s];
       const double* x = a.src[s] + i * k;
       for (long j = 0; j < k; ++j, crow += q)
+        #pragma GCC unroll 8
         for (int r = 0; r < R; ++r) acc[r].fma(x[r * k + j], crow);
     }
+    #pragma GCC unroll 8
     for (int r = 0; r < R; ++r) acc[r].store(a.y + (i + r) * q + c);
   });
 }
 
+template <class Isa>
 [[gnu::always_inline]] inline void dense_kernel(const DenseArgs& a, long begin, long end) {
+  constexpr int R = Isa::dense_r;
   long i = begin;
-  for (; i + 4 <= end; i += 4) dense_rows<4>(a, i);
-  for (; i < end; ++i) dense_rows<1>(a, i);
+  for (; i + R <= end; i += R) dense_rows<Isa, R>(a, i);
+  for (; i < end; ++i) dense_rows<Isa, 1>(a, i);
 }
-
-SSID_KERNEL_CLONES void dense_double(const DenseArgs& a, long begin, long end) { dense_kernel(a, begin, end); }
 
 /// The arguments of a Gram product G += Xᵀ Y over a range of rows (see gram_kernel).
 struct GramArgs {
@@ -251,20 +278,23 @@ constexpr long gram_chunk(long p, long q8) { return std::clamp<long>(24576 / (8 
 // chunk x_k[i0 ..]ᵀ y_k, y the chunk copied with its rows padded to q8 (a multiple
 // of the 64-byte vector): R x width sums in registers per tile of G, full vectors
 // only. In upper mode the tiles start at the vector holding column i0, so about
-// half of G is computed. Sized for AVX-512's 32 registers (R = 4 rows x four
-// 64-byte vectors of sums): the AVX2 and SSE2 clones compute the same, but spill.
-template <int R>
+// half of G is computed. R and the tile's vectors: the instruction set's blocking
+// (Isa::gram_r x Isa::gram_k vectors of sums).
+template <class Isa, int R>
 [[gnu::always_inline]] inline void gram_rows(const double* x, long p, const double* y, long q8, long rows, long i0,
                                              bool upper, double* G) {
   const long c0 = upper ? i0 / kLanes * kLanes : 0;
-  tiles::for_tiles<double>(q8 - c0, [&](auto tag, long c) __attribute__((always_inline)) {
+  tiles::for_tiles<double, Isa::vb, Isa::gram_k>(q8 - c0, [&](auto tag, long c) __attribute__((always_inline)) {
     c += c0;
     tiles::TileFor<double, decltype(tag)> acc[R];
+    #pragma GCC unroll 8
     for (int r = 0; r < R; ++r) acc[r].zero();
     const double* xk = x + i0;
     const double* yk = y + c;
     for (long k = 0; k < rows; ++k, xk += p, yk += q8)
+      #pragma GCC unroll 8
       for (int r = 0; r < R; ++r) acc[r].fma(xk[r], yk);
+    #pragma GCC unroll 8
     for (int r = 0; r < R; ++r) acc[r].add_to(G + (i0 + r) * q8 + c);
   });
 }
@@ -273,19 +303,30 @@ template <int R>
 // padded by zeros to w8 values, in tiles (a memcpy call per row cost a quarter of
 // the Gram product's time).
 // With `weights`, row k is scaled by weights[k0 + k] on the way.
+template <class Isa>
 [[gnu::always_inline]] inline void copy_rows_padded(const double* from, long w, long k0, long rows, long w8, double* to,
                                                     const double* weights = nullptr) {
   for (long k = 0; k < rows; ++k) {
     const double* f = from + (k0 + k) * w;
     double* t = to + k * w8;
     const double s = weights ? weights[k0 + k] : 1.0;
-    tiles::for_tiles<double>(w, [&](auto tag, long c) __attribute__((always_inline)) {
+    tiles::for_tiles<double, Isa::vb, Isa::rows_k>(w, [&](auto tag, long c) __attribute__((always_inline)) {
       tiles::TileFor<double, decltype(tag)> v;
       v.load(f + c);
       if (weights) v.scale(s);
       v.store(t + c);
     });
     for (long c = w; c < w8; ++c) t[c] = 0.0;
+  }
+}
+
+// The last p mod R rows of G: gram_rows with R' = p − i0 rows (0 ≤ R' ≤ RMax).
+template <class Isa, int RMax>
+[[gnu::always_inline]] inline void gram_row_rest(const double* x, long p, const double* y, long q8, long rows, long i0,
+                                                 bool upper, double* G) {
+  if constexpr (RMax >= 1) {
+    if (p - i0 == RMax) gram_rows<Isa, RMax>(x, p, y, q8, rows, i0, upper, G);
+    else gram_row_rest<Isa, RMax - 1>(x, p, y, q8, rows, i0, upper, G);
   }
 }
 
@@ -296,34 +337,76 @@ template <int R>
 // copy: read in place, X was walked with a stride of p values four columns at a
 // time and the product streamed 4 GB/s a core where a sum streams 30; and with
 // q = 45 the tail tiles (8, 4 and 1 values) cost as much as the 32 before them.
+template <class Isa>
 [[gnu::always_inline]] inline void gram_kernel(const GramArgs& a, long begin, long end, double* G, double* buf) {
+  constexpr int R = Isa::gram_r;
   const long p = a.p, q = a.q, q8 = gram_padded(q), chunk = gram_chunk(p, q8);
   double* xbuf = buf;
   double* ybuf = buf + chunk * p;
   for (long k0 = begin; k0 < end; k0 += chunk) {
     const long rows = std::min(end, k0 + chunk) - k0;
-    copy_rows_padded(a.x, p, k0, rows, p, xbuf, a.wx);
-    copy_rows_padded(a.y, q, k0, rows, q8, ybuf);
+    copy_rows_padded<Isa>(a.x, p, k0, rows, p, xbuf, a.wx);
+    copy_rows_padded<Isa>(a.y, q, k0, rows, q8, ybuf);
     {  // the next chunk towards the second-level cache while this one is multiplied
       const long from = k0 + rows, next = std::min(end, from + chunk);
       for (long o = from * p; o < next * p; o += 8) __builtin_prefetch(a.x + o, 0, 2);
       for (long o = from * q; o < next * q; o += 8) __builtin_prefetch(a.y + o, 0, 2);
     }
     long i0 = 0;
-    for (; i0 + 4 <= p; i0 += 4) gram_rows<4>(xbuf, p, ybuf, q8, rows, i0, a.upper, G);
-    switch (p - i0) {
-      case 3: gram_rows<3>(xbuf, p, ybuf, q8, rows, i0, a.upper, G); break;
-      case 2: gram_rows<2>(xbuf, p, ybuf, q8, rows, i0, a.upper, G); break;
-      case 1: gram_rows<1>(xbuf, p, ybuf, q8, rows, i0, a.upper, G); break;
-      default: break;
-    }
+    for (; i0 + R <= p; i0 += R) gram_rows<Isa, R>(xbuf, p, ybuf, q8, rows, i0, a.upper, G);
+    gram_row_rest<Isa, R - 1>(xbuf, p, ybuf, q8, rows, i0, a.upper, G);
   }
 }
 
-SSID_KERNEL_CLONES void gram_double(const GramArgs& a, long begin, long end, double* G, double* buf) {
-  gram_kernel(a, begin, end, G, buf);
+// One copy of each kernel per instruction set, register-blocked for its register
+// file (the Isa* structs above), the right one chosen at run time (kernels()).
+// The default copy is built for the build's target (plain x86-64, SSE2, unless
+// CMAKE_CXX_FLAGS say otherwise); with GCC on x86-64 Linux also an AVX2 (x86-64-v3)
+// and an AVX-512 (x86-64-v4) copy. Every helper is always inlined into these, so it
+// is compiled for each target.
+#define SSID_ISA_KERNELS(ATTR, Isa, name)                                                                       \
+  ATTR void rows_float_##name(const RowsArgs<float>& a, long b, long e) { rows_kernel<Isa>(a, b, e); }          \
+  ATTR void rows_double_##name(const RowsArgs<double>& a, long b, long e) { rows_kernel<Isa>(a, b, e); }        \
+  ATTR void scatter_float_##name(const RowsArgs<float>& a, long b, long e, float* o) {                          \
+    scatter_kernel<Isa>(a, b, e, o);                                                                            \
+  }                                                                                                             \
+  ATTR void scatter_double_##name(const RowsArgs<double>& a, long b, long e, double* o) {                       \
+    scatter_kernel<Isa>(a, b, e, o);                                                                            \
+  }                                                                                                             \
+  ATTR void jacobi_float_##name(const JacobiArgs<float>& a, long b, long e) { jacobi_kernel<Isa>(a, b, e); }    \
+  ATTR void jacobi_double_##name(const JacobiArgs<double>& a, long b, long e) { jacobi_kernel<Isa>(a, b, e); }  \
+  ATTR void dense_double_##name(const DenseArgs& a, long b, long e) { dense_kernel<Isa>(a, b, e); }             \
+  ATTR void gram_double_##name(const GramArgs& a, long b, long e, double* G, double* buf) {                     \
+    gram_kernel<Isa>(a, b, e, G, buf);                                                                          \
+  }                                                                                                             \
+  constexpr KernelTable kTable_##name{&rows_float_##name,   &rows_double_##name,  &scatter_float_##name,        \
+                                      &scatter_double_##name, &jacobi_float_##name, &jacobi_double_##name,      \
+                                      &dense_double_##name, &gram_double_##name};
+
+SSID_ISA_KERNELS(, IsaGeneric, generic)
+#if defined(__x86_64__) && defined(__GNUC__) && !defined(__clang__) && defined(__gnu_linux__)
+#define SSID_KERNEL_ISA_X86 1
+SSID_ISA_KERNELS(__attribute__((target("arch=x86-64-v3"))), IsaAvx2, avx2)
+SSID_ISA_KERNELS(__attribute__((target("arch=x86-64-v4"))), IsaAvx512, avx512)
+#endif
+#undef SSID_ISA_KERNELS
+
+
+/// The kernel version in use: set once from the CPU, or by set_kernel_isa.
+std::atomic<KernelIsa>& current_isa() {
+  static std::atomic<KernelIsa> isa{supported_kernel_isas().back()};
+  return isa;
 }
-#undef SSID_KERNEL_CLONES
+
+const KernelTable& kernels() {
+  switch (current_isa().load(std::memory_order_relaxed)) {
+#ifdef SSID_KERNEL_ISA_X86
+    case KernelIsa::Avx512: return kTable_avx512;
+    case KernelIsa::Avx2: return kTable_avx2;
+#endif
+    default: return kTable_generic;
+  }
+}
 
 template <class T>
 void check_symmetric(const SparseOf<T>& A, const RowBlockOf<T>& X) {
@@ -332,6 +415,61 @@ void check_symmetric(const SparseOf<T>& A, const RowBlockOf<T>& X) {
 }
 
 }  // namespace
+
+const char* kernel_isa_name(KernelIsa isa) {
+  switch (isa) {
+    case KernelIsa::Avx512: return "avx512";
+    case KernelIsa::Avx2: return "avx2";
+    case KernelIsa::Generic: break;
+  }
+  return "generic";
+}
+
+KernelIsa kernel_isa_named(const std::string& name) {
+  for (const KernelIsa isa : {KernelIsa::Generic, KernelIsa::Avx2, KernelIsa::Avx512})
+    if (name == kernel_isa_name(isa)) return isa;
+  throw formats::InputError("unknown kernel instruction set \"" + name + "\" (expected generic, avx2 or avx512)");
+}
+
+bool kernel_isa_supported(KernelIsa isa) {
+  switch (isa) {
+    case KernelIsa::Generic: return true;
+#ifdef SSID_KERNEL_ISA_X86
+    // The features GCC's x86-64-v3 and -v4 levels add that these kernels' code may use.
+    case KernelIsa::Avx2:
+      return __builtin_cpu_supports("avx2") && __builtin_cpu_supports("fma") && __builtin_cpu_supports("bmi2");
+    case KernelIsa::Avx512:
+      return kernel_isa_supported(KernelIsa::Avx2) && __builtin_cpu_supports("avx512f") &&
+             __builtin_cpu_supports("avx512vl") && __builtin_cpu_supports("avx512bw") &&
+             __builtin_cpu_supports("avx512dq") && __builtin_cpu_supports("avx512cd");
+#endif
+    default: return false;
+  }
+}
+
+std::vector<KernelIsa> supported_kernel_isas() {
+  std::vector<KernelIsa> isas;
+  for (const KernelIsa isa : {KernelIsa::Generic, KernelIsa::Avx2, KernelIsa::Avx512})
+    if (kernel_isa_supported(isa)) isas.push_back(isa);
+  return isas;
+}
+
+KernelIsa kernel_isa() { return current_isa().load(); }
+
+void set_kernel_isa(KernelIsa isa) {
+  if (!kernel_isa_supported(isa)) {
+    std::string have;
+    for (const KernelIsa s : supported_kernel_isas()) have += std::string(have.empty() ? "" : ", ") + kernel_isa_name(s);
+    throw formats::InputError(std::string("kernel instruction set ") + kernel_isa_name(isa) +
+                              " is not supported by this CPU or build (supported: " + have + ")");
+  }
+  current_isa().store(isa);
+}
+
+void apply_kernel_isa_environment() {
+  const char* value = std::getenv("SSID_KERNEL_ISA");
+  if (value && *value) set_kernel_isa(kernel_isa_named(value));
+}
 
 template <class T>
 void sym_times(const SparseOf<T>& A, const RowBlockOf<T>& X, RowBlockOf<T>& Y) {
@@ -572,7 +710,7 @@ Eigen::MatrixXd gram_of(const RowBlock& X, const RowBlock& Y, long rows, bool up
         std::vector<double>& g = partial[static_cast<size_t>(t)];
         g.assign(static_cast<size_t>(p * q8), 0.0);
         std::vector<double> buf(static_cast<size_t>(gram_chunk(p, q8) * (p + q8)));
-        gram_double(args, begin, end, g.data(), buf.data());
+        kernels().gram_double(args, begin, end, g.data(), buf.data());
       },
       kSplitRows * worker_threads());
   for (long t = 0; t < parts; ++t) {
@@ -633,7 +771,7 @@ void times_dense_sum(const std::vector<const RowBlock*>& blocks, const Eigen::Re
   args.y = Y.data();
   args.q = q;
   args.beta = beta;
-  parallel_for(n, [&args](long begin, long end) { dense_double(args, begin, end); });
+  parallel_for(n, [&args](long begin, long end) { kernels().dense_double(args, begin, end); });
 }
 
 void times_dense_into(const RowBlock& X, const Eigen::Ref<const Eigen::MatrixXd>& C, double beta, RowBlock& Y) {

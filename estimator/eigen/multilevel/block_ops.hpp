@@ -13,6 +13,7 @@
 #include <Eigen/SparseCore>
 #include <cstddef>
 #include <functional>
+#include <string>
 #include <vector>
 
 namespace ssid::estimator::multilevel {
@@ -26,6 +27,41 @@ using SparseRowOf = Eigen::SparseMatrix<T, Eigen::RowMajor>;
 using RowBlock = RowBlockOf<double>;
 using SparseMatrix = SparseOf<double>;
 using SparseRowMatrix = SparseRowOf<double>;
+
+/// The instruction sets ssid's own kernels (the sparse block products, the
+/// block-Jacobi pass, the Gram and block-update products below) have a version of
+/// their own for, each register-blocked for its register file: Avx512 (x86-64-v4,
+/// 32 registers of 64 bytes), Avx2 (x86-64-v3: AVX2 and FMA, 16 registers of 32
+/// bytes) and Generic (the build's target; SSE2 on plain x86-64, 16 registers of 16
+/// bytes). Why per instruction set: blocked for AVX-512's 32 registers, the same
+/// source compiled for AVX2 kept its sums on the stack, and the multilevel solve
+/// of the 94k lattice took 47.5 s instead of 5 (issue 25). The Avx2 and Avx512
+/// versions exist in GCC builds for x86-64 Linux only.
+enum class KernelIsa { Generic, Avx2, Avx512 };
+/// "generic", "avx2", "avx512".
+const char* kernel_isa_name(KernelIsa isa);
+/// The KernelIsa of a name kernel_isa_name gives; throws formats::InputError
+/// naming the accepted ones for any other.
+KernelIsa kernel_isa_named(const std::string& name);
+/// Whether this build has a version for `isa` and this CPU can run it.
+bool kernel_isa_supported(KernelIsa isa);
+/// Every supported KernelIsa, narrowest first.
+std::vector<KernelIsa> supported_kernel_isas();
+/// The version the kernels run: the widest supported one unless set_kernel_isa
+/// chose another.
+KernelIsa kernel_isa();
+/// Makes every kernel run the version for `isa` from now on, process-wide (for
+/// benchmarks and tests: comparing the versions on one machine; the CLI and the
+/// benchmarks take it from the environment variable SSID_KERNEL_ISA). Throws
+/// formats::InputError when !kernel_isa_supported(isa). Not to be called while
+/// another thread runs a kernel.
+void set_kernel_isa(KernelIsa isa);
+
+/// set_kernel_isa(kernel_isa_named(value)) when the environment variable
+/// SSID_KERNEL_ISA is set (and not empty); nothing otherwise. For main() of the
+/// CLI and the benchmarks (as restart_with_huge_page_heap), once, before any
+/// kernel runs. Throws formats::InputError for an unknown or unsupported value.
+void apply_kernel_isa_environment();
 
 /// Y.resize(rows, cols), and when that gave Y new storage of at least 64 MiB, asks
 /// the kernel to back it with transparent huge pages (Linux madvise
@@ -114,10 +150,11 @@ SparseMatrix galerkin_lower(const SparseMatrix& B, const SparseMatrix& P, const 
                             const std::vector<long>& starts);
 
 /// Xᵀ Y (b_x x b_y, column-major) over the first `rows` rows (all when negative).
-/// The dense kernels here are register-tiled like the sparse ones (column_tiles.hpp)
-/// rather than BLAS calls: on these tall-skinny shapes (a million rows, 45 columns)
-/// OpenBLAS packs both operands and ran at 32-37 GFlop/s where it reaches 103 on
-/// square products (bench_kernels, docs/performance.md).
+/// The dense kernels here are register-tiled like the sparse ones (column_tiles.hpp,
+/// one version per KernelIsa) rather than BLAS calls: on these tall-skinny shapes
+/// (a million rows, 45 columns) OpenBLAS packs both operands and ran slower than
+/// these kernels on both instruction sets (bench_kernels --isa, which prints both;
+/// docs/performance.md).
 Eigen::MatrixXd gram(const RowBlock& X, const RowBlock& Y, long rows = -1);
 /// Xᵀ Y for a product symmetric in exact arithmetic (Y = S X with S symmetric):
 /// about half the work, the upper triangle computed and mirrored. X and Y of equal width.
