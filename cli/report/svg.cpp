@@ -156,7 +156,7 @@ std::string heat_map_svg(const HeatMap& h, const std::string& id, const std::str
   const double left = 70, top = 16, legend = 90;
   std::size_t widest_col = 0;
   for (const auto& l : h.col_labels) widest_col = std::max(widest_col, l.size());
-  const double below = widest_col * 6.5 > cell ? 20 + widest_col * 5.0 : 56;  // room for slanted labels
+  const double below = widest_col * 7.5 > cell ? 36 + widest_col * 5.5 : 56;  // room for slanted labels
   const double width = left + cols * cell + legend, height = top + std::max(rows * cell, 120.0) + below;
   std::string s = fmt::format(
       "<svg id=\"{}\" class=\"chart heatmap\" xmlns=\"http://www.w3.org/2000/svg\" viewBox=\"0 0 {} {}\" width=\"{}\" "
@@ -187,7 +187,7 @@ std::string heat_map_svg(const HeatMap& h, const std::string& id, const std::str
   // Column labels wider than a cell are written at 45 degrees.
   std::size_t widest = 0;
   for (const auto& l : h.col_labels) widest = std::max(widest, l.size());
-  const bool slant = widest * 6.5 > cell;
+  const bool slant = widest * 7.5 > cell;
   for (std::size_t k = 0; k < cols; k += label_every) {
     const double x = left + k * cell + cell / 2, y = top + rows * cell + 14;
     if (slant)
