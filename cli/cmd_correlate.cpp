@@ -9,6 +9,7 @@
 
 #include "cli/cli_util.hpp"
 #include "cli/model_load.hpp"
+#include "cli/report/report_data.hpp"
 #include "estimator/correlation/correlate.hpp"
 #include "formats/parse_error.hpp"
 #include "formats/uff.hpp"
@@ -50,6 +51,9 @@ int cmd_correlate(const Args& args) {
                      "analysis modes: a NASTRAN deck (solved here), or a universal file with dataset 55")(
       "test", po::value<std::string>()->required(), "test modes: universal file with dataset 55 (+ nodes 15/2411)")(
       "json", po::value<std::string>(), "write the results as JSON to this file ('-' for stdout)")(
+      "report", po::value<std::string>(),
+      "write an HTML report (MAC, frequencies, mode shapes) to this file; the JSON then also holds the run, "
+      "geometry and shapes (docs/report.md)")(
       "mac", po::value<std::string>()->default_value("squared"),
       "MAC form: squared, or ns (the seed report's non-squared MAC)")(
       "min-mac", po::value<double>()->default_value(0.9, "0.9"), "accept a mutual-best pair at this MAC or above")(
@@ -64,7 +68,7 @@ int cmd_correlate(const Args& args) {
   po::variables_map vm;
   int rc = 0;
   if (!parse_options(args,
-                     "ssid correlate DECK|FE.unv TEST.unv [--json FILE] [--nmodes N] [--mac squared|ns] [--min-mac X] "
+                     "ssid correlate DECK|FE.unv TEST.unv [--json FILE] [--report FILE.html] [--nmodes N] [--mac squared|ns] [--min-mac X] "
                      "[--max-freq-error PCT] [--map id|position|id-then-position --tol D]",
                      desc, pos, vm, rc))
     return rc;
@@ -211,11 +215,32 @@ int cmd_correlate(const Args& args) {
     row["accepted"] = r.accepted;
     j["table"].push_back(row);
   }
+  j["fe_modes"] = nlohmann::json::array();  // the rows of "mac"
+  for (std::size_t i = 0; i < c.fe.numbers.size(); ++i)
+    j["fe_modes"].push_back({{"mode", c.fe.numbers[i]}, {"hz", c.fe.frequency_hz[i]}});
+  j["test_modes"] = nlohmann::json::array();  // its columns
+  for (std::size_t k = 0; k < c.test.numbers.size(); ++k)
+    j["test_modes"].push_back({{"mode", c.test.numbers[k]}, {"hz", c.test.frequency_hz[k]}});
   j["mac"] = matrix_json(p.mac);
   j["auto_mac_fe"] = matrix_json(c.auto_mac_fe);
   j["auto_mac_test"] = matrix_json(c.auto_mac_test);
   j["problems"] = problems;
 
+  if (vm.count("report")) {
+    j["run"] = report::run_json("correlate", args, {fe_path, test_path});
+    if (from_deck) {
+      // The accepted pairs drawn on the deck: every grid for the analysis, the common DOFs for the test.
+      std::vector<report::ShapePair> sp;
+      for (const auto& mp : p.pairs) {
+        if (!mp.accepted) continue;
+        const auto i = static_cast<std::size_t>(mp.fe), k = static_cast<std::size_t>(mp.test);
+        sp.push_back({fe_no(mp.fe), test_no(mp.test), c.fe.frequency_hz[i], c.test.frequency_hz[k], mp.mac,
+                      static_cast<Eigen::Index>(mp.fe), c.fe.shapes.col(mp.fe), c.test.shapes.col(mp.test)});
+      }
+      report::add_shapes(j, *lm.model, fe_modes.modes, c.dofs, sp);
+    }
+    report::write_report(vm["report"].as<std::string>(), j);
+  }
   const std::string json_path = vm.count("json") ? vm["json"].as<std::string>() : "";
   for (const auto& s : problems) std::cerr << "warning: " << s << "\n";
   if (json_path == "-") {

@@ -12,6 +12,7 @@
 #include "cli/cli_util.hpp"
 #include "cli/exit_codes.hpp"
 #include "cli/progress_lines.hpp"
+#include "cli/report/report_data.hpp"
 #include "estimator/diagnosis/diagnosis.hpp"
 #include "estimator/reporting/number_text.hpp"
 #include "formats/parse_error.hpp"
@@ -59,6 +60,7 @@ void add_diagnose_options(po::options_description& desc) {
       "study", po::value<std::string>(), "study file (JSON, docs/diagnosis.md): noise, priors, kinds, configurations")(
       "json", po::value<std::string>(), "write the diagnosis as JSON to this file ('-' for stdout)")(
       "output,o", po::value<std::string>(), "write the extended, updated deck into this folder")(
+      "report", po::value<std::string>(), "write an HTML report (residuals, ranking, the cause on the structure, the gain) to this file")(
       "also", po::value<std::vector<std::string>>()->composing(),
       "another tested configuration sharing the parameters: DECK=MEASURED.unv (repeatable)")(
       "kinds", po::value<std::string>(), "comma-separated extension kinds to try (default: all)")(
@@ -350,6 +352,7 @@ int cmd_diagnose(const Args& args) {
   const std::string untrusted = untrusted_reason(dg, cause);
   j["partial"] = !untrusted.empty();
   if (!untrusted.empty()) j["partial_reason"] = untrusted;
+  if (vm.count("report")) report::write_diagnosis_report(vm["report"].as<std::string>(), args, vm, j);
   if (quiet_json) {
     write_json("-", j);
     return exit_code(dg, untrusted, json_path);

@@ -9,6 +9,7 @@
 #include "cli/cli_util.hpp"
 #include "cli/exit_codes.hpp"
 #include "cli/progress_lines.hpp"
+#include "cli/report/report_data.hpp"
 #include "estimator/study/deck_study.hpp"
 #include "formats/deck_writer.hpp"
 #include "formats/parse_error.hpp"
@@ -41,7 +42,9 @@ estimator::EstimationProblem load_problem(const po::variables_map& vm, bool allo
   if (deck.empty()) throw formats::InputError("no deck: give DECK MEASURED.unv (or --problem FILE)");
   if (is_problem_file(deck)) throw formats::InputError(deck + " is a problem file, not a deck");
   const std::string measured = vm.count("measured") ? vm["measured"].as<std::string>() : "";
-  const estimator::Study study = vm.count("study") ? estimator::read_study(vm["study"].as<std::string>()) : estimator::Study{};
+  // Assigned, not chosen by ?: (GCC 12 then warns of a maybe-uninitialized Study).
+  estimator::Study study;
+  if (vm.count("study")) study = estimator::read_study(vm["study"].as<std::string>());
   if (measured.empty() && study.configurations.empty())
     throw formats::InputError("no measured modes: give MEASURED.unv after the deck (or configurations in --study)");
   return estimator::prepare_problem(study, deck, measured);
@@ -75,6 +78,9 @@ int cmd_estimate(const Args& args) {
       "measured", po::value<std::string>(), "measured modes: universal file with dataset 55 (+ nodes 15/2411)")(
       "study", po::value<std::string>(), "study file (JSON, docs/estimation.md): priors, weights, pairing, configurations")(
       "json", po::value<std::string>(), "write the result as JSON to this file ('-' for stdout)")(
+      "report", po::value<std::string>(),
+      "write an HTML report (MAC, frequencies before and after, parameters, convergence, mode shapes) to this file; "
+      "the JSON then also holds the run, geometry and shapes (docs/report.md)")(
       "problem", po::value<std::string>(),
       "estimate from this problem file (ssid translate) instead of DECK MEASURED.unv: imported operators, Taylor model")(
       "quiet,q", "no progress lines on stderr (each cycle's J and frequency error, the time left)");
@@ -82,7 +88,7 @@ int cmd_estimate(const Args& args) {
   pos.add("deck", 1).add("measured", 1);
   po::variables_map vm;
   int rc = 0;
-  if (!parse_options(args, "ssid estimate DECK MEASURED.unv [--study FILE] [--json FILE] | ssid estimate --problem FILE [--json FILE]",
+  if (!parse_options(args, "ssid estimate DECK MEASURED.unv [--study FILE] [--json FILE] [--report FILE.html] | ssid estimate --problem FILE [--json FILE]",
                      desc, pos, vm, rc))
     return rc;
   if (!vm.count("deck") && !vm.count("problem")) {
@@ -108,7 +114,8 @@ int cmd_estimate(const Args& args) {
                 (json_path.empty() || json_path == "-" ? "" : " (" + json_path + " is marked \"partial\": true)"));
     return kExitInterrupted;
   }
-  const nlohmann::json j = estimator::result_json(problem, result);
+  nlohmann::json j = estimator::result_json(problem, result);
+  if (vm.count("report")) report::write_estimate_report(vm["report"].as<std::string>(), args, vm, problem, result, j);
   if (json_path == "-") {
     write_json("-", j);
   } else {

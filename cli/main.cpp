@@ -7,6 +7,7 @@
 
 #include "cli/cli_util.hpp"
 #include "cli/exit_codes.hpp"
+#include "cli/version.hpp"
 #include "estimator/eigen/multilevel/block_ops.hpp"
 #include "estimator/linalg/allocation_policy.hpp"
 #include "estimator/reporting/progress.hpp"
@@ -68,7 +69,7 @@ int main(int argc, char** argv) {
     return 0;
   }
   if (name == "--version") {
-    std::cout << "ssid 0.1.0\n";
+    std::cout << "ssid " << ssid::cli::kSsidVersion << "\n";
     return 0;
   }
   // One job per process: freed blocks stay in the heap (allocation_policy.hpp).

@@ -970,6 +970,9 @@ json result_json(const EstimationProblem& problem, const EstimationResult& r) {
   };
   j["pairs"] = json::array();
   for (const auto& q : pairs) j["pairs"].push_back(pair_json(q));
+  // The pairs of the first cycle: the model before the update, to compare with.
+  j["initial_pairs"] = json::array();
+  for (const auto& q : r.stages.front().history.front().pairs) j["initial_pairs"].push_back(pair_json(q));
   j["correlation"] = matrix_json(r.mac.front());
   j["unpaired_test"] = unpaired_test(problem, pairs, 0);
   j["unpaired_fe"] = unpaired_fe(problem, r, pairs, 0);
@@ -981,6 +984,9 @@ json result_json(const EstimationProblem& problem, const EstimationResult& r) {
     cj["correlation"] = matrix_json(r.mac[k]);
     std::vector<double> hz(r.fe_hz[k].data(), r.fe_hz[k].data() + r.fe_hz[k].size());
     cj["fe_hz"] = hz;
+    std::vector<double> test_hz;
+    for (const auto& m : c.test) test_hz.push_back(m.frequency_hz);
+    cj["test_hz"] = test_hz;  // of "test_modes", the rows of "correlation"
     cj["pairs"] = json::array();
     for (const auto& q : pairs)
       if (q.config == static_cast<int>(k)) cj["pairs"].push_back(pair_json(q));

@@ -1,0 +1,833 @@
+/// \file html_report.cpp
+/// The report page: one function per section, each reading its keys of the
+/// JSON and drawing through svg.hpp. Nothing here computes a result; the only
+/// arithmetic is drawing (scales, projections, the shapes' display amplitude)
+/// and the parameters' change expressed in prior σ.
+#include "cli/report/html_report.hpp"
+
+#include <fmt/format.h>
+
+#include <Eigen/Core>
+#include <Eigen/Geometry>
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <map>
+#include <set>
+
+#include "cli/report/svg.hpp"
+#include "estimator/reporting/number_text.hpp"
+
+namespace ssid::cli::report {
+
+namespace {
+
+using json = nlohmann::json;
+using estimator::fixed;
+using estimator::significant;
+
+/// Ten distinguishable colours (Tableau 10) for series.
+const char* series_colour(std::size_t i) {
+  static const char* c[] = {"#4e79a7", "#f28e2b", "#e15759", "#76b7b2", "#59a14f",
+                            "#edc948", "#b07aa1", "#ff9da7", "#9c755f", "#bab0ac"};
+  return c[i % 10];
+}
+
+double num_or(const json& j, const char* key, double fallback = NAN) {
+  return j.contains(key) && j[key].is_number() ? j[key].get<double>() : fallback;
+}
+
+std::string figure(const std::string& id, const std::string& svg, const std::string& caption) {
+  return fmt::format("<figure id=\"{}\">\n{}<figcaption>{}</figcaption>\n</figure>\n", esc(id), svg, caption);
+}
+
+std::string legend_item(const std::string& swatch_style, const std::string& text) {
+  return fmt::format("<span class=\"key\"><span class=\"swatch\" style=\"{}\"></span>{}</span>", swatch_style, esc(text));
+}
+
+// ---------------------------------------------------------------- the page
+
+const char* kStyle = R"(
+body{font:14px/1.45 system-ui,-apple-system,"Segoe UI",Roboto,Helvetica,Arial,sans-serif;color:#222;max-width:1180px;margin:0 auto;padding:12px 20px}
+h1{font-size:22px;margin:8px 0}h2{font-size:18px;border-bottom:1px solid #ccc;padding-bottom:3px;margin-top:28px}
+table{border-collapse:collapse;margin:6px 0}td,th{border:1px solid #ddd;padding:2px 7px;text-align:left;vertical-align:top}
+th{background:#f3f3f3}td.n{text-align:right;font-variant-numeric:tabular-nums}
+code,.mono{font-family:ui-monospace,Menlo,Consolas,monospace;font-size:12px}
+figure{display:inline-block;margin:8px 14px 14px 0;vertical-align:top;break-inside:avoid}
+figcaption{font-size:12px;color:#444;max-width:760px}
+svg.chart text{font-size:11px;fill:#222}svg .label{font-size:12px}
+svg .grid{stroke:#e4e4e4}svg .frame{fill:none;stroke:#666}
+svg .pair{fill:none;stroke:#e15759;stroke-width:2.5}svg .cellv{font-size:9px}
+svg .undeformed{fill:none;stroke:#c8c8c8;stroke-width:1}svg .deformed{fill:none;stroke-width:1.6}
+svg .fe{stroke:#1f5fa8}svg .test{stroke:#c0392b}svg .wire0{fill:none;stroke:#e6b0aa;stroke-width:1;stroke-dasharray:3 2}
+svg .cause{fill:#e15759;stroke:#7a1f1f}svg .misfit{fill:#f28e2b;fill-opacity:.75}
+.key{display:inline-block;margin-right:14px;font-size:12px}.swatch{display:inline-block;width:14px;height:10px;margin-right:4px;vertical-align:middle}
+.controls{margin:6px 0;padding:6px;background:#f6f6f6;border:1px solid #e0e0e0}
+.partial{background:#fdecea;border:1px solid #e15759;padding:6px}
+.note{color:#555;font-size:12px}
+@media print{.controls{display:none}body{max-width:none}h2{break-after:avoid}}
+)";
+
+std::string page_head(const std::string& title) {
+  // The error hook comes first so that an error anywhere in the page is recorded
+  // (the headless-browser test reads data-script-errors).
+  return fmt::format(
+      "<!DOCTYPE html>\n<html lang=\"en\">\n<head>\n<meta charset=\"utf-8\">\n<meta name=\"viewport\" "
+      "content=\"width=device-width\">\n<title>{}</title>\n<style>{}</style>\n<script>\n"
+      "window.ssidErrors=[];function ssidError(m){{window.ssidErrors.push(String(m));"
+      "document.documentElement.setAttribute('data-script-errors',window.ssidErrors.join(' | '));}}\n"
+      "window.addEventListener('error',function(e){{ssidError(e.message||e);}});\n"
+      "</script>\n</head>\n<body>\n",
+      esc(title), kStyle);
+}
+
+const char* kScript = R"(<script>
+(function(){
+  // View direction of the mode shapes.
+  var sel=document.getElementById('view');
+  function show(v){document.querySelectorAll('g.view').forEach(function(g){g.style.display=g.getAttribute('data-view')===v?'':'none';});}
+  if(sel){sel.addEventListener('change',function(){show(sel.value);});show(sel.value);}
+  // Animation: each visible deformed drawing swings between +1 and -1 times its
+  // deflection about its undeformed base (path data-base); print shows the static +1.
+  var anim=document.getElementById('animate'),cache=new Map(),t0=performance.now();
+  function nums(d){return (d.match(/-?[0-9.]+/g)||[]).map(Number);}
+  function frame(now){
+    if(!anim||!anim.checked)return;
+    var c=Math.cos((now-t0)/1600*2*Math.PI);
+    document.querySelectorAll('g.view path.deformed').forEach(function(p){
+      if(p.parentNode.parentNode.style.display==='none')return;
+      var e=cache.get(p);
+      if(!e){var b=document.getElementById(p.getAttribute('data-base'));e={d:p.getAttribute('d'),p:nums(p.getAttribute('d')),u:nums(b?b.getAttribute('d'):'')};cache.set(p,e);}
+      if(e.u.length!==e.p.length)return;
+      var s='';for(var i=0;i<e.p.length;i+=4){s+='M'+(e.u[i]+c*(e.p[i]-e.u[i])).toFixed(1)+' '+(e.u[i+1]+c*(e.p[i+1]-e.u[i+1])).toFixed(1)+'L'+(e.u[i+2]+c*(e.p[i+2]-e.u[i+2])).toFixed(1)+' '+(e.u[i+3]+c*(e.p[i+3]-e.u[i+3])).toFixed(1);}
+      p.setAttribute('d',s);});
+    requestAnimationFrame(frame);
+  }
+  function still(){cache.forEach(function(e,p){p.setAttribute('d',e.d);});}
+  if(anim){anim.addEventListener('change',function(){if(anim.checked)requestAnimationFrame(frame);else still();});requestAnimationFrame(frame);}
+  window.addEventListener('beforeprint',function(){if(anim)anim.checked=false;still();});
+  // What the headless-browser test reads: figures drawn with a non-empty extent.
+  var figs=document.querySelectorAll('figure svg'),empty=[];
+  figs.forEach(function(s){var m=s.querySelector('.marks *, .cell, .deformed');var b=null;try{b=m&&m.getBBox();}catch(e){}
+    var r=s.getBoundingClientRect();if(!b||!(b.width>0||b.height>0)||!(r.width>0&&r.height>0))empty.push(s.id);});
+  var h=document.documentElement;h.setAttribute('data-figures',figs.length);h.setAttribute('data-empty-figures',empty.join(' '));
+  h.setAttribute('data-page-height',Math.round(h.scrollHeight));h.setAttribute('data-rendered','1');
+})();
+</script>
+)";
+
+std::string run_section(const json& j) {
+  std::string s = "<section id=\"run\">\n<table class=\"run\">\n";
+  if (!j.contains("run")) return s + "</table>\n</section>\n";
+  const json& r = j["run"];
+  s += fmt::format("<tr><th>command</th><td class=\"mono\">{}</td></tr>\n", esc(r.value("command", "")));
+  s += "<tr><th>inputs</th><td><table>\n<tr><th>file</th><th>bytes</th><th>SHA-256</th></tr>\n";
+  for (const auto& f : r["inputs"])
+    s += fmt::format("<tr class=\"input\"><td class=\"mono\">{}</td><td class=\"n\">{}</td><td class=\"mono\">{}</td></tr>\n",
+                     esc(f.value("path", "")), f.value("bytes", 0), esc(f.value("sha256", "")));
+  s += "</table></td></tr>\n";
+  s += fmt::format("<tr><th>ssid</th><td>{}</td></tr>\n<tr><th>date</th><td>{}</td></tr>\n", esc(r.value("version", "")),
+                   esc(r.value("date", "")));
+  s += "</table>\n";
+  if (j.value("partial", false))
+    s += fmt::format("<p class=\"partial\">PARTIAL RESULT: {} — the values shown are not an answer to trust.</p>\n",
+                     esc(j.value("partial_reason", "")));
+  return s + "</section>\n";
+}
+
+// ---------------------------------------------------------------- correlation
+
+/// The MAC matrix as a heat map. `rows_are_fe`: rows analysis modes (correlate)
+/// or test modes (estimate).
+std::string mac_figure(const json& mac, const std::vector<int>& row_modes, const std::vector<int>& col_modes,
+                       bool rows_are_fe, const json& pairs, const std::string& id, const std::string& caption,
+                       const std::string& form) {
+  HeatMap h;
+  for (const auto& row : mac) h.values.push_back(row.get<std::vector<double>>());
+  for (int m : row_modes) h.row_labels.push_back(std::to_string(m));
+  for (int m : col_modes) h.col_labels.push_back(std::to_string(m));
+  h.row_title = rows_are_fe ? "analysis mode" : "test mode";
+  h.col_title = rows_are_fe ? "test mode" : "analysis mode";
+  h.value_label = "MAC" + form;
+  auto index = [](const std::vector<int>& v, int m) {
+    return static_cast<std::size_t>(std::find(v.begin(), v.end(), m) - v.begin());
+  };
+  for (const auto& p : pairs) {
+    const int fe = p["fe_mode"], test = p["test_mode"];
+    const std::size_t i = index(row_modes, rows_are_fe ? fe : test), k = index(col_modes, rows_are_fe ? test : fe);
+    if (i < row_modes.size() && k < col_modes.size()) h.marked.insert({i, k});
+  }
+  return figure(id, heat_map_svg(h, id + "-svg", "MAC matrix"), caption);
+}
+
+// ---------------------------------------------------------------- frequencies
+
+/// Test vs analysis frequency on logarithmic axes, the diagonal with ±1 % and
+/// ±`band` % bands; `before` (hollow) and `after` (filled) pairs.
+std::string frequency_figure(const json& after, const json* before, double band, const std::string& after_name) {
+  std::vector<double> all;
+  for (const json* set : {&after, before})
+    if (set)
+      for (const auto& p : *set) all.push_back(p["test_hz"]), all.push_back(p["fe_hz"]);
+  const Axis a = log_axis_around(all, "test frequency [Hz]");
+  Axis b = a;
+  b.label = "analysis frequency [Hz]";
+  Chart c(460, 380, a, b);
+  // Bands as polygons between (1 − e) f and (1 + e) f; the axes are logarithmic, so the bands are straight.
+  for (double e : {band / 100.0, 0.01}) {
+    c.add(fmt::format("<polygon class=\"band\" data-pct=\"{}\" points=\"{},{} {},{} {},{} {},{}\" fill=\"{}\"/>\n",
+                      exact(e * 100), px(c.x(a.lo)), px(c.y(a.lo * (1 - e))), px(c.x(a.hi)), px(c.y(a.hi * (1 - e))),
+                      px(c.x(a.hi)), px(c.y(a.hi * (1 + e))), px(c.x(a.lo)), px(c.y(a.lo * (1 + e))),
+                      e == 0.01 ? "#cfe3cf" : "#eef5ee"));
+  }
+  c.add(fmt::format("<line x1=\"{}\" y1=\"{}\" x2=\"{}\" y2=\"{}\" stroke=\"#555\" stroke-dasharray=\"4 3\"/>\n", px(c.x(a.lo)),
+                    px(c.y(a.lo)), px(c.x(a.hi)), px(c.y(a.hi))));
+  auto points = [&](const json& set, const std::string& cls, const std::string& style, const std::string& name) {
+    for (const auto& p : set) {
+      const double t = p["test_hz"], f = p["fe_hz"];
+      c.add(fmt::format("<circle class=\"{}\" data-fe-mode=\"{}\" data-test-mode=\"{}\" data-x=\"{}\" data-y=\"{}\" cx=\"{}\" "
+                        "cy=\"{}\" r=\"3.6\" {}><title>{}: test mode {} {} Hz, analysis mode {} {} Hz, error {} %</title></circle>\n",
+                        cls, p["fe_mode"].get<int>(), p["test_mode"].get<int>(), exact(t), exact(f), px(c.x(t)), px(c.y(f)), style,
+                        name, p["test_mode"].get<int>(), significant(t, 6), p["fe_mode"].get<int>(), significant(f, 6),
+                        fixed(p["error_pct"].get<double>(), 3)));
+    }
+  };
+  if (before) points(*before, "freq-before", "fill=\"none\" stroke=\"#777\" stroke-width=\"1.3\"", "before the update");
+  points(after, "freq-after", "fill=\"#1f5fa8\"", after_name);
+  std::string keys = legend_item("background:#1f5fa8", after_name);
+  if (before) keys += legend_item("border:1.3px solid #777;background:#fff", "before the update");
+  keys += legend_item("background:#cfe3cf", "±1 %") + legend_item("background:#eef5ee", "±" + significant(band, 3) + " %");
+  return figure("fig-frequencies", c.svg("frequencies-svg", "test against analysis frequency"),
+                "Test against analysis frequency of each pair (logarithmic axes), the diagonal and error bands. " + keys);
+}
+
+/// Frequency error per pair: bars, before and after side by side.
+std::string error_figure(const json& after, const json* before, const std::string& after_name) {
+  std::vector<double> errs{0.0};
+  for (const auto& p : after) errs.push_back(p["error_pct"]);
+  std::map<int, double> before_by_test;
+  if (before)
+    for (const auto& p : *before) {
+      before_by_test[p["test_mode"].get<int>()] = p["error_pct"].get<double>();
+      errs.push_back(p["error_pct"]);
+    }
+  const double n = static_cast<double>(after.size());
+  Chart c(std::max(460.0, 90 + 22 * n), 300, {-0.5, n - 0.5, "pair (test mode)"},
+          axis_around(errs, "frequency error (analysis − test) / test [%]", 0.08, true));
+  std::vector<std::pair<double, std::string>> cats;
+  const double w = (c.x(1) - c.x(0)) * (before ? 0.38 : 0.7);
+  c.add(fmt::format("<line x1=\"{0}\" x2=\"{1}\" y1=\"{2}\" y2=\"{2}\" stroke=\"#444\"/>\n", px(c.left()), px(c.right()), px(c.y(0))));
+  for (std::size_t k = 0; k < after.size(); ++k) {
+    const auto& p = after[k];
+    const int tm = p["test_mode"];
+    cats.push_back({static_cast<double>(k), std::to_string(tm)});
+    auto bar = [&](double e, double x0, const std::string& cls, const char* fill, const std::string& name) {
+      const double y0 = c.y(std::max(e, 0.0)), y1 = c.y(std::min(e, 0.0));
+      c.add(fmt::format("<rect class=\"{}\" data-test-mode=\"{}\" data-v=\"{}\" x=\"{}\" y=\"{}\" width=\"{}\" height=\"{}\" "
+                        "fill=\"{}\"><title>test mode {}, {}: {} %</title></rect>\n",
+                        cls, tm, exact(e), px(x0), px(y0), px(w), px(std::max(y1 - y0, 0.5)), fill, tm, name, fixed(e, 3)));
+    };
+    const double xc = c.x(static_cast<double>(k));
+    if (before && before_by_test.count(tm)) bar(before_by_test[tm], xc - w, "err-before", "#aaaaaa", "before the update");
+    bar(p["error_pct"], before ? xc : xc - w / 2, "err-after", "#1f5fa8", after_name);
+  }
+  if (after.size() > 30)  // label every other pair when crowded
+    for (std::size_t k = 1; k < cats.size(); k += 2) cats[k].second.clear();
+  c.set_x_categories(cats);
+  std::string keys = legend_item("background:#1f5fa8", after_name);
+  if (before) keys += legend_item("background:#aaa", "before the update");
+  return figure("fig-errors", c.svg("errors-svg", "frequency error per pair"), "Frequency error of each pair. " + keys);
+}
+
+std::string pair_table(const json& pairs, const json* before) {
+  std::map<int, const json*> b;
+  if (before)
+    for (const auto& p : *before) b[p["test_mode"].get<int>()] = &p;
+  std::string s = "<table class=\"pairs\">\n<tr><th>test mode</th><th>test [Hz]</th><th>analysis mode</th><th>analysis [Hz]</th>"
+                  "<th>error [%]</th><th>MAC</th>";
+  if (before) s += "<th>before: analysis [Hz]</th><th>error [%]</th><th>MAC</th>";
+  s += "</tr>\n";
+  for (const auto& p : pairs) {
+    s += fmt::format("<tr><td class=\"n\">{}</td><td class=\"n\">{}</td><td class=\"n\">{}</td><td class=\"n\">{}</td>"
+                     "<td class=\"n\">{}</td><td class=\"n\">{}</td>",
+                     p["test_mode"].get<int>(), significant(p["test_hz"], 7), p["fe_mode"].get<int>(), significant(p["fe_hz"], 7),
+                     fixed(p["error_pct"], 3), fixed(p["mac"], 4));
+    if (before) {
+      auto it = b.find(p["test_mode"].get<int>());
+      if (it != b.end())
+        s += fmt::format("<td class=\"n\">{}</td><td class=\"n\">{}</td><td class=\"n\">{}</td>", significant((*it->second)["fe_hz"], 7),
+                         fixed((*it->second)["error_pct"], 3), fixed((*it->second)["mac"], 4));
+      else
+        s += "<td colspan=\"3\">(not paired)</td>";
+    }
+    s += "</tr>\n";
+  }
+  return s + "</table>\n";
+}
+
+// ---------------------------------------------------------------- parameters
+
+std::string parameter_figures(const json& j) {
+  const json& ps = j["parameters"];
+  std::string s = "<section id=\"parameters\">\n<h2>Parameters</h2>\n";
+  // Prior (0 ± 1) and posterior ((estimate − initial)/σ₀ ± σ/σ₀) in prior σ.
+  std::vector<double> ys{-1.2, 1.2};
+  for (const auto& p : ps) {
+    const double s0 = p["prior_std"];
+    const double z = (num_or(p, "estimate") - num_or(p, "initial")) / s0, zs = num_or(p, "posterior_std") / s0;
+    ys.push_back(z - zs), ys.push_back(z + zs);
+  }
+  const double n = static_cast<double>(ps.size());
+  Chart c(std::max(460.0, 120 + 70 * n), 320, {-0.5, n - 0.5, "parameter"},
+          axis_around(ys, "change [prior σ]", 0.06, true));
+  std::vector<std::pair<double, std::string>> cats;
+  for (std::size_t k = 0; k < ps.size(); ++k) {
+    const auto& p = ps[k];
+    const std::string name = p["name"];
+    cats.push_back({static_cast<double>(k), name});
+    const double s0 = p["prior_std"], r0 = p["initial"], r = p["estimate"], sd = p["posterior_std"];
+    const double xc = c.x(static_cast<double>(k));
+    auto bar = [&](double x, double z, double zs, const std::string& cls, const char* col, const std::string& attrs,
+                   const std::string& title) {
+      c.add(fmt::format("<g class=\"{}\" data-name=\"{}\" {}><line x1=\"{}\" x2=\"{}\" y1=\"{}\" y2=\"{}\" stroke=\"{}\" "
+                        "stroke-width=\"2\"/><line x1=\"{}\" x2=\"{}\" y1=\"{}\" y2=\"{}\" stroke=\"{}\"/><line x1=\"{}\" x2=\"{}\" "
+                        "y1=\"{}\" y2=\"{}\" stroke=\"{}\"/><circle cx=\"{}\" cy=\"{}\" r=\"4\" fill=\"{}\"/><title>{}</title></g>\n",
+                        cls, esc(name), attrs, px(x), px(x), px(c.y(z - zs)), px(c.y(z + zs)), col, px(x - 6), px(x + 6),
+                        px(c.y(z - zs)), px(c.y(z - zs)), col, px(x - 6), px(x + 6), px(c.y(z + zs)), px(c.y(z + zs)), col, px(x),
+                        px(c.y(z)), col, esc(title)));
+    };
+    const std::string unit = p.value("unit", "");
+    bar(xc - 10, 0, 1, "prior", "#999999", fmt::format("data-v=\"{}\" data-s=\"{}\"", exact(r0), exact(s0)),
+        fmt::format("{} prior: {} ± {} {}", name, significant(r0, 6), significant(s0, 4), unit));
+    bar(xc + 10, (r - r0) / s0, sd / s0, "posterior", "#1f5fa8", fmt::format("data-v=\"{}\" data-s=\"{}\"", exact(r), exact(sd)),
+        fmt::format("{} posterior: {} ± {} {} ({} prior σ; σ {} of the prior's)", name, significant(r, 8), significant(sd, 4),
+                    unit, fixed((r - r0) / s0, 2), fixed(sd / s0, 3)));
+  }
+  c.set_x_categories(cats);
+  s += figure("fig-parameters", c.svg("parameters-svg", "prior and posterior of each parameter"),
+              "Prior mean ± σ (grey, at 0 ± 1) and posterior mean ± σ (blue) of each parameter, as the change from the prior "
+              "mean in units of the prior σ: a short blue bar is a parameter the test informed; one as long as the grey "
+              "bar is one it did not. " +
+                  legend_item("background:#999", "prior") + legend_item("background:#1f5fa8", "posterior"));
+  // The values, with units.
+  s += "<table class=\"params\">\n<tr><th>parameter</th><th>initial</th><th>estimate</th><th>prior σ</th><th>posterior σ</th>"
+       "<th>change [%]</th><th>σ ratio</th><th>unit</th><th>designs</th></tr>\n";
+  for (const auto& p : ps)
+    s += fmt::format("<tr><td>{}</td><td class=\"n\">{}</td><td class=\"n\">{}</td><td class=\"n\">{}</td><td class=\"n\">{}</td>"
+                     "<td class=\"n\">{}</td><td class=\"n\">{}</td><td>{}</td><td>{}</td></tr>\n",
+                     esc(p["name"].get<std::string>()), significant(p["initial"], 6), significant(num_or(p, "estimate"), 8),
+                     significant(p["prior_std"], 4), significant(num_or(p, "posterior_std"), 4), fixed(num_or(p, "change_pct"), 2),
+                     fixed(num_or(p, "std_ratio"), 3), esc(p.value("unit", "")), esc(p.value("designs", "")));
+  s += "</table>\n";
+  // Posterior correlation.
+  if (j.contains("identifiability") && j["identifiability"].contains("posterior_correlation")) {
+    HeatMap h;
+    for (const auto& row : j["identifiability"]["posterior_correlation"]) h.values.push_back(row.get<std::vector<double>>());
+    for (const auto& p : ps) h.row_labels.push_back(p["name"]), h.col_labels.push_back(p["name"]);
+    h.row_title = h.col_title = "parameter";
+    h.value_label = "posterior correlation ρ";
+    h.lo = -1, h.hi = 1;
+    const json& id = j["identifiability"];
+    std::string cap = fmt::format("Posterior correlation of the parameters. Rank {} of {}, condition {}.", id.value("rank", 0),
+                                  id.value("parameters", 0), id["condition"].is_number() ? significant(id["condition"], 4) : "∞");
+    if (!id["uninformed"].empty()) {
+      cap += " Not informed by the data:";
+      for (const auto& u : id["uninformed"]) cap += " " + esc(u.get<std::string>());
+      cap += ".";
+    }
+    s += figure("fig-correlation", heat_map_svg(h, "correlation-svg", "posterior correlation"), cap);
+  }
+  return s + "</section>\n";
+}
+
+std::string convergence_figures(const json& j) {
+  const json& its = j["iterations"];
+  if (its.empty()) return "";
+  const json& ps = j["parameters"];
+  std::string s = "<section id=\"convergence\">\n<h2>Convergence</h2>\n";
+  std::vector<double> cycles, ys{0.0};
+  for (std::size_t i = 0; i < its.size(); ++i) cycles.push_back(static_cast<double>(i));
+  for (const auto& it : its)
+    for (const auto& p : ps)
+      ys.push_back((it["parameters"][p["name"].get<std::string>()].get<double>() - p["initial"].get<double>()) /
+                   p["prior_std"].get<double>());
+  const Axis xa = {-0.3, static_cast<double>(its.size()) - 0.7, "cycle"};
+  Chart c(520, 320, xa, axis_around(ys, "change [prior σ]", 0.06, true));
+  std::vector<std::pair<double, std::string>> cats;
+  for (std::size_t i = 0; i < its.size(); ++i) cats.push_back({double(i), std::to_string(its[i]["cycle"].get<int>())});
+  if (its.size() > 15)
+    for (std::size_t k = 1; k < cats.size(); k += 2) cats[k].second.clear();
+  c.set_x_categories(cats);
+  std::string keys;
+  for (std::size_t k = 0; k < ps.size(); ++k) {
+    const std::string name = ps[k]["name"];
+    const double r0 = ps[k]["initial"], s0 = ps[k]["prior_std"];
+    std::string line, dots;
+    for (std::size_t i = 0; i < its.size(); ++i) {
+      const double r = its[i]["parameters"][name];
+      const double x = c.x(double(i)), y = c.y((r - r0) / s0);
+      line += (i ? " " : "") + px(x) + "," + px(y);
+      dots += fmt::format("<circle class=\"conv\" data-name=\"{}\" data-cycle=\"{}\" data-v=\"{}\" cx=\"{}\" cy=\"{}\" r=\"2.6\" "
+                          "fill=\"{}\"><title>{} cycle {}: {}</title></circle>\n",
+                          esc(name), its[i]["cycle"].get<int>(), exact(r), px(x), px(y), series_colour(k), esc(name),
+                          its[i]["cycle"].get<int>(), significant(r, 8));
+    }
+    c.add(fmt::format("<polyline points=\"{}\" fill=\"none\" stroke=\"{}\" stroke-width=\"1.5\"/>\n", line, series_colour(k)) + dots);
+    keys += legend_item(std::string("background:") + series_colour(k), name);
+  }
+  s += figure("fig-convergence", c.svg("convergence-svg", "parameters per cycle"),
+              "Each parameter per cycle, as its change from the prior mean in prior σ. " + keys);
+  // The objective and the frequency error per cycle.
+  auto per_cycle = [&](const char* key, const std::string& label, const std::string& id, const char* colour) {
+    std::vector<double> v;
+    for (const auto& it : its) v.push_back(it[key]);
+    const bool log = key == std::string("objective") && *std::min_element(v.begin(), v.end()) > 0;
+    Chart k(360, 260, xa, log ? log_axis_around(v, label) : axis_around(v, label, 0.08, true));
+    k.set_x_categories(cats);
+    std::string pl;
+    for (std::size_t i = 0; i < its.size(); ++i) {
+      pl += (i ? " " : "") + px(k.x(double(i))) + "," + px(k.y(v[i]));
+      k.add(fmt::format("<circle class=\"{}\" data-cycle=\"{}\" data-v=\"{}\" cx=\"{}\" cy=\"{}\" r=\"3\" fill=\"{}\"><title>cycle {}: "
+                        "{}</title></circle>\n",
+                        id, its[i]["cycle"].get<int>(), exact(v[i]), px(k.x(double(i))), px(k.y(v[i])), colour,
+                        its[i]["cycle"].get<int>(), significant(v[i], 6)));
+    }
+    k.add(fmt::format("<polyline points=\"{}\" fill=\"none\" stroke=\"{}\"/>\n", pl, colour));
+    return k.svg(id + "-svg", label);
+  };
+  s += figure("fig-objective", per_cycle("objective", "objective J", "objective", "#59a14f"),
+              "The objective J (data misfit + prior term) per cycle.");
+  s += figure("fig-rms", per_cycle("frequency_rms_pct", "frequency error, RMS [%]", "rms", "#e15759"),
+              "The RMS frequency error of the pairs per cycle.");
+  return s + "</section>\n";
+}
+
+// ---------------------------------------------------------------- mode shapes
+
+using Points = std::map<std::int64_t, Eigen::Vector3d>;
+
+Points read_points(const json& rows) {
+  Points p;
+  for (const auto& r : rows) p[r[0].get<std::int64_t>()] = {r[1].get<double>(), r[2].get<double>(), r[3].get<double>()};
+  return p;
+}
+
+struct View {
+  const char* name;
+  const char* label;
+  Eigen::Vector3d toward;  ///< from the structure towards the viewer
+  Eigen::Vector3d right = Eigen::Vector3d::Zero(), up = Eigen::Vector3d::Zero();
+};
+
+std::vector<View> views() {
+  std::vector<View> v = {{"iso", "isometric", {1, -1, 1}},
+                         {"front", "front (from −Y)", {0, -1, 0}},
+                         {"side", "side (from +X)", {1, 0, 0}},
+                         {"top", "top (from +Z)", {0, 0, 1}}};
+  for (auto& w : v) {
+    w.toward.normalize();
+    const Eigen::Vector3d z = Eigen::Vector3d::UnitZ();
+    w.right = z.cross(w.toward).norm() > 1e-9 ? z.cross(w.toward).normalized() : Eigen::Vector3d::UnitX();
+    w.up = w.toward.cross(w.right);
+  }
+  return v;
+}
+
+/// Screen placement of one view in a panel of `w` × `h` pixels.
+struct Placement {
+  Eigen::Vector3d right, up;
+  double scale = 1, ox = 0, oy = 0;
+  Eigen::Vector2d operator()(const Eigen::Vector3d& x) const { return {ox + scale * x.dot(right), oy - scale * x.dot(up)}; }
+};
+
+Placement place(const View& v, const Points& grids, double w, double h) {
+  double x0 = INFINITY, x1 = -INFINITY, y0 = INFINITY, y1 = -INFINITY;
+  for (const auto& [id, p] : grids) {
+    x0 = std::min(x0, p.dot(v.right)), x1 = std::max(x1, p.dot(v.right));
+    y0 = std::min(y0, p.dot(v.up)), y1 = std::max(y1, p.dot(v.up));
+  }
+  Placement pl{v.right, v.up};
+  const double m = 0.14, dx = std::max(x1 - x0, 1e-12), dy = std::max(y1 - y0, 1e-12);
+  pl.scale = std::min(w * (1 - 2 * m) / dx, (h - 24) * (1 - 2 * m) / dy);
+  pl.ox = w / 2 - pl.scale * (x0 + x1) / 2;
+  pl.oy = 24 + (h - 24) / 2 + pl.scale * (y0 + y1) / 2;
+  return pl;
+}
+
+/// Path data of `lines` with the grids moved by `amp` × shape (absent grids stay).
+std::string lines_d(const std::vector<std::pair<std::int64_t, std::int64_t>>& lines, const Points& grids, const Points* shape,
+                    double amp, const Placement& pl) {
+  std::string d;
+  auto at = [&](std::int64_t id) {
+    Eigen::Vector3d x = grids.at(id);
+    if (shape) {
+      auto it = shape->find(id);
+      if (it != shape->end()) x += amp * it->second;
+    }
+    return pl(x);
+  };
+  for (const auto& [a, b] : lines) {
+    if (!grids.count(a) || !grids.count(b)) continue;
+    const auto p = at(a), q = at(b);
+    d += fmt::format("M{:.0f} {:.0f}L{:.0f} {:.0f}", p.x(), p.y(), q.x(), q.y());
+  }
+  return d;
+}
+
+std::vector<std::pair<std::int64_t, std::int64_t>> read_lines(const json& rows) {
+  std::vector<std::pair<std::int64_t, std::int64_t>> l;
+  for (const auto& r : rows) l.push_back({r[0].get<std::int64_t>(), r[1].get<std::int64_t>()});
+  return l;
+}
+
+double largest(const Points& s) {
+  double m = 0;
+  for (const auto& [id, v] : s) m = std::max(m, v.norm());
+  return m;
+}
+
+std::string shapes_section(const json& j) {
+  if (!j.contains("geometry") || !j.contains("shapes") || j["shapes"].empty()) return "";
+  const json& g = j["geometry"];
+  const Points grids = read_points(g["grids"]);
+  if (grids.empty()) return "";
+  const auto lines = read_lines(g["lines"]), test_lines = read_lines(g["test_lines"]);
+  double size = 0;
+  {
+    Eigen::Vector3d lo = grids.begin()->second, hi = lo;
+    for (const auto& [id, p] : grids) lo = lo.cwiseMin(p), hi = hi.cwiseMax(p);
+    size = (hi - lo).norm();
+  }
+  const double w = 360, h = 270;
+  const auto vs = views();
+  std::vector<Placement> pl;
+  for (const auto& v : vs) pl.push_back(place(v, grids, w, h));
+
+  std::string s = "<section id=\"shapes\">\n<h2>Mode shapes</h2>\n";
+  s += "<div class=\"controls\">view <select id=\"view\">";
+  for (const auto& v : vs) s += fmt::format("<option value=\"{}\">{}</option>", v.name, esc(v.label));
+  s += "</select> <label><input type=\"checkbox\" id=\"animate\" checked> animate</label></div>\n";
+  s += "<p class=\"note\">Analysis (blue, left) on the deck's elements; test (red, right) on the test's wire frame "
+       "(test grids joined where the deck's elements join them), scaled onto the analysis shape by the least-squares "
+       "factor; grey: the undeformed structure (dashed red: the test's undeformed wire frame). The largest displacement "
+       "is drawn at 8 % of the structure's size. The animation swings each shape through its undeformed position; print "
+       "(or animate off) shows it at its largest deflection.</p>\n";
+  // The undeformed drawings, once per view, used by every pair.
+  s += "<svg width=\"0\" height=\"0\" style=\"position:absolute\" aria-hidden=\"true\"><defs>\n";
+  for (std::size_t v = 0; v < vs.size(); ++v)
+    s += fmt::format("<path id=\"undeformed-{0}\" d=\"{1}\"/>\n<path id=\"wire-{0}\" d=\"{2}\"/>\n", vs[v].name,
+                     lines_d(lines, grids, nullptr, 0, pl[v]), lines_d(test_lines, grids, nullptr, 0, pl[v]));
+  s += "</defs></svg>\n";
+  std::size_t k = 0;
+  for (const auto& sh : j["shapes"]) {
+    const Points fe = read_points(sh["fe"]), test = read_points(sh["test"]);
+    const double amp = 0.08 * size / std::max(largest(fe), 1e-300);
+    const int fm = sh["fe_mode"], tm = sh["test_mode"];
+    const double fhz = sh["fe_hz"], thz = sh["test_hz"], mac = sh["mac"];
+    std::string svg = fmt::format(
+        "<svg id=\"shape-{}-svg\" class=\"shapes\" xmlns=\"http://www.w3.org/2000/svg\" viewBox=\"0 0 {} {}\" width=\"{}\" "
+        "height=\"{}\" role=\"img\" aria-label=\"analysis mode {} and test mode {}\">\n",
+        k, px(2 * w), px(h), px(2 * w), px(h), fm, tm);
+    for (std::size_t v = 0; v < vs.size(); ++v) {
+      svg += fmt::format("<g class=\"view\" data-view=\"{}\"{}>\n", vs[v].name, v ? " style=\"display:none\"" : "");
+      auto panel = [&](double x0, const Points& shape, const std::vector<std::pair<std::int64_t, std::int64_t>>& ls,
+                       const std::string& cls, const std::string& title) {
+        // The shape at its largest deflection; the page's script swings it through the
+        // undeformed drawing (base) to the opposite deflection: the projection is linear.
+        const std::string base = (cls == "test" ? "wire-" : "undeformed-") + std::string(vs[v].name);
+        std::string p = fmt::format("<g transform=\"translate({} 0)\"><rect x=\"0.5\" y=\"0.5\" width=\"{}\" height=\"{}\" "
+                                    "fill=\"none\" stroke=\"#ddd\"/><use href=\"#undeformed-{}\" class=\"undeformed\"/>\n",
+                                    px(x0), px(w - 1), px(h - 1), vs[v].name);
+        if (cls == "test") p += fmt::format("<use href=\"#wire-{}\" class=\"wire0\"/>\n", vs[v].name);
+        p += fmt::format("<path class=\"deformed {}\" data-base=\"{}\" d=\"{}\"/>\n<text x=\"8\" y=\"16\" "
+                         "font-size=\"12\">{}</text></g>\n",
+                         cls, base, lines_d(ls, grids, &shape, amp, pl[v]), esc(title));
+        return p;
+      };
+      svg += panel(0, fe, lines, "fe", fmt::format("analysis mode {}: {} Hz", fm, significant(fhz, 5)));
+      svg += panel(w, test, test_lines, "test", fmt::format("test mode {}: {} Hz", tm, significant(thz, 5)));
+      svg += "</g>\n";
+    }
+    svg += "</svg>\n";
+    s += fmt::format("<figure id=\"shape-{}\" class=\"shape\" data-fe-mode=\"{}\" data-test-mode=\"{}\" data-fe-hz=\"{}\" "
+                     "data-test-hz=\"{}\" data-mac=\"{}\">\n{}<figcaption>Pair {}: analysis mode {} ({} Hz) and test mode {} ({} "
+                     "Hz), MAC {}, error {} %.</figcaption>\n</figure>\n",
+                     k, fm, tm, exact(fhz), exact(thz), exact(mac), svg, k + 1, fm, significant(fhz, 6), tm, significant(thz, 6),
+                     fixed(mac, 4), fixed((fhz - thz) / thz * 100, 3));
+    ++k;
+  }
+  return s + "</section>\n";
+}
+
+// ---------------------------------------------------------------- diagnosis
+
+std::string diagnosis_sections(const json& j) {
+  std::string s;
+  const json& e = j["evidence"];
+  s += "<section id=\"residuals\">\n<h2>1. What the updated model gets wrong</h2>\n<ul>\n";
+  for (const auto& f : e["findings"]) s += "<li>" + esc(f.get<std::string>()) + "</li>\n";
+  s += "</ul>\n";
+  // Residuals by mode: frequency error and MEMS error per test mode.
+  const json& modes = e["modes"];
+  if (!modes.empty()) {
+    const double n = static_cast<double>(modes.size());
+    auto by_mode = [&](const char* key, const std::string& label, const std::string& id, const char* fill, bool zero) {
+      std::vector<double> v{0.0};
+      for (const auto& m : modes)
+        if (m[key].is_number()) v.push_back(m[key]);
+      Chart c(std::max(420.0, 90 + 22 * n), 280, {-0.5, n - 0.5, "test mode"}, axis_around(v, label, 0.08, zero));
+      std::vector<std::pair<double, std::string>> cats;
+      const double w = (c.x(1) - c.x(0)) * 0.7;
+      for (std::size_t k = 0; k < modes.size(); ++k) {
+        const auto& m = modes[k];
+        cats.push_back({double(k), std::to_string(m["test_mode"].get<int>())});
+        if (!m[key].is_number() || (m["fe_mode"].is_number() && m["fe_mode"].get<int>() == 0 && key != std::string("mems_error")))
+          continue;  // no partner: no frequency error
+        const double x = m[key];
+        const double y0 = c.y(std::max(x, 0.0)), y1 = c.y(std::min(x, 0.0));
+        c.add(fmt::format("<rect class=\"{}\" data-test-mode=\"{}\" data-v=\"{}\" x=\"{}\" y=\"{}\" width=\"{}\" height=\"{}\" "
+                          "fill=\"{}\"><title>test mode {}: {}</title></rect>\n",
+                          id, m["test_mode"].get<int>(), exact(x), px(c.x(double(k)) - w / 2), px(y0), px(w),
+                          px(std::max(y1 - y0, 0.5)), fill, m["test_mode"].get<int>(), significant(x, 4)));
+      }
+      c.set_x_categories(cats);
+      return c.svg(id + "-svg", label);
+    };
+    s += figure("fig-mode-error", by_mode("error_pct", "frequency error [%]", "mode-error", "#1f5fa8", true),
+                "Frequency error of each test mode against its partner after the ordinary update (no bar: no partner).");
+    s += figure("fig-mems", by_mode("mems_error", "MEMS error e²", "mems", "#b07aa1", true),
+                "The MEMS error of each test mode (the seed's Fig. 4 measure): the share of the test shape the analysis "
+                "modes cannot represent.");
+  }
+  const json& gm = e["grid_misfit"];
+  if (!gm.empty()) {
+    const double n = static_cast<double>(gm.size());
+    std::vector<double> v{0.0};
+    for (const auto& m : gm) v.push_back(m["share"]);
+    Chart c(std::max(420.0, 90 + 30 * n), 280, {-0.5, n - 0.5, "grid"}, axis_around(v, "share of the shape misfit", 0.08, true));
+    std::vector<std::pair<double, std::string>> cats;
+    const double w = (c.x(1) - c.x(0)) * 0.7;
+    for (std::size_t k = 0; k < gm.size(); ++k) {
+      const double x = gm[k]["share"];
+      const auto grid = gm[k]["grid"].get<std::int64_t>();
+      cats.push_back({double(k), std::to_string(grid)});
+      c.add(fmt::format("<rect class=\"grid-misfit\" data-grid=\"{}\" data-v=\"{}\" x=\"{}\" y=\"{}\" width=\"{}\" height=\"{}\" "
+                        "fill=\"#f28e2b\"><title>grid {}: {}</title></rect>\n",
+                        grid, exact(x), px(c.x(double(k)) - w / 2), px(c.y(x)), px(w), px(c.y(0) - c.y(x)), grid, fixed(x, 4)));
+    }
+    c.set_x_categories(cats);
+    s += figure("fig-grid-misfit", c.svg("grid-misfit-svg", "shape misfit by grid"),
+                "The grids where the measured shapes differ most from the updated model's (share of the total misfit).");
+  }
+  s += "</section>\n";
+
+  // Ranking of causes.
+  const json& rk = j["ranking"];
+  s += "<section id=\"ranking\">\n<h2>2–3. Hypotheses tested, ranked by evidence</h2>\n";
+  if (!rk.empty()) {
+    const std::size_t shown = std::min<std::size_t>(rk.size(), 12);
+    std::vector<double> v;
+    const double nominal = j.contains("nominal") ? num_or(j["nominal"], "log_evidence") : NAN;
+    if (std::isfinite(nominal)) v.push_back(nominal);
+    for (std::size_t k = 0; k < shown; ++k) v.push_back(rk[k]["log_evidence"]);
+    Chart c(std::max(460.0, 100 + 40 * double(shown)), 300, {-0.5, double(shown) - 0.5, "rank"},
+            axis_around(v, "score [nats]", 0.08, false));
+    std::vector<std::pair<double, std::string>> cats;
+    const double w = (c.x(1) - c.x(0)) * 0.7, base = c.bottom();
+    for (std::size_t k = 0; k < shown; ++k) {
+      const double x = rk[k]["log_evidence"];
+      cats.push_back({double(k), std::to_string(k + 1)});
+      c.add(fmt::format("<rect class=\"rank\" data-rank=\"{}\" data-v=\"{}\" x=\"{}\" y=\"{}\" width=\"{}\" height=\"{}\" fill=\"{}\">"
+                        "<title>{}. {} at {}: {} nats</title></rect>\n",
+                        k + 1, exact(x), px(c.x(double(k)) - w / 2), px(c.y(x)), px(w), px(std::max(base - c.y(x), 0.5)),
+                        k == 0 ? "#e15759" : "#4e79a7", k + 1, esc(rk[k]["kind"].get<std::string>()),
+                        esc(rk[k]["location"]["text"].get<std::string>()), fixed(x, 1)));
+    }
+    if (std::isfinite(nominal))
+      c.add(fmt::format("<line class=\"nominal\" data-v=\"{0}\" x1=\"{1}\" x2=\"{2}\" y1=\"{3}\" y2=\"{3}\" stroke=\"#222\" "
+                        "stroke-dasharray=\"5 3\"><title>deck as given: {4} nats</title></line>\n",
+                        exact(nominal), px(c.left()), px(c.right()), px(c.y(nominal)), fixed(nominal, 1)));
+    c.set_x_categories(cats);
+    s += figure("fig-ranking", c.svg("ranking-svg", "hypotheses by score"),
+                "Score (Laplace log-evidence + unpaired-mode penalty − log of the locations searched) of the best "
+                "hypotheses; dashed: the deck as given. Higher is better supported by the test.");
+    s += "<table class=\"ranking\">\n<tr><th>rank</th><th>kind</th><th>location</th><th>score [nats]</th><th>freq RMS [%]</th>"
+         "<th>mean MAC</th><th>paired</th><th>added parameters</th></tr>\n";
+    for (std::size_t k = 0; k < shown; ++k) {
+      const auto& r = rk[k];
+      std::string added;
+      for (const auto& p : r["parameters"])
+        added += esc(p["name"].get<std::string>()) + " = " + significant(p["estimate"], 5) + " ± " + significant(p["std"], 3) + "<br>";
+      s += fmt::format("<tr><td class=\"n\">{}</td><td>{}</td><td>{}</td><td class=\"n\">{}</td><td class=\"n\">{}</td>"
+                       "<td class=\"n\">{}</td><td class=\"n\">{}</td><td>{}</td></tr>\n",
+                       k + 1, esc(r["kind"].get<std::string>()), esc(r["location"]["text"].get<std::string>()),
+                       fixed(r["log_evidence"], 1), fixed(r["freq_rms_pct"], 3), fixed(r["mean_mac"], 4), r["paired"].get<int>(),
+                       added);
+    }
+    s += "</table>\n";
+  }
+  s += "</section>\n";
+
+  // The cause, where it sits, and the gain.
+  const json& cause = j["cause"];
+  s += "<section id=\"cause\">\n<h2>4. The cause</h2>\n";
+  if (cause.is_object()) {
+    s += fmt::format("<p><b>{}</b> — {}</p>\n", esc(cause.value("kind", "")), esc(cause.value("summary", "")));
+    if (j.contains("geometry") && cause.contains("location")) {
+      const json& g = j["geometry"];
+      const Points grids = read_points(g["grids"]);
+      const auto lines = read_lines(g["lines"]);
+      std::set<std::int64_t> at;
+      for (const auto& id : cause["location"]["grids"]) at.insert(id.get<std::int64_t>());
+      std::map<std::int64_t, double> misfit;
+      for (const auto& m : e["grid_misfit"]) misfit[m["grid"].get<std::int64_t>()] = m["share"].get<double>();
+      if (!grids.empty()) {
+        const double w = 560, h = 400;
+        const View v = views().front();
+        const Placement p = place(v, grids, w, h);
+        std::string svg = fmt::format(
+            "<svg id=\"cause-svg\" class=\"chart\" xmlns=\"http://www.w3.org/2000/svg\" viewBox=\"0 0 {0} {1}\" width=\"{0}\" "
+            "height=\"{1}\" role=\"img\" aria-label=\"where the cause sits\">\n<g class=\"marks\">\n<path class=\"undeformed\" "
+            "d=\"{2}\" stroke=\"#888\"/>\n",
+            px(w), px(h), lines_d(lines, grids, nullptr, 0, p));
+        double most = 0;
+        for (const auto& [id, sh] : misfit) most = std::max(most, sh);
+        for (const auto& [id, sh] : misfit) {
+          if (!grids.count(id)) continue;
+          const auto q = p(grids.at(id));
+          svg += fmt::format("<circle class=\"misfit\" data-grid=\"{}\" data-v=\"{}\" cx=\"{}\" cy=\"{}\" r=\"{}\"><title>grid {}: "
+                             "{} of the shape misfit</title></circle>\n",
+                             id, exact(sh), px(q.x()), px(q.y()), px(4 + 10 * std::sqrt(sh / std::max(most, 1e-300))), id,
+                             fixed(sh, 3));
+        }
+        for (auto id : at) {
+          if (!grids.count(id)) continue;
+          const auto q = p(grids.at(id));
+          svg += fmt::format("<circle class=\"cause\" data-grid=\"{}\" cx=\"{}\" cy=\"{}\" r=\"5\"><title>{} at grid {}</title></circle>\n",
+                             id, px(q.x()), px(q.y()), esc(cause.value("kind", "")), id);
+        }
+        svg += "</g>\n</svg>\n";
+        s += figure("fig-cause", svg,
+                    "Where the named cause sits (red) on the structure (isometric view), and the grids of the largest shape "
+                    "misfit (orange, area ∝ share). " +
+                        legend_item("background:#e15759", "cause: " + cause["location"].value("text", "")) +
+                        legend_item("background:#f28e2b", "shape misfit"));
+      }
+    }
+    if (cause.contains("parameters")) {
+      s += "<table>\n<tr><th>added parameter</th><th>meaning</th><th>estimate</th><th>σ</th></tr>\n";
+      for (const auto& p : cause["parameters"])
+        s += fmt::format("<tr><td>{}</td><td>{}</td><td class=\"n\">{}</td><td class=\"n\">{}</td></tr>\n",
+                         esc(p.value("name", "")), esc(p.value("meaning", "")), significant(p["estimate"], 6),
+                         significant(p["std"], 4));
+      s += "</table>\n";
+    }
+  }
+  s += "</section>\n";
+  if (j.contains("gain")) {
+    const json& b = j["gain"]["before"];
+    const json& a = j["gain"]["after"];
+    s += "<section id=\"gain\">\n<h2>5. The gain</h2>\n";
+    // Two small bar pairs: RMS frequency error and mean MAC, before and after.
+    auto pair_chart = [&](const char* key, const std::string& label, const std::string& id, bool unit_range) {
+      const double vb = b[key], va = a[key];
+      Chart c(260, 240, {-0.5, 1.5, ""}, unit_range ? Axis{0, 1, label} : axis_around({0.0, vb, va}, label, 0.1, true));
+      c.set_x_categories({{0, "before"}, {1, "after"}});
+      const double w = (c.x(1) - c.x(0)) * 0.55;
+      int k = 0;
+      for (const auto& [name, v] : {std::pair<const char*, double>{"before", vb}, {"after", va}}) {
+        c.add(fmt::format("<rect class=\"gain\" data-when=\"{}\" data-v=\"{}\" x=\"{}\" y=\"{}\" width=\"{}\" height=\"{}\" fill=\"{}\">"
+                          "<title>{}: {}</title></rect>\n",
+                          name, exact(v), px(c.x(k) - w / 2), px(c.y(v)), px(w), px(std::max(c.y(0) - c.y(v), 0.5)),
+                          k ? "#59a14f" : "#aaaaaa", name, significant(v, 5)));
+        ++k;
+      }
+      return c.svg(id, label);
+    };
+    s += figure("fig-gain-rms", pair_chart("freq_rms_pct", "frequency error, RMS [%]", "gain-rms-svg", false),
+                fmt::format("RMS frequency error before ({} %) and after ({} %) the cause is added and estimated.",
+                            fixed(b["freq_rms_pct"], 3), fixed(a["freq_rms_pct"], 3)));
+    s += figure("fig-gain-mac", pair_chart("mean_mac", "mean MAC", "gain-mac-svg", true),
+                fmt::format("Mean MAC of the pairs before ({}) and after ({}); paired modes {} and {} of {}.", fixed(b["mean_mac"], 4),
+                            fixed(a["mean_mac"], 4), b.value("paired", 0), a.value("paired", 0), a.value("measured", 0)));
+    s += "</section>\n";
+  }
+  return s;
+}
+
+std::string notes_section(const json& j) {
+  if (!j.contains("notes") || j["notes"].empty()) return "";
+  std::string s = "<section id=\"notes\">\n<h2>Notes</h2>\n<ul>\n";
+  for (const auto& n : j["notes"]) s += "<li>" + esc(n.get<std::string>()) + "</li>\n";
+  return s + "</ul>\n</section>\n";
+}
+
+std::string command_of(const json& j) {
+  if (!j.contains("run")) return "";
+  const std::string c = j["run"].value("command", "");
+  const auto a = c.find(' ');
+  if (a == std::string::npos) return "";
+  const auto b = c.find(' ', a + 1);
+  return c.substr(a + 1, b == std::string::npos ? std::string::npos : b - a - 1);
+}
+
+std::vector<int> mode_numbers(const json& modes) {
+  std::vector<int> v;
+  for (const auto& m : modes) v.push_back(m.is_object() ? m["mode"].get<int>() : m.get<int>());
+  return v;
+}
+
+}  // namespace
+
+std::string html_report(const json& j) {
+  const std::string cmd = command_of(j);
+  std::string title = "ssid " + cmd + " report";
+  if (j.contains("title") && j["title"].is_string()) title += ": " + j["title"].get<std::string>();
+  std::string s = page_head(title);
+  s += "<h1>" + esc(title) + "</h1>\n" + run_section(j);
+
+  if (cmd == "correlate") {
+    const std::string form = j.value("mac_form", "squared") == "squared" ? "" : " (non-squared)";
+    s += "<section id=\"correlation\">\n<h2>Correlation</h2>\n";
+    s += fmt::format("<p>{} analysis and {} test modes compared at {} common DOFs. Accepted pairs: MAC ≥ {} and |error| ≤ {} %.</p>\n",
+                     j["fe_modes"].size(), j["test_modes"].size(), j.value("dofs", 0), significant(j["min_mac"], 3),
+                     significant(j["max_frequency_error_pct"], 3));
+    json accepted = json::array();
+    for (const auto& p : j["pairs"])
+      if (p.value("accepted", false)) accepted.push_back(p);
+    s += mac_figure(j["mac"], mode_numbers(j["fe_modes"]), mode_numbers(j["test_modes"]), true, accepted, "fig-mac",
+                    "MAC of every analysis mode with every test mode; outlined: the accepted pairs.", form);
+    s += "</section>\n<section id=\"frequencies\">\n<h2>Frequencies</h2>\n";
+    s += frequency_figure(accepted, nullptr, j.value("max_frequency_error_pct", 10.0), "accepted pairs");
+    s += error_figure(accepted, nullptr, "accepted pairs");
+    s += pair_table(j["pairs"], nullptr) + "</section>\n";
+  } else if (cmd == "estimate") {
+    const json& c0 = j["configurations"].empty() ? json::object() : j["configurations"][0];
+    s += "<section id=\"correlation\">\n<h2>Correlation at the estimate</h2>\n";
+    std::vector<int> fe_modes;
+    for (std::size_t k = 0; k < c0.value("fe_hz", std::vector<double>{}).size(); ++k) fe_modes.push_back(static_cast<int>(k) + 1);
+    json pairs0 = json::array();
+    for (const auto& p : c0["pairs"]) pairs0.push_back(p);
+    s += mac_figure(c0["correlation"], c0["test_modes"].get<std::vector<int>>(), fe_modes, false, pairs0, "fig-mac",
+                    "MAC of every test mode with every analysis mode at the estimate" +
+                        std::string(j["configurations"].size() > 1 ? " (first configuration)" : "") +
+                        "; outlined: the pairs of the update.",
+                    "");
+    s += "</section>\n<section id=\"frequencies\">\n<h2>Frequencies before and after the update</h2>\n";
+    const json* before = j.contains("initial_pairs") ? &j["initial_pairs"] : nullptr;
+    s += frequency_figure(j["pairs"], before, 5.0, "at the estimate");
+    s += error_figure(j["pairs"], before, "at the estimate");
+    s += pair_table(j["pairs"], before) + "</section>\n";
+    s += parameter_figures(j) + convergence_figures(j);
+  } else if (cmd == "diagnose") {
+    s += diagnosis_sections(j);
+  }
+  s += shapes_section(j) + notes_section(j);
+  s += "<p class=\"note\">Every number in this report is in the JSON result of the same run (";
+  s += esc(j.contains("run") ? j["run"].value("command", "") : "") + "); the report draws it.</p>\n";
+  s += kScript;
+  s += "</body>\n</html>\n";
+  return s;
+}
+
+}  // namespace ssid::cli::report

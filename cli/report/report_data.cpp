@@ -1,0 +1,244 @@
+/// \file report_data.cpp
+#include "cli/report/report_data.hpp"
+
+#include <algorithm>
+#include <fstream>
+#include <cstdlib>
+#include <ctime>
+#include <deque>
+#include <filesystem>
+#include <fstream>
+#include <map>
+#include <set>
+
+#include "cli/report/html_report.hpp"
+#include "cli/report/sha256.hpp"
+#include "cli/model_load.hpp"
+#include "cli/version.hpp"
+#include "estimator/study/deck_study.hpp"
+#include "formats/parse_error.hpp"
+#include "translators/synthetic_modes.hpp"
+
+namespace ssid::cli::report {
+
+nlohmann::json run_json(const std::string& subcommand, const Args& args, const std::vector<std::string>& inputs) {
+  std::string command = "ssid " + subcommand;
+  for (const auto& a : args) command += " " + a;
+  nlohmann::json in = nlohmann::json::array();
+  for (const auto& p : inputs) {
+    if (p.empty()) continue;
+    in.push_back({{"path", p}, {"sha256", sha256_file(p)}, {"bytes", std::filesystem::file_size(p)}});
+  }
+  // SOURCE_DATE_EPOCH (reproducible-builds.org) fixes the date of a report made twice.
+  std::time_t t = std::time(nullptr);
+  if (const char* e = std::getenv("SOURCE_DATE_EPOCH")) t = static_cast<std::time_t>(std::strtoll(e, nullptr, 10));
+  std::tm tm{};
+  gmtime_r(&t, &tm);
+  char date[32];
+  std::strftime(date, sizeof date, "%Y-%m-%dT%H:%M:%SZ", &tm);
+  return {{"command", command}, {"inputs", in}, {"version", kSsidVersion}, {"date", date}};
+}
+
+namespace {
+
+/// Element lines of the bulk data, each (g1, g2) once.
+std::vector<std::pair<std::int64_t, std::int64_t>> element_lines(const formats::BulkModel& b) {
+  std::set<std::pair<std::int64_t, std::int64_t>> set;
+  auto add = [&](std::int64_t a, std::int64_t c) {
+    if (a > 0 && c > 0 && a != c) set.insert({std::min(a, c), std::max(a, c)});
+  };
+  for (const auto& e : b.crods) add(e.g1, e.g2);
+  for (const auto& e : b.conrods) add(e.g1, e.g2);
+  for (const auto& e : b.cbars) add(e.ga, e.gb);
+  for (const auto& e : b.cbeams) add(e.ga, e.gb);
+  for (const auto& e : b.cbushes) add(e.ga, e.gb);
+  for (const auto& e : b.celas1s) add(e.g1, e.g2);
+  for (const auto& e : b.celas2s) add(e.g1, e.g2);
+  for (const auto& e : b.rbars) add(e.ga, e.gb);
+  for (const auto& e : b.rbe2s)
+    for (auto g : e.gm) add(e.gn, g);
+  return {set.begin(), set.end()};
+}
+
+}  // namespace
+
+nlohmann::json geometry_json(const translators::FeModel& model, const std::vector<translators::GridPosition>& grids,
+                             const std::vector<std::int64_t>& test_grids) {
+  nlohmann::json g = nlohmann::json::array();
+  std::set<std::int64_t> known;
+  for (const auto& p : grids) {
+    g.push_back({p.id, p.position.x(), p.position.y(), p.position.z()});
+    known.insert(p.id);
+  }
+  const auto lines = element_lines(model.bulk());
+  nlohmann::json l = nlohmann::json::array();
+  std::map<std::int64_t, std::vector<std::int64_t>> adjacent;
+  for (const auto& [a, b] : lines) {
+    if (!known.count(a) || !known.count(b)) continue;  // scalar points have no position
+    l.push_back({a, b});
+    adjacent[a].push_back(b);
+    adjacent[b].push_back(a);
+  }
+  // The test wire frame: from each test grid, a breadth-first walk that stops at
+  // test grids finds those the deck joins it to; the three nearest of them are
+  // kept (on a truss measured at every other joint, all of them would be a web).
+  std::map<std::int64_t, Eigen::Vector3d> at;
+  for (const auto& p : grids) at[p.id] = p.position;
+  const std::set<std::int64_t> tested(test_grids.begin(), test_grids.end());
+  std::set<std::pair<std::int64_t, std::int64_t>> wire;
+  for (std::int64_t s : tested) {
+    if (!at.count(s)) continue;
+    std::set<std::int64_t> seen{s};
+    std::deque<std::int64_t> queue{s};
+    std::vector<std::pair<double, std::int64_t>> reached;
+    while (!queue.empty()) {
+      const std::int64_t n = queue.front();
+      queue.pop_front();
+      for (std::int64_t m : adjacent[n]) {
+        if (!seen.insert(m).second) continue;
+        if (tested.count(m)) reached.push_back({(at[m] - at[s]).norm(), m});
+        else queue.push_back(m);
+      }
+    }
+    std::sort(reached.begin(), reached.end());
+    for (std::size_t k = 0; k < reached.size() && k < 3; ++k)
+      wire.insert({std::min(s, reached[k].second), std::max(s, reached[k].second)});
+  }
+  nlohmann::json t = nlohmann::json::array();
+  for (const auto& [a, b] : wire) t.push_back({a, b});
+  return {{"grids", g}, {"lines", l}, {"test_lines", t}};
+}
+
+std::vector<nlohmann::json> grid_shapes_json(const translators::FeModel& model,
+                                             const std::vector<translators::GridPosition>& grids,
+                                             const Eigen::MatrixXd& a_modes) {
+  translators::FeModeData fd;
+  fd.shapes = a_modes;
+  fd.frequency_hz.assign(static_cast<std::size_t>(a_modes.cols()), 0.0);
+  // Every grid, translations only, no noise: the expansion and frame rotation of the synthetic test.
+  const auto set = translators::synthetic_test(fd, model.reduction(), model.geometry().gset(), grids, {}).modes;
+  std::vector<nlohmann::json> out;
+  for (Eigen::Index m = 0; m < set.shapes.cols(); ++m)
+    out.push_back(dof_shape_json(set.dofs, set.shapes.col(m), 1.0));
+  return out;
+}
+
+nlohmann::json dof_shape_json(const std::vector<translators::MeasuredDof>& dofs, const Eigen::VectorXd& values,
+                              double scale) {
+  std::vector<std::int64_t> order;
+  std::map<std::int64_t, std::array<double, 3>> d;
+  for (std::size_t i = 0; i < dofs.size(); ++i) {
+    const int dir = std::abs(dofs[i].direction);
+    if (dir < 1 || dir > 3) continue;
+    auto [it, fresh] = d.insert({dofs[i].node, {0.0, 0.0, 0.0}});
+    if (fresh) order.push_back(dofs[i].node);
+    it->second[static_cast<std::size_t>(dir - 1)] +=
+        (dofs[i].direction < 0 ? -1.0 : 1.0) * scale * values(static_cast<Eigen::Index>(i));
+  }
+  nlohmann::json j = nlohmann::json::array();
+  for (auto n : order) j.push_back({n, d[n][0], d[n][1], d[n][2]});
+  return j;
+}
+
+double scale_onto(const Eigen::VectorXd& fe, const Eigen::VectorXd& test) {
+  const double tt = test.squaredNorm();
+  return tt > 0 ? fe.dot(test) / tt : 0.0;
+}
+
+void write_report(const std::string& path, const nlohmann::json& j) {
+  std::ofstream o(path, std::ios::binary);
+  if (!o) throw formats::InputError("cannot write " + path);
+  o << html_report(j);
+  if (!o) throw formats::InputError("cannot write " + path);
+}
+
+}  // namespace ssid::cli::report
+
+namespace ssid::cli::report {
+
+void add_shapes(nlohmann::json& j, const translators::FeModel& model, const Eigen::MatrixXd& a_modes,
+                const std::vector<translators::MeasuredDof>& dofs, const std::vector<ShapePair>& pairs) {
+  const std::vector<translators::GridPosition> grids = grid_positions(model);
+  std::vector<std::int64_t> test_grids;
+  for (const auto& d : dofs)
+    if (test_grids.empty() || test_grids.back() != d.node) test_grids.push_back(d.node);
+  j["geometry"] = geometry_json(model, grids, test_grids);
+  Eigen::MatrixXd cols(a_modes.rows(), static_cast<Eigen::Index>(pairs.size()));
+  for (std::size_t k = 0; k < pairs.size(); ++k) cols.col(static_cast<Eigen::Index>(k)) = a_modes.col(pairs[k].fe_column);
+  const auto fe = grid_shapes_json(model, grids, cols);
+  j["shapes"] = nlohmann::json::array();
+  for (std::size_t k = 0; k < pairs.size(); ++k) {
+    const auto& p = pairs[k];
+    const double s = scale_onto(p.fe_at_dofs, p.test_at_dofs);
+    j["shapes"].push_back({{"fe_mode", p.fe_mode},
+                           {"test_mode", p.test_mode},
+                           {"fe_hz", p.fe_hz},
+                           {"test_hz", p.test_hz},
+                           {"mac", p.mac},
+                           {"fe", fe[k]},
+                           {"test", dof_shape_json(dofs, p.test_at_dofs, s)},
+                           {"test_scale", s}});
+  }
+}
+
+std::vector<translators::MeasuredDof> dofs_of_labels(const std::vector<std::string>& labels) {
+  std::vector<translators::MeasuredDof> d;
+  for (const auto& l : labels) {
+    const auto c = l.find(':');
+    d.push_back({std::stoll(l.substr(0, c)), std::stoi(l.substr(c + 1))});
+  }
+  return d;
+}
+
+}  // namespace ssid::cli::report
+
+namespace ssid::cli::report {
+
+void write_diagnosis_report(const std::string& path, const Args& args, const boost::program_options::variables_map& vm,
+                            nlohmann::json& j) {
+  std::vector<std::string> inputs;
+  for (const char* k : {"deck", "measured", "study"})
+    if (vm.count(k)) inputs.push_back(vm[k].as<std::string>());
+  j["run"] = run_json("diagnose", args, inputs);
+  const LoadedModel lm = load_model(vm["deck"].as<std::string>());
+  j["geometry"] = geometry_json(*lm.model, grid_positions(*lm.model), {});
+  write_report(path, j);
+}
+
+}  // namespace ssid::cli::report
+
+namespace ssid::cli::report {
+
+/// Adds the run, the geometry and the pairs' shapes at the estimate (first
+/// configuration; one more eigen-solve) to `j` and writes the report.
+void write_estimate_report(const std::string& path, const Args& args, const boost::program_options::variables_map& vm,
+                           const estimator::EstimationProblem& problem, const estimator::EstimationResult& result,
+                           nlohmann::json& j) {
+  std::vector<std::string> inputs;
+  for (const char* k : {"deck", "measured", "study", "problem"})
+    if (vm.count(k)) inputs.push_back(vm[k].as<std::string>());
+  j["run"] = run_json("estimate", args, inputs);
+  const auto& c = problem.configurations.front();
+  auto* om = dynamic_cast<estimator::OperatorModel*>(c.model.get());
+  if (om && !c.deck.empty() && std::ifstream(c.deck)) {
+    const LoadedModel lm = load_model(c.deck);
+    std::vector<std::pair<std::int64_t, int>> dofs;
+    for (const auto& d : a_set_dofs(*lm.model)) dofs.emplace_back(d.point, d.component);
+    if (dofs == c.dofs) {  // the same deck as the estimate's: its a-set in the same order
+      const estimator::ModalSolution sol = om->solve(result.update.r);
+      std::vector<ShapePair> sp;
+      for (const auto& p : j["configurations"][0]["pairs"]) {
+        const int fe = p["fe_mode"], test = p["test_mode"];
+        const auto t = std::find(c.test_numbers.begin(), c.test_numbers.end(), test) - c.test_numbers.begin();
+        if (fe < 1 || fe > sol.sensor_shapes.cols() || t >= static_cast<long>(c.test.size())) continue;
+        sp.push_back({fe, test, p["fe_hz"], p["test_hz"], p["mac"], fe - 1, sol.sensor_shapes.col(fe - 1),
+                      c.test[static_cast<std::size_t>(t)].shape});
+      }
+      add_shapes(j, *lm.model, om->modes(), dofs_of_labels(c.sensor_labels), sp);
+    }
+  }
+  write_report(path, j);
+}
+
+
+}  // namespace ssid::cli::report

@@ -1,0 +1,93 @@
+#pragma once
+/// \file report_data.hpp
+/// What a `--report` shows that a command's JSON did not hold yet, added to
+/// that JSON (the report is a view of the JSON, never a second source of
+/// numbers; docs/report.md): the run (command, inputs with SHA-256, version,
+/// date), the deck's geometry as lines, and mode shapes at the grids.
+#include <Eigen/Core>
+#include <cstdint>
+#include <nlohmann/json.hpp>
+#include <string>
+#include <vector>
+
+#include "cli/commands.hpp"
+#include "translators/assembly/fe_model.hpp"
+#include "translators/measurement/sensor_mapping.hpp"
+
+namespace ssid::cli::report {
+
+/// {"command": "ssid NAME ARGS...", "inputs": [{"path", "sha256", "bytes"}],
+/// "version", "date"}: the date in UTC (ISO 8601), or SOURCE_DATE_EPOCH's when
+/// that is set (reproducible reports).
+nlohmann::json run_json(const std::string& subcommand, const Args& args, const std::vector<std::string>& inputs);
+
+/// The deck drawn as lines: {"grids": [[id, x, y, z]] (basic), "lines": [[g1, g2]]
+/// (CROD, CONROD, CBAR, CBEAM, CBUSH, CELAS1/2 between two grids, RBAR, RBE2 legs),
+/// "test_lines": [[n1, n2]]}: the test's wire frame, joining each test grid to
+/// the (at most three) nearest test grids that an element path through
+/// non-test grids connects it to (the deck's geometry seen by the sensors; a
+/// test file's own trace lines, dataset 82, are not read yet).
+nlohmann::json geometry_json(const translators::FeModel& model, const std::vector<translators::GridPosition>& grids,
+                             const std::vector<std::int64_t>& test_grids);
+
+/// The a-set modes (columns of `a_modes`) at every grid of `grids`, in basic
+/// X, Y, Z (expanded through the model's reduction, rotated out of each grid's
+/// displacement frame): per mode [[id, dx, dy, dz], ...].
+std::vector<nlohmann::json> grid_shapes_json(const translators::FeModel& model,
+                                             const std::vector<translators::GridPosition>& grids,
+                                             const Eigen::MatrixXd& a_modes);
+
+/// A shape at measured DOFs (node, direction ±1..3 in basic; rotations are
+/// skipped) times `scale`, as [[node, dx, dy, dz], ...] in first-seen order.
+nlohmann::json dof_shape_json(const std::vector<translators::MeasuredDof>& dofs, const Eigen::VectorXd& values,
+                              double scale);
+
+/// The least-squares factor taking `test` onto `fe` (fe·test / test·test; 0 for a zero test shape).
+double scale_onto(const Eigen::VectorXd& fe, const Eigen::VectorXd& test);
+
+/// Writes the HTML report of `j` (html_report.hpp) to `path`. Throws InputError when it cannot.
+void write_report(const std::string& path, const nlohmann::json& j);
+
+}  // namespace ssid::cli::report
+
+namespace ssid::cli::report {
+
+/// One pair whose shapes the report draws.
+struct ShapePair {
+  int fe_mode = 0, test_mode = 0;  ///< as the JSON's "pairs" number them
+  double fe_hz = 0, test_hz = 0, mac = 0;
+  Eigen::Index fe_column = 0;      ///< column of the a-set modes
+  Eigen::VectorXd fe_at_dofs, test_at_dofs;  ///< both shapes at `dofs`
+};
+
+/// Adds "geometry" (geometry_json) and "shapes" to `j`: per pair {"fe_mode", "test_mode",
+/// "fe_hz", "test_hz", "mac", "fe" (every grid), "test" (the measured nodes, scaled onto
+/// the analysis shape by scale_onto), "test_scale"}.
+void add_shapes(nlohmann::json& j, const translators::FeModel& model, const Eigen::MatrixXd& a_modes,
+                const std::vector<translators::MeasuredDof>& dofs, const std::vector<ShapePair>& pairs);
+
+/// Measured DOFs from the estimator's sensor labels ("grid:direction").
+std::vector<translators::MeasuredDof> dofs_of_labels(const std::vector<std::string>& labels);
+
+}  // namespace ssid::cli::report
+
+#include <boost/program_options/variables_map.hpp>
+
+#include "estimator/study/deck_study.hpp"
+
+namespace ssid::cli::report {
+
+/// `ssid estimate --report`: adds "run" (inputs: deck, measured file, study or
+/// problem file), the first configuration's "geometry" and the "shapes" of its
+/// pairs at the estimate (one more eigen-solve) to `j`, and writes the report.
+/// Shapes need the deck: a problem file's run (or a deck no longer there) gets none.
+void write_estimate_report(const std::string& path, const Args& args, const boost::program_options::variables_map& vm,
+                           const estimator::EstimationProblem& problem, const estimator::EstimationResult& result,
+                           nlohmann::json& j);
+
+/// `ssid diagnose --report`: adds "run" (inputs: the deck, the measured file, the
+/// study) and the deck's "geometry" to `j`, and writes the report.
+void write_diagnosis_report(const std::string& path, const Args& args, const boost::program_options::variables_map& vm,
+                            nlohmann::json& j);
+
+}  // namespace ssid::cli::report

@@ -1,0 +1,29 @@
+#!/bin/sh
+# Makes the screenshots of docs/report.md from the samples' reports:
+#   sh docs/report/screenshots.sh BUILD_DIR
+# Each shot is the page with the sections before it hidden (a <style> added to a
+# copy of the report), 1000 px wide, taken by headless Chromium.
+set -e
+build=${1:-build}
+src=$(cd "$(dirname "$0")/../.." && pwd)
+out="$src/docs/report"
+tmp=$(mktemp -d)
+trap 'rm -rf "$tmp"' EXIT
+cd "$src"
+"$build/ssid" estimate -q samples/mpi_rod.bdf samples/estimate/measured.unv \
+  --study samples/estimate/study.json --json "$tmp/estimate.json" --report "$tmp/estimate.html" >/dev/null
+"$build/ssid" diagnose -q samples/mpi_rod.bdf samples/mpi_rod_hidden_mass.unv \
+  --json "$tmp/diagnosis.json" --report "$tmp/diagnosis.html" >/dev/null
+# shot REPORT NAME HEIGHT HIDDEN-SECTIONS
+shot() {
+  sed "s|</head>|<style>$4{display:none}</style></head>|" "$tmp/$1.html" >"$tmp/shot-$2.html"
+  timeout 120 chromium --headless=new --no-sandbox --disable-gpu --disable-dev-shm-usage --no-first-run \
+    --user-data-dir="$tmp/profile" --virtual-time-budget=3000 --hide-scrollbars --window-size=1000,"$3" \
+    --screenshot="$out/$2.png" "file://$tmp/shot-$2.html" >/dev/null 2>&1
+}
+shot estimate estimate_correlation 1250 ".none"
+shot estimate estimate_parameters 1300 "#run,#correlation,#frequencies,h1"
+shot estimate estimate_shapes 900 "#run,#correlation,#frequencies,#parameters,#convergence,h1,#shape-0,#shape-1,#shape-2,#shape-3,#shape-4,#shape-5"
+shot diagnosis diagnosis 1400 ".none"
+shot diagnosis diagnosis_cause 1000 "#run,#residuals,#ranking,h1"
+ls -l "$out"/*.png

@@ -1,0 +1,311 @@
+// --report FILE.html (issue 24): the reports of the shipped samples, their
+// structure checked against the JSON the same run writes, and their rendering
+// in headless Chromium (Debian's `chromium`, installed by scripts/install-deps).
+#include <catch2/catch.hpp>
+
+#include <array>
+#include <cstdio>
+#include <filesystem>
+#include <map>
+#include <nlohmann/json.hpp>
+#include <regex>
+#include <set>
+#include <unistd.h>
+
+#include "cli_run.hpp"
+
+namespace fs = std::filesystem;
+using json = nlohmann::json;
+
+namespace {
+
+fs::path scratch() {
+  fs::path p = fs::temp_directory_path() / ("ssid_cli_report_" + std::to_string(::getpid()));
+  fs::create_directories(p);
+  return p;
+}
+
+std::string src(const std::string& rel) { return std::string(SSID_SOURCE_DIR) + "/" + rel; }
+
+using Attributes = std::map<std::string, std::string>;
+
+/// Every start tag `<tag class="cls" ...>` of `html`, with its attributes.
+std::vector<Attributes> marks(const std::string& html, const std::string& tag, const std::string& cls) {
+  std::vector<Attributes> out;
+  const std::regex start("<" + tag + "( [^>]*)? class=\"" + cls + "\"([^>]*)>");
+  const std::regex attr("([a-z-]+)=\"([^\"]*)\"");
+  for (auto it = std::sregex_iterator(html.begin(), html.end(), start); it != std::sregex_iterator(); ++it) {
+    Attributes a;
+    const std::string body = (*it)[1].str() + (*it)[2].str();
+    for (auto at = std::sregex_iterator(body.begin(), body.end(), attr); at != std::sregex_iterator(); ++at)
+      a[(*at)[1]] = (*at)[2];
+    out.push_back(a);
+  }
+  return out;
+}
+
+/// The markup of one figure (from `<figure id="id">` to its `</figure>`).
+std::string figure(const std::string& html, const std::string& id) {
+  const auto a = html.find("<figure id=\"" + id + "\"");
+  if (a == std::string::npos) return "";
+  return html.substr(a, html.find("</figure>", a) - a);
+}
+
+double num(const Attributes& a, const std::string& key) {
+  REQUIRE(a.count(key));
+  return std::stod(a.at(key));
+}
+
+/// What a shell command prints (stdout).
+std::string output_of(const std::string& cmd) {
+  std::string out;
+  FILE* p = ::popen(cmd.c_str(), "r");
+  if (!p) return out;
+  std::array<char, 4096> buf{};
+  while (std::size_t n = std::fread(buf.data(), 1, buf.size(), p)) out.append(buf.data(), n);
+  ::pclose(p);
+  return out;
+}
+
+/// The run's header: inputs with the SHA-256 that sha256sum gives, the version `ssid --version` prints.
+void check_run(const json& j, const std::string& html, const std::vector<std::string>& inputs) {
+  REQUIRE(j.contains("run"));
+  CHECK(output_of(std::string(SSID_EXE) + " --version") == "ssid " + j["run"]["version"].get<std::string>() + "\n");
+  REQUIRE(j["run"]["inputs"].size() == inputs.size());
+  for (std::size_t k = 0; k < inputs.size(); ++k) {
+    const auto& in = j["run"]["inputs"][k];
+    CHECK(in["path"] == inputs[k]);
+    const std::string sum = output_of("sha256sum " + inputs[k]).substr(0, 64);
+    CHECK(in["sha256"] == sum);
+    CHECK(html.find(sum) != std::string::npos);
+    CHECK(in["bytes"] == fs::file_size(inputs[k]));
+  }
+  CHECK(std::regex_match(j["run"]["date"].get<std::string>(), std::regex(R"(\d{4}-\d\d-\d\dT\d\d:\d\d:\d\dZ)")));
+  CHECK(html.find(j["run"]["command"].get<std::string>()) != std::string::npos);
+  // Self-contained: nothing fetched (the only URL is the SVG namespace).
+  std::string rest = std::regex_replace(html, std::regex("http://www\\.w3\\.org/2000/svg"), "");
+  CHECK(rest.find("http://") == std::string::npos);
+  CHECK(rest.find("https://") == std::string::npos);
+  CHECK(rest.find("<script src") == std::string::npos);
+  CHECK(rest.find("<link") == std::string::npos);
+}
+
+/// The heat map's cells against a JSON matrix, and its outlined cells.
+void check_heat_map(const std::string& fig, const json& m, const std::set<std::pair<int, int>>& marked) {
+  const auto cells = marks(fig, "rect", "cell");
+  REQUIRE(cells.size() == m.size() * m[0].size());
+  for (const auto& c : cells) {
+    const auto i = static_cast<std::size_t>(num(c, "data-i")), k = static_cast<std::size_t>(num(c, "data-k"));
+    CHECK(num(c, "data-v") == m[i][k].get<double>());
+  }
+  std::set<std::pair<int, int>> drawn;
+  for (const auto& c : marks(fig, "rect", "pair"))
+    drawn.insert({static_cast<int>(num(c, "data-i")), static_cast<int>(num(c, "data-k"))});
+  CHECK(drawn == marked);
+}
+
+/// The mode-shape figures against the JSON's pairs and shapes.
+void check_shapes(const std::string& html, const json& j, const json& pairs) {
+  REQUIRE(j.contains("geometry"));
+  CHECK(j["geometry"]["grids"].size() == 80);  // the MPI truss: 80 balls
+  CHECK(j["geometry"]["lines"].size() > 100);
+  CHECK(!j["geometry"]["test_lines"].empty());
+  const auto figs = marks(html, "figure", "shape");
+  REQUIRE(figs.size() == pairs.size());
+  REQUIRE(j["shapes"].size() == pairs.size());
+  for (std::size_t k = 0; k < pairs.size(); ++k) {
+    CHECK(num(figs[k], "data-fe-mode") == pairs[k]["fe_mode"].get<int>());
+    CHECK(num(figs[k], "data-test-mode") == pairs[k]["test_mode"].get<int>());
+    CHECK(num(figs[k], "data-fe-hz") == pairs[k]["fe_hz"].get<double>());
+    CHECK(num(figs[k], "data-test-hz") == pairs[k]["test_hz"].get<double>());
+    CHECK(num(figs[k], "data-mac") == pairs[k]["mac"].get<double>());
+    CHECK(j["shapes"][k]["fe"].size() == 80);
+    // Four views, each an analysis and a test drawing, each animated.
+    const std::string f = figure(html, "shape-" + std::to_string(k));
+    CHECK(marks(f, "g", "view").size() == 4);
+    CHECK(marks(f, "path", "deformed fe").size() == 4);
+    CHECK(marks(f, "path", "deformed test").size() == 4);
+  }
+}
+
+/// Headless Chromium: the page renders, no script error, every figure drawn, a screenshot.
+void check_in_browser(const fs::path& html, std::size_t min_figures) {
+  REQUIRE(std::system("command -v chromium >/dev/null 2>&1") == 0);  // scripts/install-deps installs it
+  const fs::path profile = html.parent_path() / ("chromium-" + html.stem().string());
+  const std::string common = "timeout 120 chromium --headless=new --no-sandbox --disable-gpu --disable-dev-shm-usage "
+                             "--no-first-run --user-data-dir=" + profile.string() + " --virtual-time-budget=3000 ";
+  const std::string dom = output_of(common + "--dump-dom file://" + fs::absolute(html).string() + " 2>/dev/null");
+  INFO(dom.substr(0, 400));
+  const std::string root = dom.substr(0, dom.find("<head>"));  // the <html> tag: the page's script sets its attributes
+  CHECK(root.find("data-rendered=\"1\"") != std::string::npos);
+  CHECK(root.find("data-script-errors") == std::string::npos);
+  std::smatch m;
+  REQUIRE(std::regex_search(root, m, std::regex("data-figures=\"(\\d+)\"")));
+  CHECK(std::stoul(m[1]) >= min_figures);
+  REQUIRE(std::regex_search(root, m, std::regex("data-empty-figures=\"([^\"]*)\"")));
+  CHECK(m[1] == "");
+  REQUIRE(std::regex_search(root, m, std::regex("data-page-height=\"(\\d+)\"")));
+  CHECK(std::stoul(m[1]) > 1500);
+  const fs::path png = html.parent_path() / (html.stem().string() + ".png");
+  fs::remove(png);
+  std::system((common + "--window-size=1200,1600 --screenshot=" + png.string() + " file://" + fs::absolute(html).string() +
+               " >/dev/null 2>&1").c_str());
+  REQUIRE(fs::exists(png));
+  CHECK(fs::file_size(png) > 20000);
+  CHECK(cli_slurp(png).substr(1, 3) == "PNG");
+}
+
+struct Report {
+  json j;
+  std::string html;
+  fs::path path;
+};
+
+Report run_report(const std::string& name, const std::string& args) {
+  const fs::path dir = scratch();
+  const fs::path js = dir / (name + ".json"), html = dir / (name + ".html");
+  fs::remove(js), fs::remove(html);
+  const auto r = run_ssid(args + " --json " + js.string() + " --report " + html.string());
+  INFO(r.err);
+  REQUIRE(r.code == 0);
+  return {json::parse(cli_slurp(js)), cli_slurp(html), html};
+}
+
+Report correlate_report() {
+  return run_report("correlate", "correlate " + src("samples/mpi_rod.bdf") + " " + src("samples/estimate/measured.unv"));
+}
+
+Report estimate_report() {
+  return run_report("estimate", "estimate -q " + src("samples/mpi_rod.bdf") + " " + src("samples/estimate/measured.unv") +
+                                    " --study " + src("samples/estimate/study.json"));
+}
+
+Report diagnose_report() {
+  return run_report("diagnose", "diagnose -q " + src("samples/mpi_rod.bdf") + " " + src("samples/mpi_rod_hidden_mass.unv"));
+}
+
+}  // namespace
+
+TEST_CASE("ssid correlate --report: MAC, frequencies and shapes are the JSON's", "[cli][report]") {
+  const Report r = correlate_report();
+  const json& j = r.j;
+  check_run(j, r.html, {src("samples/mpi_rod.bdf"), src("samples/estimate/measured.unv")});
+  // MAC: rows the analysis modes, columns the test modes; the accepted pairs outlined.
+  std::set<std::pair<int, int>> accepted;
+  json acc = json::array();
+  auto index = [](const json& modes, int m) {
+    for (std::size_t k = 0; k < modes.size(); ++k)
+      if (modes[k]["mode"] == m) return static_cast<int>(k);
+    return -1;
+  };
+  for (const auto& p : j["pairs"])
+    if (p["accepted"]) {
+      accepted.insert({index(j["fe_modes"], p["fe_mode"]), index(j["test_modes"], p["test_mode"])});
+      acc.push_back(p);
+    }
+  REQUIRE(acc.size() == 24);
+  check_heat_map(figure(r.html, "fig-mac"), j["mac"], accepted);
+  // Frequencies: one point per accepted pair at (test, analysis), one error bar each.
+  const auto pts = marks(figure(r.html, "fig-frequencies"), "circle", "freq-after");
+  REQUIRE(pts.size() == acc.size());
+  for (std::size_t k = 0; k < pts.size(); ++k) {
+    CHECK(num(pts[k], "data-x") == acc[k]["test_hz"].get<double>());
+    CHECK(num(pts[k], "data-y") == acc[k]["fe_hz"].get<double>());
+  }
+  const auto bars = marks(figure(r.html, "fig-errors"), "rect", "err-after");
+  REQUIRE(bars.size() == acc.size());
+  for (std::size_t k = 0; k < bars.size(); ++k) CHECK(num(bars[k], "data-v") == acc[k]["error_pct"].get<double>());
+  check_shapes(r.html, j, acc);
+}
+
+TEST_CASE("ssid estimate --report: before and after, parameters, convergence and shapes are the JSON's", "[cli][report]") {
+  const Report r = estimate_report();
+  const json& j = r.j;
+  check_run(j, r.html,
+            {src("samples/mpi_rod.bdf"), src("samples/estimate/measured.unv"), src("samples/estimate/study.json")});
+  const json& c0 = j["configurations"][0];
+  std::set<std::pair<int, int>> paired;
+  for (const auto& p : c0["pairs"]) {
+    const auto& tm = c0["test_modes"];
+    const int row = static_cast<int>(std::find(tm.begin(), tm.end(), p["test_mode"]) - tm.begin());
+    paired.insert({row, p["fe_mode"].get<int>() - 1});
+  }
+  REQUIRE(paired.size() == 20);
+  check_heat_map(figure(r.html, "fig-mac"), c0["correlation"], paired);
+  // Before (the first cycle's pairs) and after (at the estimate).
+  REQUIRE(j["initial_pairs"].size() == 20);
+  const std::string errs = figure(r.html, "fig-errors");
+  const auto after = marks(errs, "rect", "err-after"), before = marks(errs, "rect", "err-before");
+  REQUIRE(after.size() == j["pairs"].size());
+  REQUIRE(before.size() == j["initial_pairs"].size());
+  for (std::size_t k = 0; k < after.size(); ++k) CHECK(num(after[k], "data-v") == j["pairs"][k]["error_pct"].get<double>());
+  std::map<int, double> initial;
+  for (const auto& p : j["initial_pairs"]) initial[p["test_mode"]] = p["error_pct"];
+  for (const auto& b : before) CHECK(num(b, "data-v") == initial.at(static_cast<int>(num(b, "data-test-mode"))));
+  const auto hollow = marks(figure(r.html, "fig-frequencies"), "circle", "freq-before");
+  CHECK(hollow.size() == j["initial_pairs"].size());
+  // Parameters: prior and posterior mean ± σ.
+  const std::string pf = figure(r.html, "fig-parameters");
+  const auto prior = marks(pf, "g", "prior"), post = marks(pf, "g", "posterior");
+  REQUIRE(post.size() == j["parameters"].size());
+  REQUIRE(prior.size() == j["parameters"].size());
+  for (std::size_t k = 0; k < post.size(); ++k) {
+    const auto& p = j["parameters"][k];
+    CHECK(post[k].at("data-name") == p["name"].get<std::string>());
+    CHECK(num(post[k], "data-v") == p["estimate"].get<double>());
+    CHECK(num(post[k], "data-s") == p["posterior_std"].get<double>());
+    CHECK(num(prior[k], "data-v") == p["initial"].get<double>());
+    CHECK(num(prior[k], "data-s") == p["prior_std"].get<double>());
+  }
+  check_heat_map(figure(r.html, "fig-correlation"), j["identifiability"]["posterior_correlation"], {});
+  // Convergence: every parameter at every cycle, and J per cycle.
+  const auto conv = marks(figure(r.html, "fig-convergence"), "circle", "conv");
+  REQUIRE(conv.size() == j["iterations"].size() * j["parameters"].size());
+  for (const auto& c : conv) {
+    const int cycle = static_cast<int>(num(c, "data-cycle"));
+    const json* it = nullptr;
+    for (const auto& i : j["iterations"])
+      if (i["cycle"] == cycle) it = &i;
+    REQUIRE(it);
+    CHECK(num(c, "data-v") == (*it)["parameters"][c.at("data-name")].get<double>());
+  }
+  const auto obj = marks(figure(r.html, "fig-objective"), "circle", "objective");
+  REQUIRE(obj.size() == j["iterations"].size());
+  for (std::size_t k = 0; k < obj.size(); ++k) CHECK(num(obj[k], "data-v") == j["iterations"][k]["objective"].get<double>());
+  check_shapes(r.html, j, c0["pairs"]);
+}
+
+TEST_CASE("ssid diagnose --report: residuals, ranking, cause and gain are the JSON's", "[cli][report]") {
+  const Report r = diagnose_report();
+  const json& j = r.j;
+  check_run(j, r.html, {src("samples/mpi_rod.bdf"), src("samples/mpi_rod_hidden_mass.unv")});
+  const json& e = j["evidence"];
+  const auto mems = marks(figure(r.html, "fig-mems"), "rect", "mems");
+  REQUIRE(mems.size() == e["modes"].size());
+  for (std::size_t k = 0; k < mems.size(); ++k) CHECK(num(mems[k], "data-v") == e["modes"][k]["mems_error"].get<double>());
+  const auto grid = marks(figure(r.html, "fig-grid-misfit"), "rect", "grid-misfit");
+  REQUIRE(grid.size() == e["grid_misfit"].size());
+  for (std::size_t k = 0; k < grid.size(); ++k) {
+    CHECK(num(grid[k], "data-grid") == e["grid_misfit"][k]["grid"].get<double>());
+    CHECK(num(grid[k], "data-v") == e["grid_misfit"][k]["share"].get<double>());
+  }
+  const auto rank = marks(figure(r.html, "fig-ranking"), "rect", "rank");
+  REQUIRE(rank.size() == std::min<std::size_t>(12, j["ranking"].size()));
+  for (std::size_t k = 0; k < rank.size(); ++k) CHECK(num(rank[k], "data-v") == j["ranking"][k]["log_evidence"].get<double>());
+  // The cause on the structure: its grids marked.
+  std::set<long> cause_grids, drawn;
+  for (const auto& g : j["cause"]["location"]["grids"]) cause_grids.insert(g.get<long>());
+  for (const auto& c : marks(figure(r.html, "fig-cause"), "circle", "cause")) drawn.insert(static_cast<long>(num(c, "data-grid")));
+  CHECK(!cause_grids.empty());
+  CHECK(drawn == cause_grids);
+  const auto rms = marks(figure(r.html, "fig-gain-rms"), "rect", "gain");
+  REQUIRE(rms.size() == 2);
+  CHECK(num(rms[0], "data-v") == j["gain"]["before"]["freq_rms_pct"].get<double>());
+  CHECK(num(rms[1], "data-v") == j["gain"]["after"]["freq_rms_pct"].get<double>());
+}
+
+TEST_CASE("the samples' reports render in headless Chromium", "[cli][report][browser]") {
+  check_in_browser(correlate_report().path, 27);
+  check_in_browser(estimate_report().path, 28);
+  check_in_browser(diagnose_report().path, 7);
+}
