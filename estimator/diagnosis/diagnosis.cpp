@@ -3,9 +3,13 @@
 #include <Eigen/Dense>
 #include <algorithm>
 #include <cmath>
+#include <functional>
+#include <map>
+#include <optional>
 #include <set>
 #include <sstream>
 
+#include "estimator/diagnosis/calibration.hpp"
 #include "estimator/eigen/eigen_solver.hpp"
 #include "estimator/updating/sensitivity.hpp"
 #include "formats/deck_writer.hpp"
@@ -157,6 +161,7 @@ class Engine {
     for (const auto& pb : pbs) measured += static_cast<int>(pb.test.size());
     h.before = fit_of(res.history.front(), measured);
     h.after = fit_of(res.history.back(), measured);
+    h.pairs = res.history.back().pairs;
     const bool shapes = m_opt.problem.update.shape_derivatives;
     for (std::size_t k = 0; k < pbs.size(); ++k) {
       std::set<int> paired;
@@ -189,6 +194,18 @@ class Engine {
   void warm_start(const std::vector<std::string>& names, const Eigen::VectorXd& r) {
     for (std::size_t j = 0; j < names.size(); ++j) m_warm[names[j]] = r(static_cast<Eigen::Index>(j));
   }
+  /// The first configuration's problem for deck `text` with the priors of the
+  /// new parameters `added` (no estimate).
+  DeckProblem problem(const std::string& text, const std::vector<ext::NewParameter>& added) const {
+    std::map<std::string, PriorOverride> priors;
+    for (const auto& p : added) priors[p.label] = {p.prior_mean, p.prior_std, p.start};
+    return make_deck_problem(text, m_setup.est.front().name, m_setup.est.front().measured, m_opt.problem, priors);
+  }
+  /// The measurement σ of the next hypotheses' estimates (the noise the data imply).
+  void set_noise(double frequency_std_pct, double shape_std_pct) {
+    m_opt.problem.frequency_std_pct = frequency_std_pct;
+    m_opt.problem.shape_std_pct = shape_std_pct;
+  }
   /// Where the estimates of the next hypotheses report their cycles.
   void set_update_progress(Progress p) { m_opt.problem.update_progress = std::move(p); }
   /// The last evaluate()'s estimate was interrupted (its hypothesis is as far as it got).
@@ -207,9 +224,7 @@ class Engine {
 
 /// First-order screening data at the updated parameters (first configuration).
 struct Screen {
-  Eigen::VectorXd e;   ///< weighted residual
-  Eigen::MatrixXd W;   ///< weighted, prior-scaled sensitivities of the existing parameters
-  Eigen::MatrixXd Hinv_Wt;  ///< H⁻¹ Wᵀ
+  LinearUpdate lin;    ///< weighted residual, prior-scaled sensitivities, row groups and modes
   struct Row { int fem; double f; Eigen::VectorXd u; double norm; double sigma_f, sigma_s; bool use_f, use_s; };
   std::vector<Row> rows;
 };
@@ -250,32 +265,36 @@ Screen prepare_screen(DeckProblem& pb, const Eigen::VectorXd& r, const std::vect
     if (row.use_f) {
       e.push_back((t.frequency_hz - row.f) / row.sigma_f);
       w.push_back((s.d_eigenvalue / (8 * M_PI * M_PI * row.f)).cwiseProduct(d) / row.sigma_f);
+      sc.lin.group.push_back(kFrequencyRows);
+      sc.lin.block.push_back(static_cast<int>(k));
     }
     if (row.use_s) {
       Eigen::VectorXd z = t.shape.normalized();
       if (z.dot(row.u) < 0) z = -z;
       const Eigen::MatrixXd du = (s.d_sensor_shape - row.u * (row.u.transpose() * s.d_sensor_shape)) / row.norm;
-      for (Eigen::Index k = 0; k < z.size(); ++k) {
-        e.push_back((z(k) - row.u(k)) / row.sigma_s);
-        w.push_back(du.row(k).transpose().cwiseProduct(d) / row.sigma_s);
+      for (Eigen::Index k2 = 0; k2 < z.size(); ++k2) {
+        e.push_back((z(k2) - row.u(k2)) / row.sigma_s);
+        w.push_back(du.row(k2).transpose().cwiseProduct(d) / row.sigma_s);
+        sc.lin.group.push_back(kShapeRows);
+        sc.lin.block.push_back(static_cast<int>(k));
       }
     }
   }
   const auto m = static_cast<Eigen::Index>(e.size());
-  sc.e = Eigen::Map<Eigen::VectorXd>(e.data(), m);
-  sc.W.resize(m, d.size());
-  for (Eigen::Index k = 0; k < m; ++k) sc.W.row(k) = w[static_cast<std::size_t>(k)].transpose();
-  const Eigen::MatrixXd H = Eigen::MatrixXd::Identity(d.size(), d.size()) + sc.W.transpose() * sc.W;
-  sc.Hinv_Wt = H.ldlt().solve(sc.W.transpose());
+  sc.lin.e = Eigen::Map<Eigen::VectorXd>(e.data(), m);
+  sc.lin.W.resize(m, d.size());
+  for (Eigen::Index k = 0; k < m; ++k) sc.lin.W.row(k) = w[static_cast<std::size_t>(k)].transpose();
+  sc.lin.theta = ((r - pb.prior.mean).array() / d.array()).matrix();
   return sc;
 }
 
-/// ΔlogZ of one new parameter from its ∂K, ∂M (first order).
-double screen_score(const Screen& sc, const OperatorModel& model, const Eigen::VectorXd& lambdas, const SparseMatrix& C,
-                    const SparseMatrix& dK, const SparseMatrix& dM, double prior_std) {
+/// The prior-scaled weighted sensitivity σ_β S_ee^{-1/2} ∂u/∂β of one new
+/// parameter from its ∂K, ∂M (∂λ exact, ∂φ by modal summation): the rows of `sc`.
+Eigen::VectorXd screen_column(const Screen& sc, const OperatorModel& model, const Eigen::VectorXd& lambdas,
+                              const SparseMatrix& C, const SparseMatrix& dK, const SparseMatrix& dM, double prior_std) {
   const Eigen::MatrixXd& Phi = model.modes();
   std::vector<double> t;
-  t.reserve(static_cast<std::size_t>(sc.e.size()));
+  t.reserve(static_cast<std::size_t>(sc.lin.e.size()));
   for (const auto& row : sc.rows) {
     const double lam = lambdas(row.fem);
     const Eigen::VectorXd phi = Phi.col(row.fem);
@@ -287,12 +306,7 @@ double screen_score(const Screen& sc, const OperatorModel& model, const Eigen::V
       for (Eigen::Index k = 0; k < du.size(); ++k) t.push_back(du(k) / row.sigma_s);
     }
   }
-  const Eigen::Map<const Eigen::VectorXd> tv(t.data(), static_cast<Eigen::Index>(t.size()));
-  const Eigen::VectorXd Wt = sc.W.transpose() * tv;
-  const double s = tv.squaredNorm() - Wt.dot(sc.Hinv_Wt * tv);
-  const double g = tv.dot(sc.e);
-  const double v = prior_std * prior_std;
-  return 0.5 * g * g / (std::max(s, 0.0) + 1.0 / v) - 0.5 * std::log1p(v * std::max(s, 0.0));
+  return prior_std * Eigen::Map<const Eigen::VectorXd>(t.data(), static_cast<Eigen::Index>(t.size()));
 }
 
 /// For each unexplained test mode (the evidence's order), the g-set shape of
@@ -325,6 +339,120 @@ std::vector<Eigen::VectorXd> neighbours_of_unexplained(DeckProblem& pb, const Mo
   return out;
 }
 
+/// The noise the comparisons of fits use: σ of a frequency [% of it] and of a
+/// component of a unit shape.
+struct FitNoise {
+  double frequency_pct = 1, shape_unit = 1;
+};
+
+/// "" when `h` fits the test modes that both pair no worse than `ref`, pairs
+/// no fewer modes and predicts held-back modes no worse; otherwise why not.
+/// Worse: the frequency or the shape χ² of the common pairs, in units of the
+/// noise, χ²_f = Σ (Δf %/σ_f)², χ²_s = Σ ‖z − u‖²/σ_s² = Σ (2 − 2√MAC)/σ_s²,
+/// grows by more than 1 (a likelihood ratio below e^{−1/2} for that group:
+/// within that, the difference is the noise's, not the model's).
+std::string worse_fit(const Hypothesis& h, const Hypothesis& ref, const FitNoise& noise) {
+  if (h.after.paired < ref.after.paired)
+    return "pairs fewer test modes (" + std::to_string(h.after.paired) + " vs " + std::to_string(ref.after.paired) + ")";
+  std::map<std::pair<int, int>, const UpdatePair*> mine;
+  for (const auto& p : h.pairs) mine[{p.config, p.test}] = &p;
+  double e2h = 0, e2r = 0, mach = 0, macr = 0, shh = 0, shr = 0;
+  int n = 0;
+  for (const auto& p : ref.pairs) {
+    const auto it = mine.find({p.config, p.test});
+    if (it == mine.end()) continue;
+    e2h += it->second->error_pct * it->second->error_pct;
+    e2r += p.error_pct * p.error_pct;
+    mach += it->second->mac;
+    macr += p.mac;
+    shh += 2.0 - 2.0 * std::sqrt(std::clamp(it->second->mac, 0.0, 1.0));
+    shr += 2.0 - 2.0 * std::sqrt(std::clamp(p.mac, 0.0, 1.0));
+    ++n;
+  }
+  if (n > 0) {
+    const std::string on = " on the " + std::to_string(n) + " modes both pair";
+    const double df = (e2h - e2r) / (noise.frequency_pct * noise.frequency_pct);
+    const double ds = (shh - shr) / (noise.shape_unit * noise.shape_unit);
+    if (df > 1.0)
+      return "makes the frequency fit worse (RMS error " + fixed(std::sqrt(e2h / n), 3) + " % vs " + fixed(std::sqrt(e2r / n), 3) +
+             " %" + on + ": chi^2 up by " + significant(df, 3) + ")";
+    if (ds > 1.0)
+      return "makes the shape fit worse (mean MAC " + fixed(mach / n, 5) + " vs " + fixed(macr / n, 5) + on +
+             ": chi^2 up by " + significant(ds, 3) + ")";
+  }
+  if (h.prediction_rms_pct >= 0 && ref.prediction_rms_pct >= 0 && h.prediction_rms_pct > ref.prediction_rms_pct)
+    return "predicts the held-back modes worse (RMS " + fixed(h.prediction_rms_pct, 3) + " % vs " +
+           fixed(ref.prediction_rms_pct, 3) + " %)";
+  return "";
+}
+
+/// "" when extension `h` may be named against the ordinary update `P`
+/// (diagnosis.hpp, step 4); otherwise the first reason it may not.
+std::string why_not_named(const Hypothesis& h, const Hypothesis& P, const ResidualTest& rt, double alpha, double margin,
+                          const FitNoise& noise) {
+  if (h.screening_column >= 0) {
+    if (!(h.false_alarm <= alpha))
+      return "false-alarm probability " + significant(h.false_alarm, 2) + " (" + std::to_string(h.exceed) + " of " +
+             std::to_string(rt.replicates) + " noise replicates reach its first-order gain of " + fixed(h.screening, 2) +
+             " nats) is above " + significant(alpha, 2);
+    if (!(h.held_out.total() > 0))
+      return "does not predict held-out modes better (leave-one-mode-out gain " + significant(h.held_out.total(), 3) +
+             ": frequencies " + significant(h.held_out.gain[kFrequencyRows], 3) + ", shapes " +
+             significant(h.held_out.gain[kShapeRows], 3) + ")";
+  } else if (rt.consistent) {
+    return "the ordinary update's residuals are consistent with the noise: nothing is left to explain";
+  }
+  if (h.score - P.score < margin)
+    return fixed(h.score - P.score, 1) + " nats above the ordinary update, below the " + fixed(margin, 1) + "-nat margin";
+  return worse_fit(h, P, noise);
+}
+
+/// Is anything left to explain after the ordinary update? Fills dg.residual
+/// from the noise report, the pairs of `param` and the calibrated screening;
+/// `where(column)` names a screened candidate.
+void residual_test(Diagnosis& dg, const Hypothesis& param, const Screening& screen, const CalibrationOptions& opt,
+                   const std::function<std::string(int)>& where) {
+  ResidualTest& rt = dg.residual;
+  const NoiseScale& ns = dg.noise.scale;
+  const char* group_name[kRowGroups] = {"frequency", "shape"};
+  for (int g = 0; g < kRowGroups; ++g) rt.chi2_p[g] = ns.rows[g] ? chi2_upper_tail(ns.chi2[g], ns.dof[g]) : 1.0;
+  rt.unpaired = param.after.measured - param.after.paired;
+  rt.candidates = screen.candidate_count();
+  rt.replicates = static_cast<int>(screen.maxima().size());
+  std::vector<std::string> left;
+  if (rt.unpaired > 0) left.push_back(std::to_string(rt.unpaired) + " test mode(s) have no analysis partner");
+  std::string gain_text;
+  if (rt.candidates > 0 && rt.replicates > 0) {
+    Eigen::Index best = 0;
+    rt.statistic = screen.gains().maxCoeff(&best);
+    rt.exceed = screen.exceedances(rt.statistic);
+    rt.p = screen.false_alarm(rt.statistic);
+    rt.p_upper = tail_upper_bound(rt.exceed, rt.replicates);
+    gain_text = "the largest first-order gain of the " + std::to_string(rt.candidates) + " candidates screened, " +
+                fixed(rt.statistic, 2) + " nats (" + where(static_cast<int>(best)) + "), is reached by " +
+                std::to_string(rt.exceed) + " of " + std::to_string(rt.replicates) +
+                " replicates of noise alone (false-alarm p = " + significant(rt.p, 2) + ")";
+    if (rt.p <= opt.false_alarm) left.push_back(gain_text);
+  }
+  if (!opt.estimate_noise)
+    for (int g = 0; g < kRowGroups; ++g)
+      if (ns.rows[g] && rt.chi2_p[g] <= opt.false_alarm)
+        left.push_back(std::string(group_name[g]) + " residuals exceed the given noise (chi^2 = " + significant(ns.chi2[g], 4) +
+                       " on " + significant(ns.dof[g], 4) + " degrees of freedom, p = " + significant(rt.chi2_p[g], 2) + ")");
+  const bool structure_known = !gain_text.empty() || !opt.estimate_noise;
+  rt.consistent = left.empty() && structure_known;
+  if (rt.consistent)
+    rt.text = "nothing is left to explain: every test mode has a partner" +
+              (gain_text.empty() ? std::string(" and the residuals fit the given noise")
+                                 : " and " + gain_text + ", above " + significant(opt.false_alarm, 2));
+  else if (left.empty())
+    rt.text = "cannot tell whether anything is left to explain: no candidate has a first-order screening";
+  else {
+    rt.text = "something is left to explain: ";
+    for (std::size_t k = 0; k < left.size(); ++k) rt.text += (k ? "; " : "") + left[k];
+  }
+}
+
 }  // namespace
 
 std::string deck_at(const std::string& deck_text, const std::string& name, const Eigen::VectorXd& x) {
@@ -340,6 +468,14 @@ std::string deck_at(const std::string& deck_text, const std::string& name, const
 }
 
 Diagnosis diagnose(const std::vector<ConfigurationInput>& configurations, const DiagnosisOptions& options) {
+  const CalibrationOptions& cal = options.calibration;
+  if (!(cal.false_alarm > 0 && cal.false_alarm < 1))
+    throw formats::InputError("diagnose: the false-alarm target must lie between 0 and 1, got " + significant(cal.false_alarm, 3));
+  if (smallest_p(cal.replicates) > cal.false_alarm)
+    throw formats::InputError("diagnose: " + std::to_string(cal.replicates) +
+                              " bootstrap replicates cannot show a false-alarm probability of " + significant(cal.false_alarm, 3) +
+                              " or less (the smallest is 1/(replicates + 1)); use at least " +
+                              std::to_string(static_cast<int>(std::ceil(1.0 / cal.false_alarm - 1.0 - 1e-9))));
   Engine engine(configurations, options);
   const auto& est = engine.setup().est;
   Diagnosis dg;
@@ -372,6 +508,30 @@ Diagnosis diagnose(const std::vector<ConfigurationInput>& configurations, const 
   for (const auto& c : est) base_texts.push_back(c.deck_text);
   std::vector<DeckProblem> base;
   Hypothesis param = engine.evaluate("parameter", base_texts, {}, &base);
+  // 1b. The noise the data imply, from the ordinary update at the assumed σ;
+  // estimated, every estimate from here on uses it (the update is redone).
+  dg.noise.estimated = options.calibration.estimate_noise;
+  dg.noise.assumed_frequency_pct = dg.noise.frequency_pct = options.problem.frequency_std_pct;
+  dg.noise.assumed_shape_pct = dg.noise.shape_pct = options.problem.shape_std_pct;
+  if (!engine.interrupted()) {
+    const UpdateResult& first = engine.last();
+    const Screen s1 = prepare_screen(base.front(), first.r, first.history.back().pairs, options.problem);
+    dg.noise.scale = estimate_noise(s1.lin, s1.lin.e, options.calibration.estimate_noise, options.calibration.min_dof);
+    if (options.calibration.estimate_noise) {
+      dg.noise.frequency_pct = options.problem.frequency_std_pct * dg.noise.scale.scale[kFrequencyRows];
+      dg.noise.shape_pct = options.problem.shape_std_pct * dg.noise.scale.scale[kShapeRows];
+      report(options.progress, "ordinary update at the noise the data imply (frequencies " +
+                                   significant(dg.noise.frequency_pct, 3) + " %, shapes " +
+                                   significant(dg.noise.shape_pct, 3) + " % of the RMS component)",
+             0.05);
+      engine.warm_start(param.names, first.r);
+      engine.set_noise(dg.noise.frequency_pct, dg.noise.shape_pct);
+      const Fit before = param.before;  // the deck as given, not the warm start
+      base.clear();
+      param = engine.evaluate("parameter", base_texts, {}, &base);
+      param.before = before;
+    }
+  }
   if (engine.interrupted()) {
     dg.interrupted = true;
     dg.partial_reason = engine.last().stopped + " during the ordinary update (after " +
@@ -430,6 +590,11 @@ Diagnosis diagnose(const std::vector<ConfigurationInput>& configurations, const 
   // Phases 2 and 3 stop at an interruption; the decision is then made among the
   // hypotheses tested so far. `stage` says where, for the partial reason.
   std::string stage;
+  std::vector<std::unique_ptr<ext::ModelExtension>> kinds;
+  std::vector<std::vector<ext::Candidate>> cands;
+  std::vector<std::pair<std::size_t, std::size_t>> column_of;  // screening column -> (kind, candidate)
+  std::optional<Screening> screen;
+  const translators::FeModel* nominal_fe = nullptr;
   try {
     if (dg.interrupted) throw Interrupted(dg.partial_reason);
     // 2. Candidates and screening.
@@ -442,13 +607,13 @@ Diagnosis diagnose(const std::vector<ConfigurationInput>& configurations, const 
     eo.highest_test_hz = *std::max_element(measured_hz.begin(), measured_hz.end());
     if (!(eo.total_mass > 0)) eo.total_mass = ext::total_mass(*base.front().fe);
     const translators::FeModel& nominal = *base.front().fe;
+    nominal_fe = &nominal;
     report(options.progress, "screening: sensitivities of the " + std::to_string(base_res.history.back().pairs.size()) +
                                  " paired modes at the updated parameters",
            0.1);
     const Screen sc = prepare_screen(base.front(), base_res.r, base_res.history.back().pairs, options.problem);
     const ModalSolution sol_star = base.front().model->solve(base_res.r);
     eo.unexplained_neighbours = neighbours_of_unexplained(base.front(), sol_star, dg.evidence);
-    std::vector<std::unique_ptr<ext::ModelExtension>> kinds;
     for (auto& kind : ext::standard_extensions(eo))
       if (options.kinds.empty() || std::find(options.kinds.begin(), options.kinds.end(), kind->kind()) != options.kinds.end())
         kinds.push_back(std::move(kind));
@@ -459,7 +624,7 @@ Diagnosis diagnose(const std::vector<ConfigurationInput>& configurations, const 
     const auto a_size = nominal.reduction().a_to_g.size();
 
     // Every kind's candidates first, so that the screening is counted over all of them.
-    std::vector<std::vector<ext::Candidate>> cands(kinds.size());
+    cands.resize(kinds.size());
     for (std::size_t q = 0; q < kinds.size(); ++q) {
       report(options.progress, "listing candidates", static_cast<long>(q), static_cast<long>(kinds.size()),
              kinds[q]->kind(), 0.1);
@@ -473,7 +638,56 @@ Diagnosis diagnose(const std::vector<ConfigurationInput>& configurations, const 
     for (std::size_t q = 0; q < kinds.size(); ++q) total += static_cast<long>(cands[q].size());
     stage = "while screening the candidates";
 
-    struct Shortlisted { const ext::ModelExtension* kind; ext::Candidate cand; double screening; double look; };
+    // Each candidate: a screening column (kinds without DOFs of their own) or a priority.
+    struct Scored { double value; std::size_t i; int column; };
+    std::vector<std::vector<Scored>> scored(kinds.size());
+    std::vector<Eigen::VectorXd> columns;
+    for (std::size_t q = 0; q < kinds.size(); ++q) {
+      const auto& kind = kinds[q];
+      for (std::size_t i = 0; i < cands[q].size(); ++i, ++screened_so_far) {
+        report(options.progress, "screening candidates", screened_so_far, total, kind->kind(),
+               0.1 + 0.05 * static_cast<double>(screened_so_far) / static_cast<double>(total));
+        auto deriv = kind->screening(nominal, cands[q][i]);
+        if (deriv) {
+          columns.push_back(screen_column(sc, *base.front().model, sol_star.eigenvalues, base.front().sensors, deriv->dK[0],
+                                          deriv->dM[0], deriv->prior_std.at(0)));
+          column_of.push_back({q, i});
+          scored[q].push_back({0.0, i, static_cast<int>(columns.size()) - 1});
+        } else if (!std::isnan(cands[q][i].priority)) {
+          scored[q].push_back({cands[q][i].priority, i, -1});
+        } else {
+          double w = 0;
+          for (auto g : cands[q][i].location.grids)
+            if (auto it = grid_weight.find(g); it != grid_weight.end()) w += it->second;
+          scored[q].push_back({w, i, -1});
+        }
+      }
+    }
+    report(options.progress, "screening candidates", total, total, "", 0.15);
+
+    // 2b. Calibration: the screening's gains with the noise re-estimated, replayed
+    // on data simulated from the ordinary update's model.
+    stage = "while calibrating the screening";
+    {
+      Eigen::MatrixXd U(sc.lin.e.size(), static_cast<Eigen::Index>(columns.size()));
+      for (std::size_t k = 0; k < columns.size(); ++k) U.col(static_cast<Eigen::Index>(k)) = columns[k];
+      columns.clear();
+      screen.emplace(sc.lin, std::move(U), options.calibration);
+      if (screen->candidate_count() > 0)
+        report(options.progress, "calibrating: " + std::to_string(options.calibration.replicates) +
+                                     " replicates of the screening on simulated noise",
+               0.15);
+      screen->bootstrap();
+      for (auto& v : scored)
+        for (auto& x : v)
+          if (x.column >= 0) x.value = screen->gains()(x.column);
+    }
+    residual_test(dg, param, *screen, options.calibration, [&](int column) {
+      const auto& [q, i] = column_of[static_cast<std::size_t>(column)];
+      return kinds[q]->kind() + " at " + cands[q][i].location.text;
+    });
+
+    struct Shortlisted { const ext::ModelExtension* kind; ext::Candidate cand; double screening; double look; int column; };
     std::vector<Shortlisted> shortlist;
     for (std::size_t q = 0; q < kinds.size(); ++q) {
       const auto& kind = kinds[q];
@@ -482,36 +696,16 @@ Diagnosis diagnose(const std::vector<ConfigurationInput>& configurations, const 
       for (const auto& c : cands[q]) places.insert(c.location.text);
       dg.searched[kind->kind()] = static_cast<int>(places.size());
       const double look = std::log(static_cast<double>(places.size()));
-      std::vector<std::pair<double, std::size_t>> scored;
-      bool screened = false;
-      for (std::size_t i = 0; i < cands[q].size(); ++i, ++screened_so_far) {
-        report(options.progress, "screening candidates", screened_so_far, total, kind->kind(),
-               0.1 + 0.05 * static_cast<double>(screened_so_far) / static_cast<double>(total));
-        auto deriv = kind->screening(nominal, cands[q][i]);
-        if (deriv) {
-          screened = true;
-          const double sd = deriv->prior_std.at(0);
-          scored.push_back({screen_score(sc, *base.front().model, sol_star.eigenvalues, base.front().sensors, deriv->dK[0],
-                                         deriv->dM[0], sd),
-                            i});
-        } else if (!std::isnan(cands[q][i].priority)) {
-          scored.push_back({cands[q][i].priority, i});
-        } else {
-          double w = 0;
-          for (auto g : cands[q][i].location.grids)
-            if (auto it = grid_weight.find(g); it != grid_weight.end()) w += it->second;
-          scored.push_back({w, i});
-        }
-      }
-      std::stable_sort(scored.begin(), scored.end(), [](const auto& a, const auto& b) { return a.first > b.first; });
+      auto& sq = scored[q];
+      const bool screened = std::any_of(sq.begin(), sq.end(), [](const Scored& x) { return x.column >= 0; });
+      std::stable_sort(sq.begin(), sq.end(), [](const Scored& a, const Scored& b) { return a.value > b.value; });
       std::size_t n = static_cast<std::size_t>(options.shortlist);
       if (!screened && cands[q].size() <= static_cast<std::size_t>(options.exhaustive_limit) && a_size < 3000) n = cands[q].size();
       else if (!screened) n = static_cast<std::size_t>(2 * options.shortlist);
       // Kinds with several candidates per place (start values): keep all starts of the chosen places.
-      for (std::size_t k = 0; k < std::min(n, scored.size()); ++k)
-        shortlist.push_back({kind.get(), cands[q][scored[k].second], screened ? scored[k].first : 0.0, look});
+      for (std::size_t k = 0; k < std::min(n, sq.size()); ++k)
+        shortlist.push_back({kind.get(), cands[q][sq[k].i], sq[k].column >= 0 ? sq[k].value : 0.0, look, sq[k].column});
     }
-    report(options.progress, "screening candidates", total, total, "", 0.15);
 
     // 3. Exact re-estimation of the shortlist.
     const auto n_short = static_cast<long>(shortlist.size());
@@ -538,6 +732,13 @@ Diagnosis diagnose(const std::vector<ConfigurationInput>& configurations, const 
         h.location = s.cand.location;
         h.description = description;
         h.screening = s.screening;
+        h.screening_column = s.column;
+        if (s.column >= 0) {
+          h.exceed = screen->exceedances(s.screening);
+          h.false_alarm = screen->false_alarm(s.screening);
+          h.held_out = screen->held_out(s.column);
+          h.held_out_known = true;
+        }
         h.look_elsewhere = s.look;
         h.score -= h.look_elsewhere;
         dg.ranking.push_back(std::move(h));
@@ -565,15 +766,32 @@ Diagnosis diagnose(const std::vector<ConfigurationInput>& configurations, const 
   }
 
   // 4. Decision.
+  const double alpha = options.calibration.false_alarm;
   int ip = -1, ie = -1;
   for (std::size_t i = 0; i < dg.ranking.size(); ++i) {
     if (dg.ranking[i].kind == "parameter" && ip < 0) ip = static_cast<int>(i);
     if (dg.ranking[i].kind != "parameter" && ie < 0) ie = static_cast<int>(i);
   }
   const Hypothesis& P = dg.ranking[static_cast<std::size_t>(ip)];
-  if (ie >= 0 && dg.ranking[static_cast<std::size_t>(ie)].score - P.score >= options.decision_margin) {
-    dg.cause = ie;
-    dg.margin = dg.ranking[static_cast<std::size_t>(ie)].score - P.score;
+  FitNoise fit_noise;  // the noise the estimates use
+  fit_noise.frequency_pct = dg.noise.frequency_pct;
+  {
+    const auto ns = static_cast<double>(base.front().dofs.size());  // the sensors the shapes have
+    fit_noise.shape_unit = dg.noise.shape_pct / 100.0 / std::sqrt(std::max(ns, 1.0));
+  }
+  int eligible = -1;
+  for (std::size_t i = 0; i < dg.ranking.size(); ++i) {
+    Hypothesis& h = dg.ranking[i];
+    if (h.kind == "parameter") continue;
+    h.verdict = why_not_named(h, P, dg.residual, alpha, options.decision_margin, fit_noise);
+    if (h.verdict.empty()) {
+      h.verdict = eligible < 0 ? "named" : "passes every test, but scores below the cause";
+      if (eligible < 0) eligible = static_cast<int>(i);
+    }
+  }
+  if (eligible >= 0) {
+    dg.cause = eligible;
+    dg.margin = dg.ranking[static_cast<std::size_t>(eligible)].score - P.score;
   } else if (P.score - dg.nominal.score >= options.decision_margin) {
     dg.cause = ip;
     dg.margin = P.score - std::max(dg.nominal.score, ie >= 0 ? dg.ranking[static_cast<std::size_t>(ie)].score : -INFINITY);
@@ -581,19 +799,138 @@ Diagnosis diagnose(const std::vector<ConfigurationInput>& configurations, const 
     dg.cause = -1;
     dg.margin = dg.nominal.score - P.score;
   }
+
+  // 5. A second effect: the screening again with the cause's model as the null.
+  if (dg.cause >= 0 && !dg.interrupted && screen && dg.ranking[static_cast<std::size_t>(dg.cause)].screening_column >= 0) {
+    try {
+      const Hypothesis first = dg.ranking[static_cast<std::size_t>(dg.cause)];
+      const int c1 = first.screening_column;
+      // The cause's model at its estimate, linearised there: the null of the
+      // second search (every other screened candidate, its own column again).
+      report(options.progress, "a second effect: screening at the cause's model", 0.95);
+      DeckProblem pb1 = engine.problem(first.deck_text, first.added);
+      std::vector<UpdatePair> pairs1;
+      for (const auto& p : first.pairs)
+        if (p.config == 0) pairs1.push_back(p);
+      const Screen sc1 = prepare_screen(pb1, first.estimate, pairs1, engine.options().problem);
+      const ModalSolution sol1 = pb1.model->solve(first.estimate);
+      std::vector<int> kept;
+      std::vector<Eigen::VectorXd> cols;
+      for (std::size_t c = 0; c < column_of.size(); ++c) {
+        const auto& [q, i] = column_of[c];
+        if (cands[q][i].location.text == first.location.text) continue;
+        auto deriv = kinds[q]->screening(*nominal_fe, cands[q][i]);
+        cols.push_back(screen_column(sc1, *pb1.model, sol1.eigenvalues, pb1.sensors, deriv->dK[0], deriv->dM[0],
+                                     deriv->prior_std.at(0)));
+        kept.push_back(static_cast<int>(c));
+      }
+      Eigen::MatrixXd U1(sc1.lin.e.size(), static_cast<Eigen::Index>(cols.size()));
+      for (std::size_t k = 0; k < cols.size(); ++k) U1.col(static_cast<Eigen::Index>(k)) = cols[k];
+      cols.clear();
+      report(options.progress, "a second effect: " + std::to_string(options.calibration.replicates) +
+                                   " replicates of the screening on simulated noise",
+             0.96);
+      Screening ext_screen(sc1.lin, std::move(U1), options.calibration);
+      ext_screen.bootstrap();
+      dg.noise.frequency_pct_cause = engine.options().problem.frequency_std_pct * ext_screen.noise().scale[kFrequencyRows];
+      dg.noise.shape_pct_cause = engine.options().problem.shape_std_pct * ext_screen.noise().scale[kShapeRows];
+      SecondEffect& se = dg.second;
+      se.tested = true;
+      int best = -1;
+      for (int j = 0; j < ext_screen.candidate_count(); ++j) {
+        if (best < 0 || ext_screen.gains()(j) > ext_screen.gains()(best)) best = j;
+      }
+      if (best < 0) {
+        se.text = "no other candidate to test";
+      } else {
+        const auto& [q2, i2] = column_of[static_cast<std::size_t>(kept[static_cast<std::size_t>(best)])];
+        const auto& [q1, i1] = column_of[static_cast<std::size_t>(c1)];
+        se.kind = kinds[q2]->kind();
+        se.location = cands[q2][i2].location;
+        se.gain = ext_screen.gains()(best);
+        se.false_alarm = ext_screen.false_alarm(se.gain);
+        se.held_out = ext_screen.held_out(best);
+        const std::string what = se.kind + " at " + se.location.text + ": first-order gain " + fixed(se.gain, 2) +
+                                 " nats, false-alarm p = " + significant(se.false_alarm, 2) + ", held-out gain " +
+                                 significant(se.held_out.total(), 3);
+        if (se.false_alarm > alpha) {
+          se.text = "none: the best, " + what + " (above " + significant(alpha, 2) + ")";
+        } else if (!(se.held_out.total() > 0)) {
+          se.text = "none: the best, " + what + ", does not predict held-out modes better";
+        } else {
+          std::vector<std::string> texts;
+          std::vector<ext::NewParameter> added;
+          for (const auto& c : est) {
+            const ext::ExtendedDeck x1 = kinds[q1]->apply(c.deck_text, c.name, *nominal_fe, cands[q1][i1]);
+            const ext::ExtendedDeck x2 = kinds[q2]->apply(x1.text, c.name, *nominal_fe, cands[q2][i2]);
+            texts.push_back(x2.text);
+            added = x1.parameters;
+            added.insert(added.end(), x2.parameters.begin(), x2.parameters.end());
+          }
+          engine.set_update_progress(forward_cycles("testing two effects", 0, 1, what, 0.97, 1.0));
+          engine.warm_start(first.names, first.estimate);  // the first cause starts at its estimate
+          Hypothesis h = engine.evaluate(first.kind + " + " + se.kind, texts, added);
+          if (engine.interrupted()) throw Interrupted(engine.last().stopped);
+          h.location = first.location;
+          h.location.text = first.location.text + " and " + se.location.text;
+          for (auto g : se.location.grids) h.location.grids.push_back(g);
+          for (auto e : se.location.elements) h.location.elements.push_back(e);
+          for (auto pr : se.location.properties) h.location.properties.push_back(pr);
+          h.description = first.description + "; " + se.kind + " at " + se.location.text;
+          h.look_elsewhere = first.look_elsewhere + std::log(static_cast<double>(std::max(1, dg.searched[se.kind])));
+          h.score -= h.look_elsewhere;
+          h.screening = se.gain;
+          h.false_alarm = se.false_alarm;
+          h.exceed = ext_screen.exceedances(se.gain);
+          h.held_out = se.held_out;
+          h.held_out_known = true;
+          std::string no;
+          if (h.score - first.score < options.decision_margin)
+            no = fixed(h.score - first.score, 1) + " nats above the first cause alone, below the " +
+                 fixed(options.decision_margin, 1) + "-nat margin";
+          else
+            no = worse_fit(h, first, fit_noise);
+          if (no.empty()) {
+            se.named = true;
+            se.text = "named: " + what;
+            h.verdict = "named (two effects)";
+            dg.margin = h.score - P.score;
+            dg.ranking.insert(dg.ranking.begin(), std::move(h));
+            dg.cause = 0;
+          } else {
+            se.text = "none: " + what + ", but the model with both " + no;
+            h.verdict = no;
+            dg.ranking.push_back(std::move(h));  // at the end: the cause's index holds
+          }
+        }
+      }
+    } catch (const Interrupted& ex) {
+      dg.interrupted = true;
+      dg.partial_reason = std::string(ex.what()) + " while testing a second effect";
+    } catch (const formats::InputError& ex) {
+      dg.second.text = "not tested (" + std::string(ex.what()) + ")";
+    } catch (const formats::NumericalError& ex) {
+      dg.second.text = "not tested (" + std::string(ex.what()) + ")";
+    }
+  }
+
   const Hypothesis& C = dg.cause >= 0 ? dg.ranking[static_cast<std::size_t>(dg.cause)] : dg.nominal;
   dg.cause_kind = C.kind;
+  // The best extension that was not named, and why (for "parameter" and "none").
+  std::string best_other = "none tested";
+  for (const auto& h : dg.ranking)
+    if (h.kind != "parameter") {
+      best_other = h.kind + " at " + h.location.text + ": " + h.verdict;
+      break;
+    }
+  const std::string left = dg.residual.consistent ? "; " + dg.residual.text : "";
   if (C.kind == "none") {
     dg.summary = "no change explains the test better than the deck as given (the update gains " +
                  fixed(P.score - dg.nominal.score, 1) + " nats, below the " + fixed(options.decision_margin, 1) +
-                 "-nat margin)";
+                 "-nat margin)" + left;
   } else if (C.kind == "parameter") {
-    dg.summary = "the deck's parameters were wrong; no model-form extension beats the ordinary update (best: " +
-                 (ie >= 0 ? dg.ranking[static_cast<std::size_t>(ie)].kind + " at " +
-                                dg.ranking[static_cast<std::size_t>(ie)].location.text + ", " +
-                                fixed(dg.ranking[static_cast<std::size_t>(ie)].score - P.score, 1) + " nats"
-                          : std::string("none tested")) +
-                 ")";
+    dg.summary = "the deck's parameters were wrong" +
+                 (dg.residual.consistent ? left : "; no model-form extension passes (best: " + best_other + ")");
   } else {
     std::string values;
     const auto p0 = C.names.size() - C.added.size();
@@ -603,6 +940,10 @@ Diagnosis diagnose(const std::vector<ConfigurationInput>& configurations, const 
     }
     dg.summary = C.kind + " at " + C.location.text + " (" + values + "), " + fixed(dg.margin, 1) +
                  " nats above the ordinary update";
+    if (!std::isnan(C.false_alarm))
+      dg.summary += ", false-alarm probability " + significant(C.false_alarm, 2) + " (" + std::to_string(C.exceed) +
+                    " of " + std::to_string(dg.residual.replicates) + " noise replicates reach its first-order gain of " +
+                    fixed(C.screening, 2) + " nats), held-out gain " + significant(C.held_out.total(), 3);
   }
   dg.updated_deck = deck_at(C.deck_text, est.front().name, C.estimate);
   if (!dg.interrupted) report(options.progress, "done", 1.0);
