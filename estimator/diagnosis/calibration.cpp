@@ -6,6 +6,9 @@
 #include <cmath>
 #include <random>
 #include <stdexcept>
+#include <string>
+
+#include "formats/parse_error.hpp"
 
 namespace ssid::estimator::diagnosis {
 
@@ -60,7 +63,10 @@ NoiseScale noise_fixed_point(const Eigen::MatrixXd& W, const std::vector<int>& g
       rss_all += rss[g];
       dof_all += ns.dof[g];
     }
-    if (!(dof_all > 0)) throw std::invalid_argument("estimate_noise: no degree of freedom left to estimate the noise from");
+    if (!(dof_all > 0))
+      throw formats::InputError("cannot estimate the measurement noise: the fit of the deck's parameters leaves no degree of "
+                                "freedom in the " + std::to_string(ns.rows[0] + ns.rows[1]) +
+                                " measured values (give the noise instead: --noise given, study \"noise\": \"given\")");
     for (int g = 0; g < kRowGroups; ++g) {
       const double s2 = pooled || ns.rows[g] == 0 ? rss_all / dof_all : rss[g] / ns.dof[g];
       next[g] = s2 > 0 ? 1.0 / s2 : 1.0;

@@ -68,7 +68,8 @@ struct NoiseScale {
 };
 
 /// ŝ_g of the file comment for residual `e` (rows of `lu`). `estimate` false
-/// gives scales 1 with χ² and ν still filled in.
+/// gives scales 1 with χ² and ν still filled in. Throws formats::InputError
+/// when the fit leaves no degree of freedom to estimate the noise from.
 NoiseScale estimate_noise(const LinearUpdate& lu, const Eigen::Ref<const Eigen::VectorXd>& e, bool estimate = true,
                           int min_dof = 3);
 

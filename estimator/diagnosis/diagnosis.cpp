@@ -453,6 +453,215 @@ void residual_test(Diagnosis& dg, const Hypothesis& param, const Screening& scre
   }
 }
 
+/// What the search listed and screened (the second effect screens it again).
+struct Search {
+  std::vector<std::unique_ptr<ext::ModelExtension>> kinds;
+  std::vector<std::vector<ext::Candidate>> cands;
+  std::vector<std::pair<std::size_t, std::size_t>> column_of;  ///< screening column -> (kind, candidate)
+  std::optional<Screening> screen;
+  const translators::FeModel* nominal = nullptr;
+};
+
+/// Step 5: after a screened cause, the screening again with the cause's model
+/// (linearised at its estimate) as the null; both are named when the best
+/// other candidate passes the same tests and the pair's exact estimate beats
+/// the cause alone. `estimate_progress` receives the pair's estimate's cycles.
+void second_effect(Engine& engine, Diagnosis& dg, const Search& search, const std::vector<ConfigurationInput>& est,
+                   const DiagnosisOptions& options, const FitNoise& fit_noise, const Progress& estimate_progress) {
+  const double alpha = options.calibration.false_alarm;
+  const auto& kinds = search.kinds;
+  const auto& cands = search.cands;
+  const auto& column_of = search.column_of;
+  const auto& screen = search.screen;
+  const translators::FeModel* nominal = search.nominal;
+  if (dg.cause >= 0 && !dg.interrupted && screen && dg.ranking[static_cast<std::size_t>(dg.cause)].screening_column >= 0) {
+    try {
+      const Hypothesis first = dg.ranking[static_cast<std::size_t>(dg.cause)];
+      const int c1 = first.screening_column;
+      // The cause's model at its estimate, linearised there, is the null of the
+      // second search (the cause's parameter is one of its own); every other
+      // screened candidate gets its column at that model.
+      report(options.progress, "a second effect: screening at the cause's model", 0.95);
+      DeckProblem pb1 = engine.problem(first.deck_text, first.added);
+      std::vector<UpdatePair> pairs1;
+      for (const auto& p : first.pairs)
+        if (p.config == 0) pairs1.push_back(p);
+      const Screen sc1 = prepare_screen(pb1, first.estimate, pairs1, engine.options().problem);
+      const ModalSolution sol1 = pb1.model->solve(first.estimate);
+      std::vector<int> kept;
+      std::vector<Eigen::VectorXd> cols;
+      for (std::size_t c = 0; c < column_of.size(); ++c) {
+        const auto& [q, i] = column_of[c];
+        if (cands[q][i].location.text == first.location.text) continue;
+        auto deriv = kinds[q]->screening(*nominal, cands[q][i]);
+        cols.push_back(screen_column(sc1, *pb1.model, sol1.eigenvalues, pb1.sensors, deriv->dK[0], deriv->dM[0],
+                                     deriv->prior_std.at(0)));
+        kept.push_back(static_cast<int>(c));
+      }
+      Eigen::MatrixXd U1(sc1.lin.e.size(), static_cast<Eigen::Index>(cols.size()));
+      for (std::size_t k = 0; k < cols.size(); ++k) U1.col(static_cast<Eigen::Index>(k)) = cols[k];
+      cols.clear();
+      report(options.progress, "a second effect: " + std::to_string(options.calibration.replicates) +
+                                   " replicates of the screening on simulated noise",
+             0.96);
+      Screening ext_screen(sc1.lin, std::move(U1), options.calibration);
+      ext_screen.bootstrap();
+      dg.noise.frequency_pct_cause = engine.options().problem.frequency_std_pct * ext_screen.noise().scale[kFrequencyRows];
+      dg.noise.shape_pct_cause = engine.options().problem.shape_std_pct * ext_screen.noise().scale[kShapeRows];
+      SecondEffect& se = dg.second;
+      se.tested = true;
+      int best = -1;
+      for (int j = 0; j < ext_screen.candidate_count(); ++j) {
+        if (best < 0 || ext_screen.gains()(j) > ext_screen.gains()(best)) best = j;
+      }
+      if (best < 0) {
+        se.text = "no other candidate to test";
+      } else {
+        const auto& [q2, i2] = column_of[static_cast<std::size_t>(kept[static_cast<std::size_t>(best)])];
+        const auto& [q1, i1] = column_of[static_cast<std::size_t>(c1)];
+        se.kind = kinds[q2]->kind();
+        se.location = cands[q2][i2].location;
+        se.gain = ext_screen.gains()(best);
+        se.false_alarm = ext_screen.false_alarm(se.gain);
+        se.held_out = ext_screen.held_out(best);
+        const std::string what = se.kind + " at " + se.location.text + ": first-order gain " + fixed(se.gain, 2) +
+                                 " nats, false-alarm p = " + significant(se.false_alarm, 2) + ", held-out gain " +
+                                 significant(se.held_out.total(), 3);
+        if (se.false_alarm > alpha) {
+          se.text = "none: the best, " + what + " (above " + significant(alpha, 2) + ")";
+        } else if (!(se.held_out.total() > 0)) {
+          se.text = "none: the best, " + what + ", does not predict held-out modes better";
+        } else {
+          std::vector<std::string> texts;
+          std::vector<ext::NewParameter> added;
+          for (const auto& c : est) {
+            const ext::ExtendedDeck x1 = kinds[q1]->apply(c.deck_text, c.name, *nominal, cands[q1][i1]);
+            const ext::ExtendedDeck x2 = kinds[q2]->apply(x1.text, c.name, *nominal, cands[q2][i2]);
+            texts.push_back(x2.text);
+            added = x1.parameters;
+            added.insert(added.end(), x2.parameters.begin(), x2.parameters.end());
+          }
+          engine.set_update_progress(estimate_progress);
+          engine.warm_start(first.names, first.estimate);  // the first cause starts at its estimate
+          Hypothesis h = engine.evaluate(first.kind + " + " + se.kind, texts, added);
+          if (engine.interrupted()) throw Interrupted(engine.last().stopped);
+          h.location = first.location;
+          h.location.text = first.location.text + " and " + se.location.text;
+          for (auto g : se.location.grids) h.location.grids.push_back(g);
+          for (auto e : se.location.elements) h.location.elements.push_back(e);
+          for (auto pr : se.location.properties) h.location.properties.push_back(pr);
+          h.description = first.description + "; " + se.kind + " at " + se.location.text;
+          h.look_elsewhere = first.look_elsewhere + std::log(static_cast<double>(std::max(1, dg.searched[se.kind])));
+          h.score -= h.look_elsewhere;
+          h.screening = se.gain;
+          h.false_alarm = se.false_alarm;
+          h.exceed = ext_screen.exceedances(se.gain);
+          h.held_out = se.held_out;
+          h.held_out_known = true;
+          std::string no;
+          if (h.score - first.score < options.decision_margin)
+            no = fixed(h.score - first.score, 1) + " nats above the first cause alone, below the " +
+                 fixed(options.decision_margin, 1) + "-nat margin";
+          else
+            no = worse_fit(h, first, fit_noise);
+          if (no.empty()) {
+            se.named = true;
+            se.text = "named: " + what;
+            h.verdict = "named (two effects)";
+            for (const auto& x : dg.ranking)
+              if (x.kind == "parameter") dg.margin = h.score - x.score;
+            dg.ranking.insert(dg.ranking.begin(), std::move(h));
+            dg.cause = 0;
+          } else {
+            se.text = "none: " + what + ", but the model with both " + no;
+            h.verdict = no;
+            dg.ranking.push_back(std::move(h));  // at the end: the cause's index holds
+          }
+        }
+      }
+    } catch (const Interrupted& ex) {
+      dg.interrupted = true;
+      dg.partial_reason = std::string(ex.what()) + " while testing a second effect";
+    } catch (const formats::InputError& ex) {
+      dg.second.text = "not tested (" + std::string(ex.what()) + ")";
+    } catch (const formats::NumericalError& ex) {
+      dg.second.text = "not tested (" + std::string(ex.what()) + ")";
+    }
+  }
+
+}
+
+/// Step 4: every extension's verdict and the cause (diagnosis.hpp).
+void decide(Diagnosis& dg, const DiagnosisOptions& options, const FitNoise& fit_noise) {
+  const double alpha = options.calibration.false_alarm;
+  int ip = -1, ie = -1;
+  for (std::size_t i = 0; i < dg.ranking.size(); ++i) {
+    if (dg.ranking[i].kind == "parameter" && ip < 0) ip = static_cast<int>(i);
+    if (dg.ranking[i].kind != "parameter" && ie < 0) ie = static_cast<int>(i);
+  }
+  const Hypothesis& P = dg.ranking[static_cast<std::size_t>(ip)];
+  int eligible = -1;
+  for (std::size_t i = 0; i < dg.ranking.size(); ++i) {
+    Hypothesis& h = dg.ranking[i];
+    if (h.kind == "parameter") continue;
+    h.verdict = why_not_named(h, P, dg.residual, alpha, options.decision_margin, fit_noise);
+    if (h.verdict.empty()) {
+      h.verdict = eligible < 0 ? "named" : "passes every test, but scores below the cause";
+      if (eligible < 0) eligible = static_cast<int>(i);
+    }
+  }
+  if (eligible >= 0) {
+    dg.cause = eligible;
+    dg.margin = dg.ranking[static_cast<std::size_t>(eligible)].score - P.score;
+  } else if (P.score - dg.nominal.score >= options.decision_margin) {
+    dg.cause = ip;
+    dg.margin = P.score - std::max(dg.nominal.score, ie >= 0 ? dg.ranking[static_cast<std::size_t>(ie)].score : -INFINITY);
+  } else {
+    dg.cause = -1;
+    dg.margin = dg.nominal.score - P.score;
+  }
+
+}
+
+/// The decision in a sentence, with its figures (dg.cause_kind, dg.summary).
+void summarise_decision(Diagnosis& dg, const DiagnosisOptions& options) {
+  const Hypothesis& C = dg.cause >= 0 ? dg.ranking[static_cast<std::size_t>(dg.cause)] : dg.nominal;
+  const Hypothesis* param = nullptr;
+  for (const auto& h : dg.ranking)
+    if (h.kind == "parameter") param = &h;
+  const Hypothesis& P = *param;
+  dg.cause_kind = C.kind;
+  // The best extension that was not named, and why (for "parameter" and "none").
+  std::string best_other = "none tested";
+  for (const auto& h : dg.ranking)
+    if (h.kind != "parameter") {
+      best_other = h.kind + " at " + h.location.text + ": " + h.verdict;
+      break;
+    }
+  const std::string left = dg.residual.consistent ? "; " + dg.residual.text : "";
+  if (C.kind == "none") {
+    dg.summary = "no change explains the test better than the deck as given (the update gains " +
+                 fixed(P.score - dg.nominal.score, 1) + " nats, below the " + fixed(options.decision_margin, 1) +
+                 "-nat margin)" + left;
+  } else if (C.kind == "parameter") {
+    dg.summary = "the deck's parameters were wrong" +
+                 (dg.residual.consistent ? left : "; no model-form extension passes (best: " + best_other + ")");
+  } else {
+    std::string values;
+    const auto p0 = C.names.size() - C.added.size();
+    for (std::size_t j = 0; j < C.added.size(); ++j) {
+      values += (j ? ", " : "") + C.added[j].meaning + " = " + significant(C.estimate(static_cast<Eigen::Index>(p0 + j)), 5) +
+                " +- " + significant(C.posterior_std(static_cast<Eigen::Index>(p0 + j)), 2);
+    }
+    dg.summary = C.kind + " at " + C.location.text + " (" + values + "), " + fixed(dg.margin, 1) +
+                 " nats above the ordinary update";
+    if (!std::isnan(C.false_alarm))
+      dg.summary += ", false-alarm probability " + significant(C.false_alarm, 2) + " (" + std::to_string(C.exceed) +
+                    " of " + std::to_string(dg.residual.replicates) + " noise replicates reach its first-order gain of " +
+                    fixed(C.screening, 2) + " nats), held-out gain " + significant(C.held_out.total(), 3);
+  }
+}
+
 }  // namespace
 
 std::string deck_at(const std::string& deck_text, const std::string& name, const Eigen::VectorXd& x) {
@@ -520,10 +729,18 @@ Diagnosis diagnose(const std::vector<ConfigurationInput>& configurations, const 
     if (options.calibration.estimate_noise) {
       dg.noise.frequency_pct = options.problem.frequency_std_pct * dg.noise.scale.scale[kFrequencyRows];
       dg.noise.shape_pct = options.problem.shape_std_pct * dg.noise.scale.scale[kShapeRows];
-      report(options.progress, "ordinary update at the noise the data imply (frequencies " +
-                                   significant(dg.noise.frequency_pct, 3) + " %, shapes " +
-                                   significant(dg.noise.shape_pct, 3) + " % of the RMS component)",
-             0.05);
+    }
+    try {
+      if (options.calibration.estimate_noise)
+        report(options.progress, "ordinary update at the noise the data imply (frequencies " +
+                                     significant(dg.noise.frequency_pct, 3) + " %, shapes " +
+                                     significant(dg.noise.shape_pct, 3) + " % of the RMS component)",
+               0.05);
+    } catch (const Interrupted& ex) {  // the update at the assumed σ stands: a partial diagnosis
+      dg.interrupted = true;
+      dg.partial_reason = std::string(ex.what()) + " after the ordinary update: no extension tested";
+    }
+    if (options.calibration.estimate_noise && !dg.interrupted) {
       engine.warm_start(param.names, first.r);
       engine.set_noise(dg.noise.frequency_pct, dg.noise.shape_pct);
       const Fit before = param.before;  // the deck as given, not the warm start
@@ -590,11 +807,13 @@ Diagnosis diagnose(const std::vector<ConfigurationInput>& configurations, const 
   // Phases 2 and 3 stop at an interruption; the decision is then made among the
   // hypotheses tested so far. `stage` says where, for the partial reason.
   std::string stage;
-  std::vector<std::unique_ptr<ext::ModelExtension>> kinds;
-  std::vector<std::vector<ext::Candidate>> cands;
-  std::vector<std::pair<std::size_t, std::size_t>> column_of;  // screening column -> (kind, candidate)
-  std::optional<Screening> screen;
-  const translators::FeModel* nominal_fe = nullptr;
+  Search search;
+  // (references, not a structured binding: lambdas below capture them)
+  auto& kinds = search.kinds;
+  auto& cands = search.cands;
+  auto& column_of = search.column_of;
+  auto& screen = search.screen;
+  const translators::FeModel*& nominal_fe = search.nominal;
   try {
     if (dg.interrupted) throw Interrupted(dg.partial_reason);
     // 2. Candidates and screening.
@@ -765,186 +984,18 @@ Diagnosis diagnose(const std::vector<ConfigurationInput>& configurations, const 
     dg.ranking = std::move(unique);
   }
 
-  // 4. Decision.
-  const double alpha = options.calibration.false_alarm;
-  int ip = -1, ie = -1;
-  for (std::size_t i = 0; i < dg.ranking.size(); ++i) {
-    if (dg.ranking[i].kind == "parameter" && ip < 0) ip = static_cast<int>(i);
-    if (dg.ranking[i].kind != "parameter" && ie < 0) ie = static_cast<int>(i);
-  }
-  const Hypothesis& P = dg.ranking[static_cast<std::size_t>(ip)];
+  // 4. Decision; 5. a second effect.
   FitNoise fit_noise;  // the noise the estimates use
   fit_noise.frequency_pct = dg.noise.frequency_pct;
   {
     const auto ns = static_cast<double>(base.front().dofs.size());  // the sensors the shapes have
     fit_noise.shape_unit = dg.noise.shape_pct / 100.0 / std::sqrt(std::max(ns, 1.0));
   }
-  int eligible = -1;
-  for (std::size_t i = 0; i < dg.ranking.size(); ++i) {
-    Hypothesis& h = dg.ranking[i];
-    if (h.kind == "parameter") continue;
-    h.verdict = why_not_named(h, P, dg.residual, alpha, options.decision_margin, fit_noise);
-    if (h.verdict.empty()) {
-      h.verdict = eligible < 0 ? "named" : "passes every test, but scores below the cause";
-      if (eligible < 0) eligible = static_cast<int>(i);
-    }
-  }
-  if (eligible >= 0) {
-    dg.cause = eligible;
-    dg.margin = dg.ranking[static_cast<std::size_t>(eligible)].score - P.score;
-  } else if (P.score - dg.nominal.score >= options.decision_margin) {
-    dg.cause = ip;
-    dg.margin = P.score - std::max(dg.nominal.score, ie >= 0 ? dg.ranking[static_cast<std::size_t>(ie)].score : -INFINITY);
-  } else {
-    dg.cause = -1;
-    dg.margin = dg.nominal.score - P.score;
-  }
-
-  // 5. A second effect: the screening again with the cause's model as the null.
-  if (dg.cause >= 0 && !dg.interrupted && screen && dg.ranking[static_cast<std::size_t>(dg.cause)].screening_column >= 0) {
-    try {
-      const Hypothesis first = dg.ranking[static_cast<std::size_t>(dg.cause)];
-      const int c1 = first.screening_column;
-      // The cause's model at its estimate, linearised there: the null of the
-      // second search (every other screened candidate, its own column again).
-      report(options.progress, "a second effect: screening at the cause's model", 0.95);
-      DeckProblem pb1 = engine.problem(first.deck_text, first.added);
-      std::vector<UpdatePair> pairs1;
-      for (const auto& p : first.pairs)
-        if (p.config == 0) pairs1.push_back(p);
-      const Screen sc1 = prepare_screen(pb1, first.estimate, pairs1, engine.options().problem);
-      const ModalSolution sol1 = pb1.model->solve(first.estimate);
-      std::vector<int> kept;
-      std::vector<Eigen::VectorXd> cols;
-      for (std::size_t c = 0; c < column_of.size(); ++c) {
-        const auto& [q, i] = column_of[c];
-        if (cands[q][i].location.text == first.location.text) continue;
-        auto deriv = kinds[q]->screening(*nominal_fe, cands[q][i]);
-        cols.push_back(screen_column(sc1, *pb1.model, sol1.eigenvalues, pb1.sensors, deriv->dK[0], deriv->dM[0],
-                                     deriv->prior_std.at(0)));
-        kept.push_back(static_cast<int>(c));
-      }
-      Eigen::MatrixXd U1(sc1.lin.e.size(), static_cast<Eigen::Index>(cols.size()));
-      for (std::size_t k = 0; k < cols.size(); ++k) U1.col(static_cast<Eigen::Index>(k)) = cols[k];
-      cols.clear();
-      report(options.progress, "a second effect: " + std::to_string(options.calibration.replicates) +
-                                   " replicates of the screening on simulated noise",
-             0.96);
-      Screening ext_screen(sc1.lin, std::move(U1), options.calibration);
-      ext_screen.bootstrap();
-      dg.noise.frequency_pct_cause = engine.options().problem.frequency_std_pct * ext_screen.noise().scale[kFrequencyRows];
-      dg.noise.shape_pct_cause = engine.options().problem.shape_std_pct * ext_screen.noise().scale[kShapeRows];
-      SecondEffect& se = dg.second;
-      se.tested = true;
-      int best = -1;
-      for (int j = 0; j < ext_screen.candidate_count(); ++j) {
-        if (best < 0 || ext_screen.gains()(j) > ext_screen.gains()(best)) best = j;
-      }
-      if (best < 0) {
-        se.text = "no other candidate to test";
-      } else {
-        const auto& [q2, i2] = column_of[static_cast<std::size_t>(kept[static_cast<std::size_t>(best)])];
-        const auto& [q1, i1] = column_of[static_cast<std::size_t>(c1)];
-        se.kind = kinds[q2]->kind();
-        se.location = cands[q2][i2].location;
-        se.gain = ext_screen.gains()(best);
-        se.false_alarm = ext_screen.false_alarm(se.gain);
-        se.held_out = ext_screen.held_out(best);
-        const std::string what = se.kind + " at " + se.location.text + ": first-order gain " + fixed(se.gain, 2) +
-                                 " nats, false-alarm p = " + significant(se.false_alarm, 2) + ", held-out gain " +
-                                 significant(se.held_out.total(), 3);
-        if (se.false_alarm > alpha) {
-          se.text = "none: the best, " + what + " (above " + significant(alpha, 2) + ")";
-        } else if (!(se.held_out.total() > 0)) {
-          se.text = "none: the best, " + what + ", does not predict held-out modes better";
-        } else {
-          std::vector<std::string> texts;
-          std::vector<ext::NewParameter> added;
-          for (const auto& c : est) {
-            const ext::ExtendedDeck x1 = kinds[q1]->apply(c.deck_text, c.name, *nominal_fe, cands[q1][i1]);
-            const ext::ExtendedDeck x2 = kinds[q2]->apply(x1.text, c.name, *nominal_fe, cands[q2][i2]);
-            texts.push_back(x2.text);
-            added = x1.parameters;
-            added.insert(added.end(), x2.parameters.begin(), x2.parameters.end());
-          }
-          engine.set_update_progress(forward_cycles("testing two effects", 0, 1, what, 0.97, 1.0));
-          engine.warm_start(first.names, first.estimate);  // the first cause starts at its estimate
-          Hypothesis h = engine.evaluate(first.kind + " + " + se.kind, texts, added);
-          if (engine.interrupted()) throw Interrupted(engine.last().stopped);
-          h.location = first.location;
-          h.location.text = first.location.text + " and " + se.location.text;
-          for (auto g : se.location.grids) h.location.grids.push_back(g);
-          for (auto e : se.location.elements) h.location.elements.push_back(e);
-          for (auto pr : se.location.properties) h.location.properties.push_back(pr);
-          h.description = first.description + "; " + se.kind + " at " + se.location.text;
-          h.look_elsewhere = first.look_elsewhere + std::log(static_cast<double>(std::max(1, dg.searched[se.kind])));
-          h.score -= h.look_elsewhere;
-          h.screening = se.gain;
-          h.false_alarm = se.false_alarm;
-          h.exceed = ext_screen.exceedances(se.gain);
-          h.held_out = se.held_out;
-          h.held_out_known = true;
-          std::string no;
-          if (h.score - first.score < options.decision_margin)
-            no = fixed(h.score - first.score, 1) + " nats above the first cause alone, below the " +
-                 fixed(options.decision_margin, 1) + "-nat margin";
-          else
-            no = worse_fit(h, first, fit_noise);
-          if (no.empty()) {
-            se.named = true;
-            se.text = "named: " + what;
-            h.verdict = "named (two effects)";
-            dg.margin = h.score - P.score;
-            dg.ranking.insert(dg.ranking.begin(), std::move(h));
-            dg.cause = 0;
-          } else {
-            se.text = "none: " + what + ", but the model with both " + no;
-            h.verdict = no;
-            dg.ranking.push_back(std::move(h));  // at the end: the cause's index holds
-          }
-        }
-      }
-    } catch (const Interrupted& ex) {
-      dg.interrupted = true;
-      dg.partial_reason = std::string(ex.what()) + " while testing a second effect";
-    } catch (const formats::InputError& ex) {
-      dg.second.text = "not tested (" + std::string(ex.what()) + ")";
-    } catch (const formats::NumericalError& ex) {
-      dg.second.text = "not tested (" + std::string(ex.what()) + ")";
-    }
-  }
-
+  decide(dg, options, fit_noise);
+  second_effect(engine, dg, search, est, options, fit_noise,
+                forward_cycles("testing two effects", 0, 1, "the cause and a second effect", 0.97, 1.0));
+  summarise_decision(dg, options);
   const Hypothesis& C = dg.cause >= 0 ? dg.ranking[static_cast<std::size_t>(dg.cause)] : dg.nominal;
-  dg.cause_kind = C.kind;
-  // The best extension that was not named, and why (for "parameter" and "none").
-  std::string best_other = "none tested";
-  for (const auto& h : dg.ranking)
-    if (h.kind != "parameter") {
-      best_other = h.kind + " at " + h.location.text + ": " + h.verdict;
-      break;
-    }
-  const std::string left = dg.residual.consistent ? "; " + dg.residual.text : "";
-  if (C.kind == "none") {
-    dg.summary = "no change explains the test better than the deck as given (the update gains " +
-                 fixed(P.score - dg.nominal.score, 1) + " nats, below the " + fixed(options.decision_margin, 1) +
-                 "-nat margin)" + left;
-  } else if (C.kind == "parameter") {
-    dg.summary = "the deck's parameters were wrong" +
-                 (dg.residual.consistent ? left : "; no model-form extension passes (best: " + best_other + ")");
-  } else {
-    std::string values;
-    const auto p0 = C.names.size() - C.added.size();
-    for (std::size_t j = 0; j < C.added.size(); ++j) {
-      values += (j ? ", " : "") + C.added[j].meaning + " = " + significant(C.estimate(static_cast<Eigen::Index>(p0 + j)), 5) +
-                " +- " + significant(C.posterior_std(static_cast<Eigen::Index>(p0 + j)), 2);
-    }
-    dg.summary = C.kind + " at " + C.location.text + " (" + values + "), " + fixed(dg.margin, 1) +
-                 " nats above the ordinary update";
-    if (!std::isnan(C.false_alarm))
-      dg.summary += ", false-alarm probability " + significant(C.false_alarm, 2) + " (" + std::to_string(C.exceed) +
-                    " of " + std::to_string(dg.residual.replicates) + " noise replicates reach its first-order gain of " +
-                    fixed(C.screening, 2) + " nats), held-out gain " + significant(C.held_out.total(), 3);
-  }
   dg.updated_deck = deck_at(C.deck_text, est.front().name, C.estimate);
   if (!dg.interrupted) report(options.progress, "done", 1.0);
   return dg;
