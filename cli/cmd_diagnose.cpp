@@ -2,6 +2,7 @@
 /// `ssid diagnose DECK MEASURED.unv [--study FILE] [--json FILE] [-o DIR]`:
 /// what the model gets wrong, which model-form extension explains it, the
 /// gain, and the extended, updated deck (docs/diagnosis.md).
+#include <cmath>
 #include <filesystem>
 #include <fstream>
 #include <iomanip>
@@ -48,6 +49,9 @@ nlohmann::json location_json(const estimator::diagnosis::hypotheses::Location& l
   return {{"grids", l.grids}, {"elements", l.elements}, {"properties", l.properties}, {"text", l.text}};
 }
 
+/// NaN (a figure that was not computed) as JSON null.
+nlohmann::json nan_null(double x) { return std::isnan(x) ? nlohmann::json(nullptr) : nlohmann::json(x); }
+
 nlohmann::json fit_json(const dx::Fit& f) {
   return {{"freq_rms_pct", f.freq_rms_pct}, {"mean_mac", f.mean_mac}, {"paired", f.paired}, {"measured", f.measured}};
 }
@@ -69,15 +73,20 @@ void add_diagnose_options(po::options_description& desc) {
       "prior-std", po::value<double>(), "prior standard deviation of the deck's parameters, relative (default 0.3)")(
       "shortlist", po::value<int>(), "candidates per kind re-estimated exactly (default 3)")(
       "margin", po::value<double>(), "decision margin in nats (default 3)")(
+      "noise", po::value<std::string>(), "the measurement noise: 'estimated' from the data (default) or 'given' (the assumed sigma)")(
+      "replicates", po::value<int>(), "bootstrap replicates of the screening that calibrate the decision (default 199)")(
+      "false-alarm", po::value<double>(), "the largest false-alarm probability of a named cause (default 0.01)")(
       "hold-back", po::value<int>(), "hold back the N highest test modes and report their prediction")(
       "quiet,q", "no progress lines on stderr (phases, counts of candidates, the time left)");
 }
 
 /// The diagnosis options from the study file and the flags (flags win), and the
 /// further configurations (`extra`: DECK, MEASURED). Returns false with the exit
-/// code in `rc` for an unknown kind or a malformed --also.
+/// code in `rc` for a --noise other than estimated/given, an unknown kind or a
+/// malformed --also.
 bool diagnosis_options(const po::variables_map& vm, dx::DiagnosisOptions& opt,
                        std::vector<std::pair<std::string, std::string>>& extra, int& rc) {
+  std::string noise = "estimated";
   if (vm.count("study")) {
     const std::string path = vm["study"].as<std::string>();
     nlohmann::json s;
@@ -88,7 +97,8 @@ bool diagnosis_options(const po::variables_map& vm, dx::DiagnosisOptions& opt,
     }
     static const std::set<std::string> known = {"frequency_std_pct", "shape_std_pct", "prior_rel_std", "kinds",
                                                 "shortlist", "decision_margin", "hold_back", "mass_prior_fraction",
-                                                "stiffness_prior_fraction", "configurations", "max_iterations"};
+                                                "stiffness_prior_fraction", "configurations", "max_iterations",
+                                                "noise", "replicates", "false_alarm"};
     for (auto it = s.begin(); it != s.end(); ++it)
       if (!known.count(it.key())) throw formats::InputError(path + ": unknown key \"" + it.key() + "\"");
     try {
@@ -100,6 +110,9 @@ bool diagnosis_options(const po::variables_map& vm, dx::DiagnosisOptions& opt,
       if (s.count("shortlist")) opt.shortlist = s["shortlist"].get<int>();
       if (s.count("decision_margin")) opt.decision_margin = s["decision_margin"].get<double>();
       if (s.count("hold_back")) opt.hold_back = s["hold_back"].get<int>();
+      if (s.count("noise")) noise = s["noise"].get<std::string>();
+      if (s.count("replicates")) opt.calibration.replicates = s["replicates"].get<int>();
+      if (s.count("false_alarm")) opt.calibration.false_alarm = s["false_alarm"].get<double>();
       if (s.count("mass_prior_fraction")) opt.extension.mass_prior_fraction = s["mass_prior_fraction"].get<double>();
       if (s.count("stiffness_prior_fraction"))
         opt.extension.stiffness_prior_fraction = s["stiffness_prior_fraction"].get<double>();
@@ -115,6 +128,15 @@ bool diagnosis_options(const po::variables_map& vm, dx::DiagnosisOptions& opt,
   if (vm.count("shortlist")) opt.shortlist = vm["shortlist"].as<int>();
   if (vm.count("margin")) opt.decision_margin = vm["margin"].as<double>();
   if (vm.count("hold-back")) opt.hold_back = vm["hold-back"].as<int>();
+  if (vm.count("noise")) noise = vm["noise"].as<std::string>();
+  if (vm.count("replicates")) opt.calibration.replicates = vm["replicates"].as<int>();
+  if (vm.count("false-alarm")) opt.calibration.false_alarm = vm["false-alarm"].as<double>();
+  if (noise != "estimated" && noise != "given") {
+    print_error("--noise: expected \"estimated\" or \"given\", got \"" + noise + "\"");
+    rc = kExitBadInput;
+    return false;
+  }
+  opt.calibration.estimate_noise = noise == "estimated";
   if (vm.count("kinds")) {
     opt.kinds.clear();
     std::stringstream ss(vm["kinds"].as<std::string>());
@@ -161,8 +183,10 @@ std::string write_diagnosed_deck(const po::variables_map& vm, const dx::Configur
   return deck_path;
 }
 
-/// The diagnosis as JSON (docs/diagnosis.md), without "partial".
-nlohmann::json diagnosis_json(const dx::Diagnosis& dg, const dx::Hypothesis& cause, const std::string& deck_path) {
+/// The diagnosis as JSON (docs/diagnosis.md), without "partial"; `opt` gives the
+/// false-alarm target the residual test reports.
+nlohmann::json diagnosis_json(const dx::Diagnosis& dg, const dx::Hypothesis& cause, const dx::DiagnosisOptions& opt,
+                              const std::string& deck_path) {
   nlohmann::json j;
   {
     nlohmann::json c;
@@ -184,6 +208,9 @@ nlohmann::json diagnosis_json(const dx::Diagnosis& dg, const dx::Hypothesis& cau
     }
     c["summary"] = dg.summary;
     c["margin_nats"] = dg.margin;
+    c["false_alarm_p"] = nan_null(cause.false_alarm);
+    c["held_out_gain"] = cause.held_out_known ? nlohmann::json(cause.held_out.total()) : nlohmann::json(nullptr);
+    c["why"] = cause.verdict;
     j["cause"] = c;
   }
   j["ranking"] = nlohmann::json::array();
@@ -200,6 +227,13 @@ nlohmann::json diagnosis_json(const dx::Diagnosis& dg, const dx::Hypothesis& cau
                         {"converged", h.converged}};
     if (h.prediction_rms_pct >= 0) r["prediction_rms_pct"] = h.prediction_rms_pct;
     if (h.screening != 0) r["screening_nats"] = h.screening;
+    r["false_alarm_p"] = nan_null(h.false_alarm);
+    if (h.exceed >= 0) r["false_alarm_exceed"] = h.exceed;
+    if (h.held_out_known)
+      r["held_out_gain"] = {{"frequency", h.held_out.gain[dx::kFrequencyRows]},
+                            {"shape", h.held_out.gain[dx::kShapeRows]},
+                            {"total", h.held_out.total()}};
+    if (!h.verdict.empty()) r["verdict"] = h.verdict;
     const auto p0 = h.names.size() - h.added.size();
     r["parameters"] = nlohmann::json::array();
     for (std::size_t k = 0; k < h.added.size(); ++k)
@@ -211,6 +245,34 @@ nlohmann::json diagnosis_json(const dx::Diagnosis& dg, const dx::Hypothesis& cau
   j["gain"] = {{"before", fit_json(dg.nominal.before)}, {"after", fit_json(cause.after)}};
   j["nominal"] = {{"log_evidence", dg.nominal.score}};
   j["searched"] = dg.searched;
+  {
+    const auto& n = dg.noise;
+    auto group = [&](int g, double assumed, double implied, double with_cause) {
+      return nlohmann::json{{"assumed_pct", assumed}, {"implied_pct", implied},
+                            {"implied_with_cause_pct", nan_null(with_cause)}, {"scale", n.scale.scale[g]},
+                            {"chi2", n.scale.chi2[g]}, {"dof", n.scale.dof[g]}, {"rows", n.scale.rows[g]},
+                            {"chi2_p", dg.residual.chi2_p[g]}};
+    };
+    j["noise"] = {{"mode", n.estimated ? "estimated" : "given"},
+                  {"pooled", n.scale.pooled},
+                  {"frequency", group(dx::kFrequencyRows, n.assumed_frequency_pct, n.frequency_pct, n.frequency_pct_cause)},
+                  {"shape", group(dx::kShapeRows, n.assumed_shape_pct, n.shape_pct, n.shape_pct_cause)}};
+    const auto& r = dg.residual;
+    j["residual_test"] = {{"consistent", r.consistent},     {"text", r.text},
+                          {"unpaired", r.unpaired},         {"candidates", r.candidates},
+                          {"statistic_nats", nan_null(r.statistic)}, {"p", nan_null(r.p)},
+                          {"p_upper_95", nan_null(r.p_upper)},     {"exceed", r.exceed},
+                          {"replicates", r.replicates},     {"false_alarm_target", opt.calibration.false_alarm}};
+    const auto& se = dg.second;
+    j["second_effect"] = {{"tested", se.tested}, {"named", se.named}, {"text", se.text}};
+    if (se.tested && !se.kind.empty()) {
+      j["second_effect"]["kind"] = se.kind;
+      j["second_effect"]["location"] = location_json(se.location);
+      j["second_effect"]["first_order_gain"] = se.gain;
+      j["second_effect"]["false_alarm_p"] = se.false_alarm;
+      j["second_effect"]["held_out_gain"] = se.held_out.total();
+    }
+  }
   {
     nlohmann::json e;
     e["findings"] = dg.evidence.findings;
@@ -270,6 +332,22 @@ void print_report(const dx::Diagnosis& dg, const dx::Hypothesis& cause, const st
   std::cout << "\n1. What the updated model gets wrong (after the ordinary update):\n";
   for (const auto& f : dg.evidence.findings) std::cout << "   - " << f << "\n";
   // Frequencies to 7 significant digits: any error the error column shows is visible in them.
+  {
+    const auto& n = dg.noise;
+    std::cout << "   - noise " << (n.estimated ? "the data imply" : "(given)") << ": frequencies "
+              << estimator::significant(n.frequency_pct, 3) << " %, shapes " << estimator::significant(n.shape_pct, 3)
+              << " % of the RMS component";
+    if (n.estimated)
+      std::cout << " (assumed " << estimator::significant(n.assumed_frequency_pct, 3) << " % and "
+                << estimator::significant(n.assumed_shape_pct, 3) << " %; " << estimator::significant(n.scale.dof[dx::kFrequencyRows], 3)
+                << " and " << estimator::significant(n.scale.dof[dx::kShapeRows], 4) << " degrees of freedom"
+                << (n.scale.pooled ? ", one scale for both" : "") << ")";
+    std::cout << "\n   - against the assumed noise: frequency chi^2 " << estimator::significant(n.scale.chi2[dx::kFrequencyRows], 4)
+              << " (p = " << estimator::significant(dg.residual.chi2_p[dx::kFrequencyRows], 2) << "), shape chi^2 "
+              << estimator::significant(n.scale.chi2[dx::kShapeRows], 4) << " (p = "
+              << estimator::significant(dg.residual.chi2_p[dx::kShapeRows], 2) << ")\n";
+    std::cout << "   - anything left to explain? " << (dg.residual.text.empty() ? "not tested" : dg.residual.text) << "\n";
+  }
   std::cout << "\n   test mode   test [Hz]  FE mode      FE [Hz]  error [%]    MAC   MEMS e^2\n";
   for (const auto& m : dg.evidence.modes) {
     std::cout << "   " << std::setw(9) << m.test_id << std::setw(12) << estimator::significant(m.test_hz, 7);
@@ -281,7 +359,10 @@ void print_report(const dx::Diagnosis& dg, const dx::Hypothesis& cause, const st
   std::cout << "\n2-3. Hypotheses tested (searched:";
   for (const auto& [k, n] : dg.searched) std::cout << " " << k << " " << n;
   std::cout << " locations)\n   score = Laplace log-evidence + unpaired-mode penalty - log(#locations)\n";
-  std::cout << "   rank  kind               location                                  score [nats]  freq RMS %  mean MAC  paired\n";
+  std::cout << "   false-alarm p: probability that noise alone gives a first-order gain as large (" << dg.residual.replicates
+            << " replicates); held-out: leave-one-mode-out gain over the ordinary update\n";
+  std::cout << "   rank  kind               location                                  score [nats]  freq RMS %  mean MAC  paired"
+               "  false-alarm p  held-out\n";
   std::cout << "      -  none               deck as given                            " << std::setw(13)
             << estimator::fixed(dg.nominal.score, 1) << std::setw(12) << estimator::fixed(dg.nominal.before.freq_rms_pct, 3) << std::setw(10)
             << estimator::fixed(dg.nominal.before.mean_mac, 4) << std::setw(8) << dg.nominal.before.paired << "\n";
@@ -291,11 +372,23 @@ void print_report(const dx::Diagnosis& dg, const dx::Hypothesis& cause, const st
     if (loc.size() > 40) loc = loc.substr(0, 37) + "...";
     std::cout << "   " << std::setw(4) << i + 1 << "  " << std::left << std::setw(19) << h.kind << std::setw(41) << loc
               << std::right << std::setw(13) << estimator::fixed(h.score, 1) << std::setw(12) << estimator::fixed(h.after.freq_rms_pct, 3)
-              << std::setw(10) << estimator::fixed(h.after.mean_mac, 4) << std::setw(8) << h.after.paired;
+              << std::setw(10) << estimator::fixed(h.after.mean_mac, 4) << std::setw(8) << h.after.paired << std::setw(15)
+              << (std::isnan(h.false_alarm) ? std::string("-") : estimator::significant(h.false_alarm, 2)) << std::setw(10)
+              << (h.held_out_known ? estimator::significant(h.held_out.total(), 3) : std::string("-"));
     if (h.prediction_rms_pct >= 0) std::cout << "  held-back RMS " << estimator::fixed(h.prediction_rms_pct, 2) << " %";
     std::cout << (static_cast<int>(i) == dg.cause ? "  <- cause" : "") << "\n";
   }
   std::cout << "\n4. Cause: " << dg.cause_kind << " — " << dg.summary << "\n";
+  for (const auto& h : dg.ranking)  // why the best extension not named was not
+    if (h.kind != "parameter" && static_cast<int>(&h - dg.ranking.data()) != dg.cause) {
+      std::cout << "   not named: " << h.kind << " at " << h.location.text << ": " << h.verdict << "\n";
+      break;
+    }
+  if (!std::isnan(dg.noise.frequency_pct_cause))
+    std::cout << "   noise the data imply with the cause in the model: frequencies "
+              << estimator::significant(dg.noise.frequency_pct_cause, 3) << " %, shapes "
+              << estimator::significant(dg.noise.shape_pct_cause, 3) << " %\n";
+  if (dg.second.tested) std::cout << "   a second effect: " << dg.second.text << "\n";
   std::cout << "\n5. Gain:              before     after\n";
   std::cout << "   freq RMS error %  " << std::setw(8) << estimator::fixed(dg.nominal.before.freq_rms_pct, 3) << std::setw(10)
             << estimator::fixed(cause.after.freq_rms_pct, 3) << "\n";
@@ -348,7 +441,7 @@ int cmd_diagnose(const Args& args) {
   }
   const dx::Hypothesis& cause = dg.cause >= 0 ? dg.ranking[static_cast<std::size_t>(dg.cause)] : dg.nominal;
   const std::string deck_path = write_diagnosed_deck(vm, configs.front(), dg);
-  nlohmann::json j = diagnosis_json(dg, cause, deck_path);
+  nlohmann::json j = diagnosis_json(dg, cause, opt, deck_path);
   const std::string untrusted = untrusted_reason(dg, cause);
   j["partial"] = !untrusted.empty();
   if (!untrusted.empty()) j["partial_reason"] = untrusted;

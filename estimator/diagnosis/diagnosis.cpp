@@ -3,9 +3,13 @@
 #include <Eigen/Dense>
 #include <algorithm>
 #include <cmath>
+#include <functional>
+#include <map>
+#include <optional>
 #include <set>
 #include <sstream>
 
+#include "estimator/diagnosis/calibration.hpp"
 #include "estimator/eigen/eigen_solver.hpp"
 #include "estimator/updating/sensitivity.hpp"
 #include "formats/deck_writer.hpp"
@@ -157,6 +161,7 @@ class Engine {
     for (const auto& pb : pbs) measured += static_cast<int>(pb.test.size());
     h.before = fit_of(res.history.front(), measured);
     h.after = fit_of(res.history.back(), measured);
+    h.pairs = res.history.back().pairs;
     const bool shapes = m_opt.problem.update.shape_derivatives;
     for (std::size_t k = 0; k < pbs.size(); ++k) {
       std::set<int> paired;
@@ -189,6 +194,18 @@ class Engine {
   void warm_start(const std::vector<std::string>& names, const Eigen::VectorXd& r) {
     for (std::size_t j = 0; j < names.size(); ++j) m_warm[names[j]] = r(static_cast<Eigen::Index>(j));
   }
+  /// The first configuration's problem for deck `text` with the priors of the
+  /// new parameters `added` (no estimate).
+  DeckProblem problem(const std::string& text, const std::vector<ext::NewParameter>& added) const {
+    std::map<std::string, PriorOverride> priors;
+    for (const auto& p : added) priors[p.label] = {p.prior_mean, p.prior_std, p.start};
+    return make_deck_problem(text, m_setup.est.front().name, m_setup.est.front().measured, m_opt.problem, priors);
+  }
+  /// The measurement σ of the next hypotheses' estimates (the noise the data imply).
+  void set_noise(double frequency_std_pct, double shape_std_pct) {
+    m_opt.problem.frequency_std_pct = frequency_std_pct;
+    m_opt.problem.shape_std_pct = shape_std_pct;
+  }
   /// Where the estimates of the next hypotheses report their cycles.
   void set_update_progress(Progress p) { m_opt.problem.update_progress = std::move(p); }
   /// The last evaluate()'s estimate was interrupted (its hypothesis is as far as it got).
@@ -207,9 +224,7 @@ class Engine {
 
 /// First-order screening data at the updated parameters (first configuration).
 struct Screen {
-  Eigen::VectorXd e;   ///< weighted residual
-  Eigen::MatrixXd W;   ///< weighted, prior-scaled sensitivities of the existing parameters
-  Eigen::MatrixXd Hinv_Wt;  ///< H⁻¹ Wᵀ
+  LinearUpdate lin;    ///< weighted residual, prior-scaled sensitivities, row groups and modes
   struct Row { int fem; double f; Eigen::VectorXd u; double norm; double sigma_f, sigma_s; bool use_f, use_s; };
   std::vector<Row> rows;
 };
@@ -250,32 +265,36 @@ Screen prepare_screen(DeckProblem& pb, const Eigen::VectorXd& r, const std::vect
     if (row.use_f) {
       e.push_back((t.frequency_hz - row.f) / row.sigma_f);
       w.push_back((s.d_eigenvalue / (8 * M_PI * M_PI * row.f)).cwiseProduct(d) / row.sigma_f);
+      sc.lin.group.push_back(kFrequencyRows);
+      sc.lin.block.push_back(static_cast<int>(k));
     }
     if (row.use_s) {
       Eigen::VectorXd z = t.shape.normalized();
       if (z.dot(row.u) < 0) z = -z;
       const Eigen::MatrixXd du = (s.d_sensor_shape - row.u * (row.u.transpose() * s.d_sensor_shape)) / row.norm;
-      for (Eigen::Index k = 0; k < z.size(); ++k) {
-        e.push_back((z(k) - row.u(k)) / row.sigma_s);
-        w.push_back(du.row(k).transpose().cwiseProduct(d) / row.sigma_s);
+      for (Eigen::Index k2 = 0; k2 < z.size(); ++k2) {
+        e.push_back((z(k2) - row.u(k2)) / row.sigma_s);
+        w.push_back(du.row(k2).transpose().cwiseProduct(d) / row.sigma_s);
+        sc.lin.group.push_back(kShapeRows);
+        sc.lin.block.push_back(static_cast<int>(k));
       }
     }
   }
   const auto m = static_cast<Eigen::Index>(e.size());
-  sc.e = Eigen::Map<Eigen::VectorXd>(e.data(), m);
-  sc.W.resize(m, d.size());
-  for (Eigen::Index k = 0; k < m; ++k) sc.W.row(k) = w[static_cast<std::size_t>(k)].transpose();
-  const Eigen::MatrixXd H = Eigen::MatrixXd::Identity(d.size(), d.size()) + sc.W.transpose() * sc.W;
-  sc.Hinv_Wt = H.ldlt().solve(sc.W.transpose());
+  sc.lin.e = Eigen::Map<Eigen::VectorXd>(e.data(), m);
+  sc.lin.W.resize(m, d.size());
+  for (Eigen::Index k = 0; k < m; ++k) sc.lin.W.row(k) = w[static_cast<std::size_t>(k)].transpose();
+  sc.lin.theta = ((r - pb.prior.mean).array() / d.array()).matrix();
   return sc;
 }
 
-/// ΔlogZ of one new parameter from its ∂K, ∂M (first order).
-double screen_score(const Screen& sc, const OperatorModel& model, const Eigen::VectorXd& lambdas, const SparseMatrix& C,
-                    const SparseMatrix& dK, const SparseMatrix& dM, double prior_std) {
+/// The prior-scaled weighted sensitivity σ_β S_ee^{-1/2} ∂u/∂β of one new
+/// parameter from its ∂K, ∂M (∂λ exact, ∂φ by modal summation): the rows of `sc`.
+Eigen::VectorXd screen_column(const Screen& sc, const OperatorModel& model, const Eigen::VectorXd& lambdas,
+                              const SparseMatrix& C, const SparseMatrix& dK, const SparseMatrix& dM, double prior_std) {
   const Eigen::MatrixXd& Phi = model.modes();
   std::vector<double> t;
-  t.reserve(static_cast<std::size_t>(sc.e.size()));
+  t.reserve(static_cast<std::size_t>(sc.lin.e.size()));
   for (const auto& row : sc.rows) {
     const double lam = lambdas(row.fem);
     const Eigen::VectorXd phi = Phi.col(row.fem);
@@ -287,12 +306,7 @@ double screen_score(const Screen& sc, const OperatorModel& model, const Eigen::V
       for (Eigen::Index k = 0; k < du.size(); ++k) t.push_back(du(k) / row.sigma_s);
     }
   }
-  const Eigen::Map<const Eigen::VectorXd> tv(t.data(), static_cast<Eigen::Index>(t.size()));
-  const Eigen::VectorXd Wt = sc.W.transpose() * tv;
-  const double s = tv.squaredNorm() - Wt.dot(sc.Hinv_Wt * tv);
-  const double g = tv.dot(sc.e);
-  const double v = prior_std * prior_std;
-  return 0.5 * g * g / (std::max(s, 0.0) + 1.0 / v) - 0.5 * std::log1p(v * std::max(s, 0.0));
+  return prior_std * Eigen::Map<const Eigen::VectorXd>(t.data(), static_cast<Eigen::Index>(t.size()));
 }
 
 /// For each unexplained test mode (the evidence's order), the g-set shape of
@@ -325,6 +339,120 @@ std::vector<Eigen::VectorXd> neighbours_of_unexplained(DeckProblem& pb, const Mo
   return out;
 }
 
+/// The noise the comparisons of fits use: σ of a frequency [% of it] and of a
+/// component of a unit shape.
+struct FitNoise {
+  double frequency_pct = 1, shape_unit = 1;
+};
+
+/// "" when `h` fits the test modes that both pair no worse than `ref`, pairs
+/// no fewer modes and predicts held-back modes no worse; otherwise why not.
+/// Worse: the frequency or the shape χ² of the common pairs, in units of the
+/// noise, χ²_f = Σ (Δf %/σ_f)², χ²_s = Σ ‖z − u‖²/σ_s² = Σ (2 − 2√MAC)/σ_s²,
+/// grows by more than 1 (a likelihood ratio below e^{−1/2} for that group:
+/// within that, the difference is the noise's, not the model's).
+std::string worse_fit(const Hypothesis& h, const Hypothesis& ref, const FitNoise& noise) {
+  if (h.after.paired < ref.after.paired)
+    return "pairs fewer test modes (" + std::to_string(h.after.paired) + " vs " + std::to_string(ref.after.paired) + ")";
+  std::map<std::pair<int, int>, const UpdatePair*> mine;
+  for (const auto& p : h.pairs) mine[{p.config, p.test}] = &p;
+  double e2h = 0, e2r = 0, mach = 0, macr = 0, shh = 0, shr = 0;
+  int n = 0;
+  for (const auto& p : ref.pairs) {
+    const auto it = mine.find({p.config, p.test});
+    if (it == mine.end()) continue;
+    e2h += it->second->error_pct * it->second->error_pct;
+    e2r += p.error_pct * p.error_pct;
+    mach += it->second->mac;
+    macr += p.mac;
+    shh += 2.0 - 2.0 * std::sqrt(std::clamp(it->second->mac, 0.0, 1.0));
+    shr += 2.0 - 2.0 * std::sqrt(std::clamp(p.mac, 0.0, 1.0));
+    ++n;
+  }
+  if (n > 0) {
+    const std::string on = " on the " + std::to_string(n) + " modes both pair";
+    const double df = (e2h - e2r) / (noise.frequency_pct * noise.frequency_pct);
+    const double ds = (shh - shr) / (noise.shape_unit * noise.shape_unit);
+    if (df > 1.0)
+      return "makes the frequency fit worse (RMS error " + fixed(std::sqrt(e2h / n), 3) + " % vs " + fixed(std::sqrt(e2r / n), 3) +
+             " %" + on + ": chi^2 up by " + significant(df, 3) + ")";
+    if (ds > 1.0)
+      return "makes the shape fit worse (mean MAC " + fixed(mach / n, 5) + " vs " + fixed(macr / n, 5) + on +
+             ": chi^2 up by " + significant(ds, 3) + ")";
+  }
+  if (h.prediction_rms_pct >= 0 && ref.prediction_rms_pct >= 0 && h.prediction_rms_pct > ref.prediction_rms_pct)
+    return "predicts the held-back modes worse (RMS " + fixed(h.prediction_rms_pct, 3) + " % vs " +
+           fixed(ref.prediction_rms_pct, 3) + " %)";
+  return "";
+}
+
+/// "" when extension `h` may be named against the ordinary update `P`
+/// (diagnosis.hpp, step 4); otherwise the first reason it may not.
+std::string why_not_named(const Hypothesis& h, const Hypothesis& P, const ResidualTest& rt, double alpha, double margin,
+                          const FitNoise& noise) {
+  if (h.screening_column >= 0) {
+    if (!(h.false_alarm <= alpha))
+      return "false-alarm probability " + significant(h.false_alarm, 2) + " (" + std::to_string(h.exceed) + " of " +
+             std::to_string(rt.replicates) + " noise replicates reach its first-order gain of " + fixed(h.screening, 2) +
+             " nats) is above " + significant(alpha, 2);
+    if (!(h.held_out.total() > 0))
+      return "does not predict held-out modes better (leave-one-mode-out gain " + significant(h.held_out.total(), 3) +
+             ": frequencies " + significant(h.held_out.gain[kFrequencyRows], 3) + ", shapes " +
+             significant(h.held_out.gain[kShapeRows], 3) + ")";
+  } else if (rt.consistent) {
+    return "the ordinary update's residuals are consistent with the noise: nothing is left to explain";
+  }
+  if (h.score - P.score < margin)
+    return fixed(h.score - P.score, 1) + " nats above the ordinary update, below the " + fixed(margin, 1) + "-nat margin";
+  return worse_fit(h, P, noise);
+}
+
+/// Is anything left to explain after the ordinary update? Fills dg.residual
+/// from the noise report, the pairs of `param` and the calibrated screening;
+/// `where(column)` names a screened candidate.
+void residual_test(Diagnosis& dg, const Hypothesis& param, const Screening& screen, const CalibrationOptions& opt,
+                   const std::function<std::string(int)>& where) {
+  ResidualTest& rt = dg.residual;
+  const NoiseScale& ns = dg.noise.scale;
+  const char* group_name[kRowGroups] = {"frequency", "shape"};
+  for (int g = 0; g < kRowGroups; ++g) rt.chi2_p[g] = ns.rows[g] ? chi2_upper_tail(ns.chi2[g], ns.dof[g]) : 1.0;
+  rt.unpaired = param.after.measured - param.after.paired;
+  rt.candidates = screen.candidate_count();
+  rt.replicates = static_cast<int>(screen.maxima().size());
+  std::vector<std::string> left;
+  if (rt.unpaired > 0) left.push_back(std::to_string(rt.unpaired) + " test mode(s) have no analysis partner");
+  std::string gain_text;
+  if (rt.candidates > 0 && rt.replicates > 0) {
+    Eigen::Index best = 0;
+    rt.statistic = screen.gains().maxCoeff(&best);
+    rt.exceed = screen.exceedances(rt.statistic);
+    rt.p = screen.false_alarm(rt.statistic);
+    rt.p_upper = tail_upper_bound(rt.exceed, rt.replicates);
+    gain_text = "the largest first-order gain of the " + std::to_string(rt.candidates) + " candidates screened, " +
+                fixed(rt.statistic, 2) + " nats (" + where(static_cast<int>(best)) + "), is reached by " +
+                std::to_string(rt.exceed) + " of " + std::to_string(rt.replicates) +
+                " replicates of noise alone (false-alarm p = " + significant(rt.p, 2) + ")";
+    if (rt.p <= opt.false_alarm) left.push_back(gain_text);
+  }
+  if (!opt.estimate_noise)
+    for (int g = 0; g < kRowGroups; ++g)
+      if (ns.rows[g] && rt.chi2_p[g] <= opt.false_alarm)
+        left.push_back(std::string(group_name[g]) + " residuals exceed the given noise (chi^2 = " + significant(ns.chi2[g], 4) +
+                       " on " + significant(ns.dof[g], 4) + " degrees of freedom, p = " + significant(rt.chi2_p[g], 2) + ")");
+  const bool structure_known = !gain_text.empty() || !opt.estimate_noise;
+  rt.consistent = left.empty() && structure_known;
+  if (rt.consistent)
+    rt.text = "nothing is left to explain: every test mode has a partner" +
+              (gain_text.empty() ? std::string(" and the residuals fit the given noise")
+                                 : " and " + gain_text + ", above " + significant(opt.false_alarm, 2));
+  else if (left.empty())
+    rt.text = "cannot tell whether anything is left to explain: no candidate has a first-order screening";
+  else {
+    rt.text = "something is left to explain: ";
+    for (std::size_t k = 0; k < left.size(); ++k) rt.text += (k ? "; " : "") + left[k];
+  }
+}
+
 }  // namespace
 
 std::string deck_at(const std::string& deck_text, const std::string& name, const Eigen::VectorXd& x) {
@@ -341,10 +469,11 @@ std::string deck_at(const std::string& deck_text, const std::string& name, const
 
 namespace {
 
-/// One diagnosis, one phase per member function (docs/diagnosis.md §1–4):
-/// ordinary_update, gather, nominal_likelihood, prepare_screening,
-/// list_candidates, screen, test_shortlist, keep_best_per_place, decide.
-/// run() calls them in that order.
+/// One diagnosis, one phase per member function (docs/diagnosis.md §1–5):
+/// ordinary_update (with implied_noise), gather, nominal_likelihood,
+/// prepare_screening, list_candidates, screen, calibrate, make_shortlist,
+/// test_shortlist, keep_best_per_place, decide, second_effect,
+/// summarise_decision. run() calls them in that order.
 class Diagnoser {
  public:
   Diagnoser(const std::vector<ConfigurationInput>& configurations, const DiagnosisOptions& options)
@@ -362,6 +491,8 @@ class Diagnoser {
       prepare_screening();
       list_candidates();
       screen();
+      calibrate();
+      make_shortlist();
       test_shortlist();
     } catch (const Interrupted& ex) {
       if (!m_dg.interrupted) {
@@ -371,6 +502,10 @@ class Diagnoser {
     }
     keep_best_per_place();
     decide();
+    second_effect();
+    summarise_decision();
+    const Hypothesis& C = m_dg.cause >= 0 ? m_dg.ranking[static_cast<std::size_t>(m_dg.cause)] : m_dg.nominal;
+    m_dg.updated_deck = deck_at(C.deck_text, m_est.front().name, C.estimate);
     if (!m_dg.interrupted) report(m_options.progress, "done", 1.0);
     return std::move(m_dg);
   }
@@ -381,6 +516,14 @@ class Diagnoser {
     ext::Candidate cand;
     double screening;
     double look;
+    int column;  ///< its screening column (−1: not screened)
+  };
+  /// A candidate's rank within its kind: its first-order gain (`column` ≥ 0,
+  /// known after calibrate()) or its priority / the misfit at its grids.
+  struct Scored {
+    double value;
+    std::size_t i;
+    int column;
   };
 
   const DiagnosisOptions& m_options;
@@ -397,6 +540,10 @@ class Diagnoser {
   ModalSolution m_sol_star;
   std::vector<std::unique_ptr<ext::ModelExtension>> m_kinds;
   std::vector<std::vector<ext::Candidate>> m_cands;
+  std::vector<std::vector<Scored>> m_scored;  ///< per kind
+  std::vector<Eigen::VectorXd> m_columns;     ///< screening columns until calibrate() takes them
+  std::vector<std::pair<std::size_t, std::size_t>> m_column_of;  ///< screening column -> (kind, candidate)
+  std::optional<Screening> m_screening;       ///< the calibrated screening (the second effect screens again)
   std::vector<Shortlisted> m_shortlist;
 
   /// An estimate's cycles, reported as items of `phase` (also to the caller's own
@@ -434,12 +581,14 @@ class Diagnoser {
     }
   }
 
-  /// 1. The ordinary update of the deck's own parameters ("parameter").
+  /// 1. The ordinary update of the deck's own parameters ("parameter"), at the
+  /// noise the data imply (implied_noise).
   void ordinary_update() {
     report(m_options.progress, "ordinary update of the deck's parameters", 0.0);
     m_engine.set_update_progress(forward_cycles("ordinary update: cycle", -1, -1, "", 0.0, 0.1));
     for (const auto& c : m_est) m_base_texts.push_back(c.deck_text);
     m_param = m_engine.evaluate("parameter", m_base_texts, {}, &m_base);
+    implied_noise();
     if (m_engine.interrupted()) {
       m_dg.interrupted = true;
       m_dg.partial_reason = m_engine.last().stopped + " during the ordinary update (after " +
@@ -449,6 +598,42 @@ class Diagnoser {
     m_engine.warm_start(m_param.names, m_base_res.r);
     m_param.description = "the deck's own parameters re-estimated";
     m_param.location.text = "deck parameters";
+  }
+
+  /// 1b. The noise the data imply, from the ordinary update at the assumed σ;
+  /// estimated, every estimate from here on uses it (the update is redone).
+  void implied_noise() {
+    Diagnosis& dg = m_dg;
+    const DiagnosisOptions& options = m_options;
+    dg.noise.estimated = options.calibration.estimate_noise;
+    dg.noise.assumed_frequency_pct = dg.noise.frequency_pct = options.problem.frequency_std_pct;
+    dg.noise.assumed_shape_pct = dg.noise.shape_pct = options.problem.shape_std_pct;
+    if (m_engine.interrupted()) return;
+    const UpdateResult& first = m_engine.last();
+    const Screen s1 = prepare_screen(m_base.front(), first.r, first.history.back().pairs, options.problem);
+    dg.noise.scale = estimate_noise(s1.lin, s1.lin.e, options.calibration.estimate_noise, options.calibration.min_dof);
+    if (options.calibration.estimate_noise) {
+      dg.noise.frequency_pct = options.problem.frequency_std_pct * dg.noise.scale.scale[kFrequencyRows];
+      dg.noise.shape_pct = options.problem.shape_std_pct * dg.noise.scale.scale[kShapeRows];
+    }
+    try {
+      if (options.calibration.estimate_noise)
+        report(options.progress, "ordinary update at the noise the data imply (frequencies " +
+                                     significant(dg.noise.frequency_pct, 3) + " %, shapes " +
+                                     significant(dg.noise.shape_pct, 3) + " % of the RMS component)",
+               0.05);
+    } catch (const Interrupted& ex) {  // the update at the assumed σ stands: a partial diagnosis
+      dg.interrupted = true;
+      dg.partial_reason = std::string(ex.what()) + " after the ordinary update: no extension tested";
+    }
+    if (options.calibration.estimate_noise && !dg.interrupted) {
+      m_engine.warm_start(m_param.names, first.r);
+      m_engine.set_noise(dg.noise.frequency_pct, dg.noise.shape_pct);
+      const Fit before = m_param.before;  // the deck as given, not the warm start
+      m_base.clear();
+      m_param = m_engine.evaluate("parameter", m_base_texts, {}, &m_base);
+      m_param.before = before;
+    }
   }
 
   /// 1. The evidence: what the updated model gets wrong.
@@ -461,7 +646,6 @@ class Diagnoser {
       return v;
     }());
   }
-
   /// The nominal model (no estimate): likelihood at the prior mean, pairs of cycle 0.
   void nominal_likelihood() {
     between_phases("the deck as given: its likelihood", 0.1);
@@ -527,21 +711,69 @@ class Diagnoser {
     }
   }
 
-  /// 2. First-order screening of each candidate (kinds that add no DOF), the
-  /// others ranked by their priority or the misfit at their grids; the shortlist.
+  /// 2. First-order screening of each candidate: a screening column for the
+  /// kinds that add no DOF, the others ranked by their priority or the misfit
+  /// at their grids.
   void screen() {
     const translators::FeModel& nominal = *m_base.front().fe;
-    const Screen& sc = m_screen;
-    const ModalSolution& sol_star = m_sol_star;
     std::map<std::int64_t, double> grid_weight;
     for (const auto& g : m_dg.evidence.grid_misfit) grid_weight[g.grid] += g.share;
     for (const auto& u : m_dg.evidence.unpaired_test)
       for (const auto& g : u.moves) grid_weight[g.grid] += g.share;
-    const auto a_size = nominal.reduction().a_to_g.size();
     long total = 0, screened_so_far = 0;
     for (std::size_t q = 0; q < m_kinds.size(); ++q) total += static_cast<long>(m_cands[q].size());
     m_stage = "while screening the candidates";
 
+    m_scored.assign(m_kinds.size(), {});
+    for (std::size_t q = 0; q < m_kinds.size(); ++q) {
+      const auto& kind = m_kinds[q];
+      for (std::size_t i = 0; i < m_cands[q].size(); ++i, ++screened_so_far) {
+        report(m_options.progress, "screening candidates", screened_so_far, total, kind->kind(),
+               0.1 + 0.05 * static_cast<double>(screened_so_far) / static_cast<double>(total));
+        auto deriv = kind->screening(nominal, m_cands[q][i]);
+        if (deriv) {
+          m_columns.push_back(screen_column(m_screen, *m_base.front().model, m_sol_star.eigenvalues, m_base.front().sensors,
+                                            deriv->dK[0], deriv->dM[0], deriv->prior_std.at(0)));
+          m_column_of.push_back({q, i});
+          m_scored[q].push_back({0.0, i, static_cast<int>(m_columns.size()) - 1});
+        } else if (!std::isnan(m_cands[q][i].priority)) {
+          m_scored[q].push_back({m_cands[q][i].priority, i, -1});
+        } else {
+          double w = 0;
+          for (auto g : m_cands[q][i].location.grids)
+            if (auto it = grid_weight.find(g); it != grid_weight.end()) w += it->second;
+          m_scored[q].push_back({w, i, -1});
+        }
+      }
+    }
+    report(m_options.progress, "screening candidates", total, total, "", 0.15);
+  }
+
+  /// 2b. Calibration: the screening's gains with the noise re-estimated, replayed
+  /// on data simulated from the ordinary update's model; the residual test.
+  void calibrate() {
+    m_stage = "while calibrating the screening";
+    Eigen::MatrixXd U(m_screen.lin.e.size(), static_cast<Eigen::Index>(m_columns.size()));
+    for (std::size_t k = 0; k < m_columns.size(); ++k) U.col(static_cast<Eigen::Index>(k)) = m_columns[k];
+    m_columns.clear();
+    m_screening.emplace(m_screen.lin, std::move(U), m_options.calibration);
+    if (m_screening->candidate_count() > 0)
+      report(m_options.progress, "calibrating: " + std::to_string(m_options.calibration.replicates) +
+                                     " replicates of the screening on simulated noise",
+             0.15);
+    m_screening->bootstrap();
+    for (auto& v : m_scored)
+      for (auto& x : v)
+        if (x.column >= 0) x.value = m_screening->gains()(x.column);
+    residual_test(m_dg, m_param, *m_screening, m_options.calibration, [&](int column) {
+      const auto& [q, i] = m_column_of[static_cast<std::size_t>(column)];
+      return m_kinds[q]->kind() + " at " + m_cands[q][i].location.text;
+    });
+  }
+
+  /// 2. The shortlist: each kind's best candidates by gain (or rank).
+  void make_shortlist() {
+    const auto a_size = m_base.front().fe->reduction().a_to_g.size();
     for (std::size_t q = 0; q < m_kinds.size(); ++q) {
       const auto& kind = m_kinds[q];
       if (m_cands[q].empty()) continue;
@@ -549,37 +781,18 @@ class Diagnoser {
       for (const auto& c : m_cands[q]) places.insert(c.location.text);
       m_dg.searched[kind->kind()] = static_cast<int>(places.size());
       const double look = std::log(static_cast<double>(places.size()));
-      std::vector<std::pair<double, std::size_t>> scored;
-      bool screened = false;
-      for (std::size_t i = 0; i < m_cands[q].size(); ++i, ++screened_so_far) {
-        report(m_options.progress, "screening candidates", screened_so_far, total, kind->kind(),
-               0.1 + 0.05 * static_cast<double>(screened_so_far) / static_cast<double>(total));
-        auto deriv = kind->screening(nominal, m_cands[q][i]);
-        if (deriv) {
-          screened = true;
-          const double sd = deriv->prior_std.at(0);
-          scored.push_back({screen_score(sc, *m_base.front().model, sol_star.eigenvalues, m_base.front().sensors,
-                                         deriv->dK[0], deriv->dM[0], sd),
-                            i});
-        } else if (!std::isnan(m_cands[q][i].priority)) {
-          scored.push_back({m_cands[q][i].priority, i});
-        } else {
-          double w = 0;
-          for (auto g : m_cands[q][i].location.grids)
-            if (auto it = grid_weight.find(g); it != grid_weight.end()) w += it->second;
-          scored.push_back({w, i});
-        }
-      }
-      std::stable_sort(scored.begin(), scored.end(), [](const auto& a, const auto& b) { return a.first > b.first; });
+      auto& sq = m_scored[q];
+      const bool screened = std::any_of(sq.begin(), sq.end(), [](const Scored& x) { return x.column >= 0; });
+      std::stable_sort(sq.begin(), sq.end(), [](const Scored& a, const Scored& b) { return a.value > b.value; });
       std::size_t n = static_cast<std::size_t>(m_options.shortlist);
       if (!screened && m_cands[q].size() <= static_cast<std::size_t>(m_options.exhaustive_limit) && a_size < 3000)
         n = m_cands[q].size();
       else if (!screened) n = static_cast<std::size_t>(2 * m_options.shortlist);
       // Kinds with several candidates per place (start values): keep all starts of the chosen places.
-      for (std::size_t k = 0; k < std::min(n, scored.size()); ++k)
-        m_shortlist.push_back({kind.get(), m_cands[q][scored[k].second], screened ? scored[k].first : 0.0, look});
+      for (std::size_t k = 0; k < std::min(n, sq.size()); ++k)
+        m_shortlist.push_back(
+            {kind.get(), m_cands[q][sq[k].i], sq[k].column >= 0 ? sq[k].value : 0.0, look, sq[k].column});
     }
-    report(m_options.progress, "screening candidates", total, total, "", 0.15);
   }
 
   /// 3. Exact re-estimation of the shortlist.
@@ -609,6 +822,13 @@ class Diagnoser {
         h.location = s.cand.location;
         h.description = description;
         h.screening = s.screening;
+        h.screening_column = s.column;
+        if (s.column >= 0) {
+          h.exceed = m_screening->exceedances(s.screening);
+          h.false_alarm = m_screening->false_alarm(s.screening);
+          h.held_out = m_screening->held_out(s.column);
+          h.held_out_known = true;
+        }
         h.look_elsewhere = s.look;
         h.score -= h.look_elsewhere;
         m_dg.ranking.push_back(std::move(h));
@@ -632,19 +852,40 @@ class Diagnoser {
     m_dg.ranking = std::move(unique);
   }
 
-  /// 4. Decision.
+  /// The noise the comparisons of fits use: the estimates' σ.
+  FitNoise fit_noise() const {
+    FitNoise n;
+    n.frequency_pct = m_dg.noise.frequency_pct;
+    const auto ns = static_cast<double>(m_base.front().dofs.size());  // the sensors the shapes have
+    n.shape_unit = m_dg.noise.shape_pct / 100.0 / std::sqrt(std::max(ns, 1.0));
+    return n;
+  }
+
+  /// 4. Every extension's verdict and the cause (diagnosis.hpp).
   void decide() {
     Diagnosis& dg = m_dg;
     const DiagnosisOptions& options = m_options;
+    const FitNoise noise = fit_noise();
+    const double alpha = options.calibration.false_alarm;
     int ip = -1, ie = -1;
     for (std::size_t i = 0; i < dg.ranking.size(); ++i) {
       if (dg.ranking[i].kind == "parameter" && ip < 0) ip = static_cast<int>(i);
       if (dg.ranking[i].kind != "parameter" && ie < 0) ie = static_cast<int>(i);
     }
     const Hypothesis& P = dg.ranking[static_cast<std::size_t>(ip)];
-    if (ie >= 0 && dg.ranking[static_cast<std::size_t>(ie)].score - P.score >= options.decision_margin) {
-      dg.cause = ie;
-      dg.margin = dg.ranking[static_cast<std::size_t>(ie)].score - P.score;
+    int eligible = -1;
+    for (std::size_t i = 0; i < dg.ranking.size(); ++i) {
+      Hypothesis& h = dg.ranking[i];
+      if (h.kind == "parameter") continue;
+      h.verdict = why_not_named(h, P, dg.residual, alpha, options.decision_margin, noise);
+      if (h.verdict.empty()) {
+        h.verdict = eligible < 0 ? "named" : "passes every test, but scores below the cause";
+        if (eligible < 0) eligible = static_cast<int>(i);
+      }
+    }
+    if (eligible >= 0) {
+      dg.cause = eligible;
+      dg.margin = dg.ranking[static_cast<std::size_t>(eligible)].score - P.score;
     } else if (P.score - dg.nominal.score >= options.decision_margin) {
       dg.cause = ip;
       dg.margin = P.score - std::max(dg.nominal.score, ie >= 0 ? dg.ranking[static_cast<std::size_t>(ie)].score : -INFINITY);
@@ -652,37 +893,194 @@ class Diagnoser {
       dg.cause = -1;
       dg.margin = dg.nominal.score - P.score;
     }
+  }
+
+  /// 5. After a screened cause, the screening again with the cause's model
+  /// (linearised at its estimate) as the null; both are named when the best
+  /// other candidate passes the same tests and the pair's exact estimate beats
+  /// the cause alone.
+  void second_effect() {
+    Diagnosis& dg = m_dg;
+    const DiagnosisOptions& options = m_options;
+    Engine& engine = m_engine;
+    const std::vector<ConfigurationInput>& est = m_est;
+    const FitNoise noise = fit_noise();
+    const double alpha = options.calibration.false_alarm;
+    const auto& kinds = m_kinds;
+    const auto& cands = m_cands;
+    const auto& column_of = m_column_of;
+    const translators::FeModel* nominal = m_base.front().fe.get();
+    if (dg.cause >= 0 && !dg.interrupted && m_screening &&
+        dg.ranking[static_cast<std::size_t>(dg.cause)].screening_column >= 0) {
+      try {
+        const Hypothesis first = dg.ranking[static_cast<std::size_t>(dg.cause)];
+        const int c1 = first.screening_column;
+        // The cause's model at its estimate, linearised there, is the null of the
+        // second search (the cause's parameter is one of its own); every other
+        // screened candidate gets its column at that model.
+        report(options.progress, "a second effect: screening at the cause's model", 0.95);
+        DeckProblem pb1 = engine.problem(first.deck_text, first.added);
+        std::vector<UpdatePair> pairs1;
+        for (const auto& p : first.pairs)
+          if (p.config == 0) pairs1.push_back(p);
+        const Screen sc1 = prepare_screen(pb1, first.estimate, pairs1, engine.options().problem);
+        const ModalSolution sol1 = pb1.model->solve(first.estimate);
+        std::vector<int> kept;
+        std::vector<Eigen::VectorXd> cols;
+        for (std::size_t c = 0; c < column_of.size(); ++c) {
+          const auto& [q, i] = column_of[c];
+          if (cands[q][i].location.text == first.location.text) continue;
+          auto deriv = kinds[q]->screening(*nominal, cands[q][i]);
+          cols.push_back(screen_column(sc1, *pb1.model, sol1.eigenvalues, pb1.sensors, deriv->dK[0], deriv->dM[0],
+                                       deriv->prior_std.at(0)));
+          kept.push_back(static_cast<int>(c));
+        }
+        Eigen::MatrixXd U1(sc1.lin.e.size(), static_cast<Eigen::Index>(cols.size()));
+        for (std::size_t k = 0; k < cols.size(); ++k) U1.col(static_cast<Eigen::Index>(k)) = cols[k];
+        cols.clear();
+        report(options.progress, "a second effect: " + std::to_string(options.calibration.replicates) +
+                                     " replicates of the screening on simulated noise",
+               0.96);
+        Screening ext_screen(sc1.lin, std::move(U1), options.calibration);
+        ext_screen.bootstrap();
+        dg.noise.frequency_pct_cause = engine.options().problem.frequency_std_pct * ext_screen.noise().scale[kFrequencyRows];
+        dg.noise.shape_pct_cause = engine.options().problem.shape_std_pct * ext_screen.noise().scale[kShapeRows];
+        SecondEffect& se = dg.second;
+        se.tested = true;
+        int best = -1;
+        for (int j = 0; j < ext_screen.candidate_count(); ++j) {
+          if (best < 0 || ext_screen.gains()(j) > ext_screen.gains()(best)) best = j;
+        }
+        if (best < 0) {
+          se.text = "no other candidate to test";
+        } else {
+          const auto& [q2, i2] = column_of[static_cast<std::size_t>(kept[static_cast<std::size_t>(best)])];
+          const auto& [q1, i1] = column_of[static_cast<std::size_t>(c1)];
+          se.kind = kinds[q2]->kind();
+          se.location = cands[q2][i2].location;
+          se.gain = ext_screen.gains()(best);
+          se.false_alarm = ext_screen.false_alarm(se.gain);
+          se.held_out = ext_screen.held_out(best);
+          const std::string what = se.kind + " at " + se.location.text + ": first-order gain " + fixed(se.gain, 2) +
+                                   " nats, false-alarm p = " + significant(se.false_alarm, 2) + ", held-out gain " +
+                                   significant(se.held_out.total(), 3);
+          if (se.false_alarm > alpha) {
+            se.text = "none: the best, " + what + " (above " + significant(alpha, 2) + ")";
+          } else if (!(se.held_out.total() > 0)) {
+            se.text = "none: the best, " + what + ", does not predict held-out modes better";
+          } else {
+            std::vector<std::string> texts;
+            std::vector<ext::NewParameter> added;
+            for (const auto& c : est) {
+              const ext::ExtendedDeck x1 = kinds[q1]->apply(c.deck_text, c.name, *nominal, cands[q1][i1]);
+              const ext::ExtendedDeck x2 = kinds[q2]->apply(x1.text, c.name, *nominal, cands[q2][i2]);
+              texts.push_back(x2.text);
+              added = x1.parameters;
+              added.insert(added.end(), x2.parameters.begin(), x2.parameters.end());
+            }
+            engine.set_update_progress(
+                forward_cycles("testing two effects", 0, 1, "the cause and a second effect", 0.97, 1.0));
+            engine.warm_start(first.names, first.estimate);  // the first cause starts at its estimate
+            Hypothesis h = engine.evaluate(first.kind + " + " + se.kind, texts, added);
+            if (engine.interrupted()) throw Interrupted(engine.last().stopped);
+            h.location = first.location;
+            h.location.text = first.location.text + " and " + se.location.text;
+            for (auto g : se.location.grids) h.location.grids.push_back(g);
+            for (auto e : se.location.elements) h.location.elements.push_back(e);
+            for (auto pr : se.location.properties) h.location.properties.push_back(pr);
+            h.description = first.description + "; " + se.kind + " at " + se.location.text;
+            h.look_elsewhere = first.look_elsewhere + std::log(static_cast<double>(std::max(1, dg.searched[se.kind])));
+            h.score -= h.look_elsewhere;
+            h.screening = se.gain;
+            h.false_alarm = se.false_alarm;
+            h.exceed = ext_screen.exceedances(se.gain);
+            h.held_out = se.held_out;
+            h.held_out_known = true;
+            std::string no;
+            if (h.score - first.score < options.decision_margin)
+              no = fixed(h.score - first.score, 1) + " nats above the first cause alone, below the " +
+                   fixed(options.decision_margin, 1) + "-nat margin";
+            else
+              no = worse_fit(h, first, noise);
+            if (no.empty()) {
+              se.named = true;
+              se.text = "named: " + what;
+              h.verdict = "named (two effects)";
+              for (const auto& x : dg.ranking)
+                if (x.kind == "parameter") dg.margin = h.score - x.score;
+              dg.ranking.insert(dg.ranking.begin(), std::move(h));
+              dg.cause = 0;
+            } else {
+              se.text = "none: " + what + ", but the model with both " + no;
+              h.verdict = no;
+              dg.ranking.push_back(std::move(h));  // at the end: the cause's index holds
+            }
+          }
+        }
+      } catch (const Interrupted& ex) {
+        dg.interrupted = true;
+        dg.partial_reason = std::string(ex.what()) + " while testing a second effect";
+      } catch (const formats::InputError& ex) {
+        dg.second.text = "not tested (" + std::string(ex.what()) + ")";
+      } catch (const formats::NumericalError& ex) {
+        dg.second.text = "not tested (" + std::string(ex.what()) + ")";
+      }
+    }
+  }
+
+  /// The decision in a sentence, with its figures (dg.cause_kind, dg.summary).
+  void summarise_decision() {
+    Diagnosis& dg = m_dg;
+    const DiagnosisOptions& options = m_options;
     const Hypothesis& C = dg.cause >= 0 ? dg.ranking[static_cast<std::size_t>(dg.cause)] : dg.nominal;
+    const Hypothesis* param = nullptr;
+    for (const auto& h : dg.ranking)
+      if (h.kind == "parameter") param = &h;
+    const Hypothesis& P = *param;
     dg.cause_kind = C.kind;
+    // The best extension that was not named, and why (for "parameter" and "none").
+    std::string best_other = "none tested";
+    for (const auto& h : dg.ranking)
+      if (h.kind != "parameter") {
+        best_other = h.kind + " at " + h.location.text + ": " + h.verdict;
+        break;
+      }
+    const std::string left = dg.residual.consistent ? "; " + dg.residual.text : "";
     if (C.kind == "none") {
       dg.summary = "no change explains the test better than the deck as given (the update gains " +
                    fixed(P.score - dg.nominal.score, 1) + " nats, below the " + fixed(options.decision_margin, 1) +
-                   "-nat margin)";
+                   "-nat margin)" + left;
     } else if (C.kind == "parameter") {
-      dg.summary = "the deck's parameters were wrong; no model-form extension beats the ordinary update (best: " +
-                   (ie >= 0 ? dg.ranking[static_cast<std::size_t>(ie)].kind + " at " +
-                                  dg.ranking[static_cast<std::size_t>(ie)].location.text + ", " +
-                                  fixed(dg.ranking[static_cast<std::size_t>(ie)].score - P.score, 1) + " nats"
-                            : std::string("none tested")) +
-                   ")";
+      dg.summary = "the deck's parameters were wrong" +
+                   (dg.residual.consistent ? left : "; no model-form extension passes (best: " + best_other + ")");
     } else {
       std::string values;
       const auto p0 = C.names.size() - C.added.size();
       for (std::size_t j = 0; j < C.added.size(); ++j) {
-        values += (j ? ", " : "") + C.added[j].meaning + " = " +
-                  significant(C.estimate(static_cast<Eigen::Index>(p0 + j)), 5) + " +- " +
-                  significant(C.posterior_std(static_cast<Eigen::Index>(p0 + j)), 2);
+        values += (j ? ", " : "") + C.added[j].meaning + " = " + significant(C.estimate(static_cast<Eigen::Index>(p0 + j)), 5) +
+                  " +- " + significant(C.posterior_std(static_cast<Eigen::Index>(p0 + j)), 2);
       }
       dg.summary = C.kind + " at " + C.location.text + " (" + values + "), " + fixed(dg.margin, 1) +
                    " nats above the ordinary update";
+      if (!std::isnan(C.false_alarm))
+        dg.summary += ", false-alarm probability " + significant(C.false_alarm, 2) + " (" + std::to_string(C.exceed) +
+                      " of " + std::to_string(dg.residual.replicates) + " noise replicates reach its first-order gain of " +
+                      fixed(C.screening, 2) + " nats), held-out gain " + significant(C.held_out.total(), 3);
     }
-    dg.updated_deck = deck_at(C.deck_text, m_est.front().name, C.estimate);
   }
 };
 
 }  // namespace
 
 Diagnosis diagnose(const std::vector<ConfigurationInput>& configurations, const DiagnosisOptions& options) {
+  const CalibrationOptions& cal = options.calibration;
+  if (!(cal.false_alarm > 0 && cal.false_alarm < 1))
+    throw formats::InputError("diagnose: the false-alarm target must lie between 0 and 1, got " + significant(cal.false_alarm, 3));
+  if (smallest_p(cal.replicates) > cal.false_alarm)
+    throw formats::InputError("diagnose: " + std::to_string(cal.replicates) +
+                              " bootstrap replicates cannot show a false-alarm probability of " + significant(cal.false_alarm, 3) +
+                              " or less (the smallest is 1/(replicates + 1)); use at least " +
+                              std::to_string(static_cast<int>(std::ceil(1.0 / cal.false_alarm - 1.0 - 1e-9))));
   return Diagnoser(configurations, options).run();
 }
 

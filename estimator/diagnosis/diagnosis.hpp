@@ -22,13 +22,27 @@
 ///    where an unpaired test mode costs the likelihood of a complete miss
 ///    (frequency off by `miss_frequency_pct`, shape orthogonal: ‖z − u‖² = 2)
 ///    and N_kind is the number of distinct locations searched (look-elsewhere).
-/// 4. The cause is the best extension when it beats the ordinary update by
-///    `decision_margin` nats; otherwise "parameter" when the update beats the
-///    nominal model by the margin, else "none".
+/// 4. The decision is calibrated (calibration.hpp): the noise the data imply is
+///    estimated from the ordinary update's residuals (or taken as given), the
+///    estimates of step 3 use it, and the first-order screening is replayed on
+///    data simulated from the ordinary update's model (parametric bootstrap) to
+///    give each screened candidate its false-alarm probability. An extension
+///    is the cause only when (a) its false-alarm probability is at most
+///    `calibration.false_alarm` (kinds without screening: the ordinary update's
+///    residuals are not consistent with the noise), (b) it predicts held-out
+///    modes better (leave-one-mode-out, linearised), (c) its score beats the
+///    ordinary update by `decision_margin` nats and (d) it makes neither the
+///    frequency nor the shape fit of the modes both pair worse, pairs no fewer
+///    modes and predicts held-back modes no worse. Otherwise "parameter" when
+///    the update beats the nominal model by the margin, else "none". After a
+///    screened cause, the search is repeated with the cause's model as the null
+///    (a second effect) and both are named when the second passes too.
+#include <limits>
 #include <map>
 #include <string>
 #include <vector>
 
+#include "estimator/diagnosis/calibration.hpp"
 #include "estimator/diagnosis/deck_problem.hpp"
 #include "estimator/diagnosis/evidence.hpp"
 #include "estimator/reporting/progress.hpp"
@@ -53,6 +67,7 @@ struct DiagnosisOptions {
   double decision_margin = 3.0;    ///< nats
   double miss_frequency_pct = 10.0;
   int hold_back = 0;               ///< highest test modes of the first configuration held back for prediction
+  CalibrationOptions calibration;  ///< noise given or estimated; bootstrap replicates; the false-alarm target
   /// Reports of the phases, counted where they are lists (candidates listed per
   /// kind, screened, re-estimated; the ordinary update's cycles). Throwing
   /// Interrupted from it stops the diagnosis with what it has (Diagnosis::partial_reason).
@@ -75,7 +90,17 @@ struct Hypothesis {
   double miss_penalty = 0;   ///< Σ log p_miss over unpaired test modes (≤ 0)
   double look_elsewhere = 0; ///< log N_kind
   double score = 0;          ///< log_evidence + miss_penalty − look_elsewhere
-  double screening = 0;      ///< first-order evidence gain (kinds with screening)
+  double screening = 0;      ///< first-order evidence gain G of calibration.hpp [nats] (kinds with screening)
+  /// Probability that a search like this one finds a first-order gain of at
+  /// least `screening` in data without any model-form error (bootstrap); NaN
+  /// for kinds without screening.
+  double false_alarm = std::numeric_limits<double>::quiet_NaN();
+  int exceed = -1;           ///< bootstrap replicates whose best gain reached `screening`
+  HeldOutGain held_out;      ///< leave-one-mode-out gain over the ordinary update (screened kinds)
+  bool held_out_known = false;
+  int screening_column = -1; ///< the candidate's column in the screening (−1: not screened)
+  std::vector<UpdatePair> pairs;  ///< the final cycle's pairs
+  std::string verdict;       ///< why it is the cause, or the first reason it is not
   Fit before, after;
   double prediction_rms_pct = -1;  ///< held-back modes (−1: none)
   int predicted = 0;
@@ -84,7 +109,46 @@ struct Hypothesis {
   std::string deck_text;     ///< the (extended) deck
 };
 
+/// The noise the data imply (docs/diagnosis.md, "Noise").
+struct NoiseReport {
+  bool estimated = true;                          ///< false: the assumed σ is taken as given
+  double assumed_frequency_pct = 0, assumed_shape_pct = 0;  ///< σ assumed (options, study file)
+  double frequency_pct = 0, shape_pct = 0;        ///< σ the estimates use: implied (estimated) or assumed
+  NoiseScale scale;                               ///< ŝ, χ², ν of the ordinary update at the assumed σ
+  /// σ the data imply with the (first) screened cause in the model (linearised
+  /// at its estimate); NaN when no screened cause was named.
+  double frequency_pct_cause = std::numeric_limits<double>::quiet_NaN();
+  double shape_pct_cause = std::numeric_limits<double>::quiet_NaN();
+};
+
+/// Is anything left to explain after the ordinary update (docs/diagnosis.md)?
+struct ResidualTest {
+  double chi2_p[kRowGroups] = {1.0, 1.0};  ///< P(χ²(ν_g) ≥ χ²_g) against the assumed σ (frequencies, shapes)
+  int unpaired = 0;                        ///< test modes without an analysis partner
+  int candidates = 0;                      ///< screened candidates
+  double statistic = std::numeric_limits<double>::quiet_NaN();  ///< their largest first-order gain [nats]
+  double p = std::numeric_limits<double>::quiet_NaN();          ///< its false-alarm probability
+  double p_upper = std::numeric_limits<double>::quiet_NaN();    ///< 95 % upper bound on the true tail probability
+  int exceed = 0, replicates = 0;
+  bool consistent = false;  ///< nothing left to explain: the answer is "parameter" or "none"
+  std::string text;         ///< the verdict in a sentence, with the figures
+};
+
+/// The search for a second effect with the cause's model as the null.
+struct SecondEffect {
+  bool tested = false;
+  std::string kind;
+  estimator::diagnosis::hypotheses::Location location;
+  double gain = 0, false_alarm = 1;
+  HeldOutGain held_out;
+  bool named = false;
+  std::string text;  ///< what was found, or why no second effect is named
+};
+
 struct Diagnosis {
+  NoiseReport noise;               ///< the noise the data imply
+  ResidualTest residual;           ///< anything left to explain after the ordinary update?
+  SecondEffect second;             ///< after a screened cause: a second one
   Evidence evidence;               ///< after the ordinary update
   Hypothesis nominal;              ///< "none": the deck as given
   std::vector<Hypothesis> ranking; ///< "parameter" and every re-estimated extension, best score first

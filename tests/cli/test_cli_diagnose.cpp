@@ -47,6 +47,20 @@ TEST_CASE("ssid diagnose: hidden mass found, JSON layout, extended deck written"
   for (const auto& h : j["ranking"])
     for (const char* k : {"kind", "location", "log_evidence", "freq_rms_pct", "mean_mac"}) CHECK(h.contains(k));
   CHECK(j["gain"]["after"]["freq_rms_pct"] < j["gain"]["before"]["freq_rms_pct"]);
+  // The calibrated decision's figures: the noise the data imply, the test of
+  // what is left, the cause's false-alarm probability and held-out gain.
+  CHECK(j["noise"]["mode"] == "estimated");
+  CHECK(j["noise"]["frequency"]["assumed_pct"] == 0.5);
+  CHECK(j["noise"]["shape"]["implied_pct"].is_number());
+  CHECK(j["noise"]["shape"]["implied_with_cause_pct"].is_number());
+  CHECK(j["residual_test"]["consistent"] == false);
+  CHECK(j["residual_test"]["replicates"] == 199);
+  CHECK(j["residual_test"]["p"] <= 0.01);
+  CHECK(j["cause"]["false_alarm_p"] <= 0.01);
+  CHECK(j["cause"]["held_out_gain"] > 0);
+  CHECK(j["cause"]["why"] == "named");
+  CHECK(r.out.find("anything left to explain? something is left to explain: ") != std::string::npos);
+  CHECK(r.out.find("false-alarm p") != std::string::npos);
   CHECK(j["gain"]["after"]["paired"] >= j["gain"]["before"]["paired"]);
   const std::string deck = j["deck"];
   REQUIRE(fs::exists(deck));
@@ -64,6 +78,11 @@ TEST_CASE("ssid diagnose: hidden mass found, JSON layout, extended deck written"
   bool conm2 = false;
   for (const auto& m : b.conm2s) conm2 = conm2 || (m.g == 29 && m.m == Approx(value).epsilon(1e-6) && m.eid > 8000);
   CHECK(conm2);
+  // Too few replicates to show the 1 % target: refused, with what would do.
+  const auto few = run_ssid("diagnose " + (dir / "rod.bdf").string() + " " + (dir / "test.unv").string() + " --replicates 50");
+  CHECK(few.code == 2);
+  CHECK(few.err.find("diagnose: 50 bootstrap replicates cannot show a false-alarm probability of 0.01 or less (the smallest "
+                     "is 1/(replicates + 1)); use at least 99") != std::string::npos);
   fs::remove_all(dir);
 }
 
@@ -84,6 +103,9 @@ TEST_CASE("ssid diagnose: bad input is refused with a clear message", "[cli][dia
   CHECK(broken.code == 2);
   CHECK(broken.err.find("not valid JSON") != std::string::npos);
   fs::remove(study);
+  const auto noise = run_ssid("diagnose a.bdf b.unv --noise guessed");
+  CHECK(noise.code == 2);
+  CHECK(noise.err.find("--noise: expected \"estimated\" or \"given\", got \"guessed\"") != std::string::npos);
   const auto help = run_ssid("diagnose --help");
   CHECK(help.code == 0);
   CHECK(help.out.find("--study") != std::string::npos);

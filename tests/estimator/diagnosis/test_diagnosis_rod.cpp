@@ -114,6 +114,66 @@ TEST_CASE("diagnosis with parameter errors only names no model-form cause", "[es
   CHECK(cause(d).after.freq_rms_pct < cause(d).before.freq_rms_pct);
 }
 
+TEST_CASE("a wrongly assumed noise level raises no false alarm and the implied noise is reported",
+          "[estimator][diagnosis][rod][calibration]") {
+  // Parameter errors only (three DESVARs at once); the test's noise is 0.2 % in
+  // the frequencies and 2 % of the RMS component in the shapes, and the
+  // diagnosis assumes 0.3 × or 3 × that. The noise is estimated: the answer
+  // must be "parameter" both times, with the implied noise near the real one:
+  // shapes (ν ≈ 2900 degrees of freedom, 99 % of ŝ within ± 3.4 %) within
+  // ± 5 %; frequencies (12 modes, ν ≈ 8 after the fit: 99 % of √(χ²_8 / 8)
+  // between 0.41 and 1.66) within 0.41–1.66 × 0.2 %.
+  const Case nominal = rod_case();
+  Case truth = rod_case();
+  perturb(truth.fe, "STRUTA", 1.06);
+  perturb(truth.fe, "JOINTM", 0.93);
+  perturb(truth.fe, "BNUTA", 1.10);
+  TestSpec spec;
+  spec.seed = 15;
+  const auto measured = synthetic_test(truth.fe, spec);
+  for (const double factor : {0.3, 3.0}) {
+    dx::DiagnosisOptions opt;
+    opt.problem.frequency_std_pct = factor * spec.freq_noise_pct;
+    opt.problem.shape_std_pct = factor * spec.shape_noise_pct;
+    const dx::Diagnosis d = run(nominal, measured, opt);
+    CAPTURE(factor, ranking(d), d.residual.text, d.noise.frequency_pct, d.noise.shape_pct);
+    CHECK(d.cause_kind == "parameter");
+    CHECK(d.residual.consistent);
+    CHECK(d.noise.shape_pct > 0.95 * spec.shape_noise_pct);
+    CHECK(d.noise.shape_pct < 1.05 * spec.shape_noise_pct);
+    CHECK(d.noise.frequency_pct > 0.41 * spec.freq_noise_pct);
+    CHECK(d.noise.frequency_pct < 1.66 * spec.freq_noise_pct);
+  }
+}
+
+TEST_CASE("two hidden masses: the second is found with the first in the null", "[estimator][diagnosis][rod][calibration]") {
+  // 2 kg at ball 29 (optics boom tip) and 1 kg at ball 63 (the other boom):
+  // after the first is named, the screening at its model finds the second,
+  // and the diagnosis names both.
+  const Case nominal = rod_case();
+  Case truth = rod_case();
+  perturb(truth.fe, "STRUTA", 1.04);
+  truth.fe.masses.push_back({9001, 29, 2.0, 0.0, "hidden"});
+  truth.fe.masses.push_back({9002, 63, 1.0, 0.0, "hidden"});
+  TestSpec spec;
+  spec.seed = 16;
+  dx::DiagnosisOptions opt;
+  opt.kinds = {"missing_mass", "local_stiffness"};
+  const dx::Diagnosis d = run(nominal, synthetic_test(truth.fe, spec), opt);
+  CAPTURE(ranking(d), d.second.text);
+  REQUIRE(d.second.tested);
+  CHECK(d.second.named);
+  REQUIRE(d.cause_kind == "missing_mass + missing_mass");
+  const auto& h = cause(d);
+  CHECK(has(h.location.grids, 29));
+  CHECK(has(h.location.grids, 63));
+  CHECK(h.false_alarm <= 0.01);
+  // Both masses within 3σ of the truth (the new parameters are the last two, in order).
+  const auto n = h.estimate.size();
+  CHECK(std::abs(h.estimate(n - 2) - 2.0) < 3 * h.posterior_std(n - 2));
+  CHECK(std::abs(h.estimate(n - 1) - 1.0) < 3 * h.posterior_std(n - 1));
+}
+
 TEST_CASE("diagnosis from two configurations sharing parameters", "[estimator][diagnosis][rod]") {
   // Bare and with 24 kg at the metrology tip; the same hidden mass in both.
   const int grid = 40;
