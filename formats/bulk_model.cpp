@@ -59,9 +59,13 @@ const std::unordered_map<std::string, ParseFn>& parsers() {
       {"CONM2", add<Conm2, parse_conm2, &BulkModel::conm2s>},
       {"CMASS1", add<Cmass1, parse_cmass1, &BulkModel::cmass1s>},
       {"CMASS2", add<Cmass2, parse_cmass2, &BulkModel::cmass2s>},
+      {"CMASS3", add<Cmass1, parse_cmass3, &BulkModel::cmass1s>},
+      {"CMASS4", add<Cmass2, parse_cmass4, &BulkModel::cmass2s>},
       {"PMASS", add_many<Pmass, parse_pmass, &BulkModel::pmasses>},
       {"CELAS1", add<Celas1, parse_celas1, &BulkModel::celas1s>},
       {"CELAS2", add<Celas2, parse_celas2, &BulkModel::celas2s>},
+      {"CELAS3", add<Celas1, parse_celas3, &BulkModel::celas1s>},
+      {"CELAS4", add<Celas2, parse_celas4, &BulkModel::celas2s>},
       {"PELAS", add_many<Pelas, parse_pelas, &BulkModel::pelases>},
       {"CBUSH", add<Cbush, parse_cbush, &BulkModel::cbushes>},
       {"PBUSH", add<Pbush, parse_pbush, &BulkModel::pbushes>},
@@ -330,9 +334,9 @@ private:
 
 /// The scalar points scalar elements define by naming them (SPOINT remark 2):
 /// an end with component 0 or blank that no GRID, SPOINT or EPOINT defines.
-/// Typed cards: CELAS1/2, CMASS1/2 (G, C pairs); cards kept verbatim: CDAMP1/2
-/// (G, C pairs), CELAS3/4, CMASS3/4, CDAMP3/4 (scalar points S1, S2 in fields
-/// 4-5). Each becomes a scalar point of the model (BulkModel::implied_spoints).
+/// Typed cards: CELAS1-4, CMASS1-4 (G, C pairs; the scalar forms with C = 0);
+/// cards kept verbatim: CDAMP1/2 (G, C pairs), CDAMP3/4 (scalar points S1, S2
+/// in fields 4-5). Each becomes a scalar point of the model (BulkModel::implied_spoints).
 void define_implied_spoints(const Deck& deck, BulkModel& m, IdSpace& grids) {
   std::map<std::int64_t, std::size_t> implied;  // id -> the first card naming it
   auto end = [&](std::int64_t g, std::int64_t c, std::size_t card) {
@@ -357,8 +361,7 @@ void define_implied_spoints(const Deck& deck, BulkModel& m, IdSpace& grids) {
     if (c.name == "CDAMP1" || c.name == "CDAMP2") {
       end(field_id(c, 3), field_id(c, 4), i);
       end(field_id(c, 5), field_id(c, 6), i);
-    } else if (c.name == "CELAS3" || c.name == "CELAS4" || c.name == "CMASS3" || c.name == "CMASS4" ||
-               c.name == "CDAMP3" || c.name == "CDAMP4") {
+    } else if (c.name == "CDAMP3" || c.name == "CDAMP4") {
       end(field_id(c, 3), 0, i);
       end(field_id(c, 4), 0, i);
     }
@@ -401,19 +404,20 @@ void resolve(const Deck& deck, BulkModel& m) {
   // Element cards kept verbatim share the id space of their family.
   elements.define_verbatim({"CQUAD4", "CQUAD8", "CQUADR", "CTRIA3", "CTRIA6", "CTRIAR", "CSHEAR", "CHEXA", "CPENTA",
                             "CTETRA", "CPYRAM", "CTUBE", "CBEND", "CGAP", "CDAMP1", "CDAMP2", "CDAMP3", "CDAMP4",
-                            "CVISC", "CELAS3", "CELAS4", "CBUSH1D", "CFAST", "CWELD"});
+                            "CVISC", "CBUSH1D", "CFAST", "CWELD"});
   IdSpace masses(deck, out, "mass element");
   for (const auto& e : m.conm2s) masses.define(e.eid, e.card);
   for (const auto& e : m.cmass1s) masses.define(e.eid, e.card);
   for (const auto& e : m.cmass2s) masses.define(e.eid, e.card);
-  masses.define_verbatim({"CMASS3", "CMASS4", "CONM1"});
+  masses.define_verbatim({"CONM1"});
   IdSpace rigids(deck, out, "rigid element");
   for (const auto& e : m.rbars) rigids.define(e.eid, e.card);
   for (const auto& e : m.rbe2s) rigids.define(e.eid, e.card);
   for (const auto& e : m.rbe3s) rigids.define(e.eid, e.card);
   rigids.define_verbatim({"RBAR1", "RBE1", "RROD", "RSPLINE", "RSSCON", "RTRPLT"});
   IdSpace plot_elements(deck, out, "plot element");
-  plot_elements.define_verbatim({"PLOTEL"});
+  plot_elements.define_verbatim({"PLOTEL", "PLOTEL3", "PLOTEL4", "PLOTEL6", "PLOTEL8", "PLOTTET", "PLOTPEN",
+                                 "PLOTPYR", "PLOTHEX"});
 
   IdSpace properties(deck, out, "property");
   for (const auto& p : m.prods) properties.define(p.pid, p.card);
@@ -490,12 +494,13 @@ void resolve(const Deck& deck, BulkModel& m) {
     if (c.g0 > 0) grids.need(c.g0, {"GRID"}, c.card, 5, "G0");
   }
   for (const Cbeam& c : m.cbeams) {
-    properties.need(c.pid, {"PBEAM", "PBEAML"}, c.card, 2, "PID");
+    properties.need(c.pid, {"PBEAM", "PBEAML", "PBCOMP"}, c.card, 2, "PID");
     grids.need(c.ga, {"GRID"}, c.card, 3, "GA");
     grids.need(c.gb, {"GRID"}, c.card, 4, "GB");
     if (c.g0 > 0) grids.need(c.g0, {"GRID"}, c.card, 5, "G0");
-    if (c.sa > 0) grids.need(c.sa, {"SPOINT"}, c.card, 17, "SA");
-    if (c.sb > 0) grids.need(c.sb, {"SPOINT"}, c.card, 18, "SB");
+    // QRG CBEAM: "SA, SB: scalar or grid point identification numbers".
+    if (c.sa > 0) grids.need(c.sa, {}, c.card, 17, "SA");
+    if (c.sb > 0) grids.need(c.sb, {}, c.card, 18, "SB");
   }
   // Scalar elements: each end a grid (component 1-6) or a scalar point (component 0).
   auto scalar_end = [&](std::int64_t g, std::int64_t c, std::size_t card, std::size_t field, const char* gname) {
@@ -513,7 +518,22 @@ void resolve(const Deck& deck, BulkModel& m) {
                              label(deck, card) + ": " + gname + " " + std::to_string(g) +
                                  " is a GRID, its component must be 1-6, got blank or 0"));
   };
+  // CELAS3/4, CMASS3/4: S1, S2 (fields 4, 5) connect scalar points only.
+  auto scalar_point = [&](std::int64_t s, std::size_t card, std::size_t field, const char* sname) {
+    if (s == 0) return;
+    grids.need(s, {}, card, field, sname);
+    const IdSpace::Def* d = grids.find(s);
+    if (d && *d->type == "GRID")
+      out.push_back(error_at(deck, deck.cards[card], field,
+                             label(deck, card) + ": " + sname + " " + std::to_string(s) + " is a GRID; " +
+                                 deck.cards[card].name + " connects scalar points only"));
+  };
   auto scalar_ends = [&](const auto& e) {
+    if (e.scalar_form) {
+      scalar_point(e.g1, e.card, 3, "S1");
+      scalar_point(e.g2, e.card, 4, "S2");
+      return;
+    }
     scalar_end(e.g1, e.c1, e.card, 3, "G1");
     scalar_end(e.g2, e.c2, e.card, 5, "G2");
   };
@@ -542,7 +562,7 @@ void resolve(const Deck& deck, BulkModel& m) {
     if (!pbarl_type_sectioned(p.type))
       out.push_back(warning_at(deck, deck.cards[p.card], 4,
                                label(deck, p.card) + ": TYPE " + p.type +
-                                   " is kept with its dimensions but not sectioned (ssid sections ROD, TUBE, BAR, BOX, I)"));
+                                   " is not a section type of the PBARL/PBEAML list; kept with its values but not sectioned"));
   }
   for (const auto& p : m.pbeams) materials.need(p.mid, {"MAT1"}, p.card, 2, "MID");
   for (const auto& p : m.pbeamls) {
@@ -550,7 +570,7 @@ void resolve(const Deck& deck, BulkModel& m) {
     if (!pbarl_type_sectioned(p.type))
       out.push_back(warning_at(deck, deck.cards[p.card], 4,
                                label(deck, p.card) + ": TYPE " + p.type +
-                                   " is kept with its dimensions but not sectioned (ssid sections ROD, TUBE, BAR, BOX, I)"));
+                                   " is not a section type of the PBARL/PBEAML list; kept with its values but not sectioned"));
   }
 
   // --- rigid elements --------------------------------------------------------
@@ -571,20 +591,28 @@ void resolve(const Deck& deck, BulkModel& m) {
 
   // --- constraints ------------------------------------------------------------
   std::unordered_set<std::int64_t> spc_sets;
+  // NASTRAN ignores an undefined point of an SPC set with USER WARNING MESSAGE
+  // 2051 (UNDEFINED GRID POINT ... IN SPC SET ... IGNORED) and runs; so do we.
+  auto missing_spc_point = [&](std::int64_t g, std::size_t card, std::size_t field) {
+    out.push_back(warning_at(deck, deck.cards[card], field,
+                             "grid or scalar point " + std::to_string(g) + " required by " + label(deck, card) +
+                                 " does not exist; ignored (NASTRAN: USER WARNING MESSAGE 2051)"));
+  };
   for (const Spc& s : m.spcs) {
     spc_sets.insert(s.sid);
-    for (std::size_t k = 0; k < s.entries.size(); ++k) grids.need(s.entries[k].g, {}, s.card, 2 + 3 * k, "G");
+    for (std::size_t k = 0; k < s.entries.size(); ++k)
+      if (!grids.find(s.entries[k].g)) missing_spc_point(s.entries[k].g, s.card, 2 + 3 * k);
   }
   for (const Spc1& s : m.spc1s) {
     spc_sets.insert(s.sid);
     // A THRU range over missing grids is one mistake: name the first few, count the rest.
     std::size_t missing = 0;
     for (std::int64_t g : s.grids)
-      if (!grids.find(g) && ++missing <= 5) grids.need(g, {}, s.card, 0, "G");
+      if (!grids.find(g) && ++missing <= 5) missing_spc_point(g, s.card, 0);
     if (missing > 5)
-      out.push_back(error_at(deck, deck.cards[s.card], 0,
-                             "... and " + std::to_string(missing - 5) + " more grids or scalar points required by " +
-                                 label(deck, s.card) + " do not exist"));
+      out.push_back(warning_at(deck, deck.cards[s.card], 0,
+                               "... and " + std::to_string(missing - 5) + " more grids or scalar points required by " +
+                                   label(deck, s.card) + " do not exist; ignored"));
   }
   IdSpace spcadd_ids(deck, out, "SPCADD set");
   for (const Spcadd& s : m.spcadds) {
