@@ -148,9 +148,10 @@ void fill_space(const Deck& deck, const BulkModel& m, IdSpace space, ResolveCont
 
 /// The scalar points scalar elements define by naming them (SPOINT remark 2):
 /// an end with component 0 or blank that no GRID, SPOINT or EPOINT defines.
-/// Typed cards give their G, C pairs; cards kept verbatim are read by their
-/// ScalarConnection (G1 C1 G2 C2 in fields 4-7, or S1 S2 in fields 4-5). Each
-/// becomes a scalar point of the model (BulkModel::implied_spoints).
+/// Typed cards give their G, C pairs (CELAS1-4, CMASS1-4; the scalar-point forms
+/// with C = 0); cards kept verbatim (CDAMPi) are read by their ScalarConnection
+/// (G1 C1 G2 C2 in fields 4-7, or S1 S2 in fields 4-5). Each becomes a scalar
+/// point of the model (BulkModel::implied_spoints).
 void define_implied_spoints(const Deck& deck, BulkModel& m, IdRegistry& grids) {
   std::map<std::int64_t, std::size_t> implied;  // id -> the first card naming it
   auto end = [&](std::int64_t g, std::int64_t c, std::size_t card) {

@@ -17,6 +17,7 @@
 #include <utility>
 
 #include "formats/bulk_model.hpp"
+#include "formats/field_reader.hpp"
 #include "formats/resolve_context.hpp"
 
 namespace ssid::formats {
@@ -142,16 +143,40 @@ public:
     return *this;
   }
 
+  /// A second card read into the same struct by its own parser (CMASS3, the
+  /// scalar-point form of CMASS1, into Cmass1): the struct's writer writes each
+  /// in its form, and the entry's id space, references and checks cover both.
+  Typed& reads_also(std::string name, T (*parse)(const FieldReader&)) {
+    m_traits.names.push_back(name);
+    Member member = m_member;
+    m_traits.parse = [member, name, parse, first = m_traits.parse](const FieldReader& r, std::size_t card,
+                                                                   BulkModel& m) {
+      if (r.card().name != name) return first(r, card, m);
+      T v = parse(r);
+      v.card = card;
+      (m.*member).push_back(std::move(v));
+    };
+    return *this;
+  }
+
   /// A scalar element connected by G1 C1 G2 C2 (fields 4-7): each end a grid
   /// (component 1-6) or a scalar point (component 0), implied when undefined.
+  /// Its scalar-point form (`scalar_form`: CELAS3/4, CMASS3/4) connects S1 S2
+  /// (fields 4-5, components 0): scalar points only, implied when undefined.
   Typed& scalar_ends() {
     m_traits.scalar_connection = ScalarConnection::GridComponentPairs;
     Member member = m_member;
     m_traits.each_scalar_end = [member](const BulkModel& m,
                                         const std::function<void(std::int64_t, std::int64_t, std::size_t)>& f) {
+      // The scalar-point form holds S1, S2 in g1, g2 with components 0.
       for (const T& e : m.*member) f(e.g1, e.c1, e.card), f(e.g2, e.c2, e.card);
     };
     return checks([](const T& e, const BulkModel&, ResolveContext& ctx) {
+      if (e.scalar_form) {
+        ctx.scalar_point(e.g1, e.card, 3, "S1");
+        ctx.scalar_point(e.g2, e.card, 4, "S2");
+        return;
+      }
       ctx.scalar_end(e.g1, e.c1, e.card, 3, "G1");
       ctx.scalar_end(e.g2, e.c2, e.card, 5, "G2");
     });
@@ -265,13 +290,13 @@ void check_rid_chain(const Cord2& c, const BulkModel& m, ResolveContext& ctx) {
   }
 }
 
-/// PBARL, PBEAML: a TYPE ssid does not section is kept, with a warning.
+/// PBARL, PBEAML: a TYPE outside the MSC list is kept, with a warning.
 template <typename T>
 void check_section_type(const T& p, const BulkModel&, ResolveContext& ctx) {
   if (!pbarl_type_sectioned(p.type))
     ctx.warning(p.card, 4,
                 ctx.label(p.card) + ": TYPE " + p.type +
-                    " is kept with its dimensions but not sectioned (ssid sections ROD, TUBE, BAR, BOX, I)");
+                    " is not a section type of the PBARL/PBEAML list; kept with its values but not sectioned");
 }
 
 void check_rbe3_grids(const Rbe3& e, const BulkModel&, ResolveContext& ctx) {
@@ -281,9 +306,17 @@ void check_rbe3_grids(const Rbe3& e, const BulkModel&, ResolveContext& ctx) {
   for (const auto& [g, c] : e.um) grids.need(g, {"GRID"}, e.card, 0, "GM");
 }
 
+/// NASTRAN ignores an undefined point of an SPC set with USER WARNING MESSAGE
+/// 2051 (UNDEFINED GRID POINT ... IN SPC SET ... IGNORED) and runs; so do we.
+void warn_missing_spc_point(std::int64_t g, std::size_t card, std::size_t field, ResolveContext& ctx) {
+  ctx.warning(card, field,
+              "grid or scalar point " + std::to_string(g) + " required by " + ctx.label(card) +
+                  " does not exist; ignored (NASTRAN: USER WARNING MESSAGE 2051)");
+}
+
 void check_spc_grids(const Spc& s, const BulkModel&, ResolveContext& ctx) {
   for (std::size_t k = 0; k < s.entries.size(); ++k)
-    ctx.ids(IdSpace::GridPoint).need(s.entries[k].g, {}, s.card, 2 + 3 * k, "G");
+    if (!ctx.ids(IdSpace::GridPoint).find(s.entries[k].g)) warn_missing_spc_point(s.entries[k].g, s.card, 2 + 3 * k, ctx);
 }
 
 /// A THRU range over missing grids is one mistake: name the first few, count the rest.
@@ -291,11 +324,11 @@ void check_spc1_grids(const Spc1& s, const BulkModel&, ResolveContext& ctx) {
   auto& grids = ctx.ids(IdSpace::GridPoint);
   std::size_t missing = 0;
   for (std::int64_t g : s.grids)
-    if (!grids.find(g) && ++missing <= 5) grids.need(g, {}, s.card, 0, "G");
+    if (!grids.find(g) && ++missing <= 5) warn_missing_spc_point(g, s.card, 0, ctx);
   if (missing > 5)
-    ctx.error(s.card, 0,
-              "... and " + std::to_string(missing - 5) + " more grids or scalar points required by " +
-                  ctx.label(s.card) + " do not exist");
+    ctx.warning(s.card, 0,
+                "... and " + std::to_string(missing - 5) + " more grids or scalar points required by " +
+                    ctx.label(s.card) + " do not exist; ignored");
 }
 
 /// NASTRAN warns (USER WARNING MESSAGE 2053, UNDEFINED SINGLE-POINT CONSTRAINT
@@ -414,25 +447,32 @@ std::vector<CardTraits> make_table() {
       typed({"BAROR"}, &BulkModel::barors, parse_baror, write_baror, E::StiffnessAndMass),
       typed({"CBEAM"}, &BulkModel::cbeams, parse_cbeam, write_cbeam, E::StiffnessAndMass)
           .defines(S::Element, &Cbeam::eid)
-          .refers(&Cbeam::pid, 2, "PID", S::Property, {"PBEAM", "PBEAML"})
+          .refers(&Cbeam::pid, 2, "PID", S::Property, {"PBEAM", "PBEAML", "PBCOMP"})
           .refers(&Cbeam::ga, 3, "GA", S::GridPoint, kGrid)
           .refers(&Cbeam::gb, 4, "GB", S::GridPoint, kGrid)
           .refers_optional(&Cbeam::g0, 5, "G0", S::GridPoint, kGrid)
-          .refers_optional(&Cbeam::sa, 17, "SA", S::GridPoint, {"SPOINT"})
-          .refers_optional(&Cbeam::sb, 18, "SB", S::GridPoint, {"SPOINT"}),
+          // QRG CBEAM: "SA, SB: scalar or grid point identification numbers".
+          .refers_optional(&Cbeam::sa, 17, "SA", S::GridPoint)
+          .refers_optional(&Cbeam::sb, 18, "SB", S::GridPoint),
       typed({"BEAMOR"}, &BulkModel::beamors, parse_beamor, write_beamor, E::StiffnessAndMass),
+      // The scalar-point forms CMASS3, CELAS3, CMASS4, CELAS4 share the structs of
+      // CMASS1, CELAS1, CMASS2, CELAS2 (scalar_form set, components 0).
       typed({"CMASS1"}, &BulkModel::cmass1s, parse_cmass1, write_cmass1, E::Mass)
+          .reads_also("CMASS3", parse_cmass3)
           .defines(S::MassElement, &Cmass1::eid)
           .refers(&Cmass1::pid, 2, "PID", S::Property, {"PMASS"})
           .scalar_ends(),
       typed({"CELAS1"}, &BulkModel::celas1s, parse_celas1, write_celas1, E::Stiffness)
+          .reads_also("CELAS3", parse_celas3)
           .defines(S::Element, &Celas1::eid)
           .refers(&Celas1::pid, 2, "PID", S::Property, {"PELAS"})
           .scalar_ends(),
       typed({"CMASS2"}, &BulkModel::cmass2s, parse_cmass2, write_cmass2, E::Mass)
+          .reads_also("CMASS4", parse_cmass4)
           .defines(S::MassElement, &Cmass2::eid)
           .scalar_ends(),
       typed({"CELAS2"}, &BulkModel::celas2s, parse_celas2, write_celas2, E::Stiffness)
+          .reads_also("CELAS4", parse_celas4)
           .defines(S::Element, &Celas2::eid)
           .scalar_ends(),
       typed({"CONM2"}, &BulkModel::conm2s, parse_conm2, write_conm2, E::Mass)
@@ -531,13 +571,9 @@ std::vector<CardTraits> make_table() {
       ignored("CDAMP4", other, S::Element, ScalarConnection::ScalarPoints),
       ignored("CDAMP5", other),
       ignored("CVISC", other, S::Element),
-      verbatim("CELAS3", S::Element, E::Stiffness, ScalarConnection::ScalarPoints),
-      verbatim("CELAS4", S::Element, E::Stiffness, ScalarConnection::ScalarPoints),
       verbatim("CBUSH1D", S::Element, E::Stiffness),
       verbatim("CFAST", S::Element, E::Stiffness),
       verbatim("CWELD", S::Element, E::Stiffness),
-      verbatim("CMASS3", S::MassElement, E::Mass, ScalarConnection::ScalarPoints),
-      verbatim("CMASS4", S::MassElement, E::Mass, ScalarConnection::ScalarPoints),
       verbatim("CONM1", S::MassElement, E::Mass),
       verbatim("RBAR1", S::RigidElement, E::StiffnessAndMass),
       verbatim("RBE1", S::RigidElement, E::StiffnessAndMass),
@@ -546,6 +582,15 @@ std::vector<CardTraits> make_table() {
       verbatim("RSSCON", S::RigidElement, E::StiffnessAndMass),
       verbatim("RTRPLT", S::RigidElement, E::StiffnessAndMass),
       ignored("PLOTEL", other, S::PlotElement),
+      // MSC's plot elements for 3-, 4-, 6-, 8-noded faces and solids (display only)
+      ignored("PLOTEL3", other, S::PlotElement),
+      ignored("PLOTEL4", other, S::PlotElement),
+      ignored("PLOTEL6", other, S::PlotElement),
+      ignored("PLOTEL8", other, S::PlotElement),
+      ignored("PLOTTET", other, S::PlotElement),
+      ignored("PLOTPEN", other, S::PlotElement),
+      ignored("PLOTPYR", other, S::PlotElement),
+      ignored("PLOTHEX", other, S::PlotElement),
       // --- kept verbatim: properties, materials, coordinate systems, scalar points, design ------------
       verbatim("PSHELL", S::Property, E::StiffnessAndMass),
       verbatim("PCOMP", S::Property, E::StiffnessAndMass),

@@ -76,7 +76,7 @@ enum class Effect {
 enum class ScalarConnection {
   None,
   GridComponentPairs,  ///< G1 C1 G2 C2 in fields 4-7 (CELAS1/2, CMASS1/2, CDAMP1/2): component 0 or blank = scalar point
-  ScalarPoints,        ///< S1 S2 in fields 4-5 (CELAS3/4, CMASS3/4, CDAMP3/4): scalar points only
+  ScalarPoints,        ///< S1 S2 in fields 4-5 (CDAMP3/4 kept verbatim): scalar points only
 };
 
 /// A field that refers to an id in another space, as resolve checks it:
@@ -92,7 +92,7 @@ struct Reference {
 };
 
 /// The traits of one card type (several names when they share a struct:
-/// CORD2R, CORD2C, CORD2S). Typed cards have a parser; cards kept verbatim are
+/// CORD2R, CORD2C, CORD2S; CMASS1 and CMASS3). Typed cards have a parser; cards kept verbatim are
 /// listed when they define ids, imply scalar points or are ignored in SOL 103.
 struct CardTraits {
   std::vector<std::string> names;
@@ -118,7 +118,8 @@ struct CardTraits {
   std::function<void(const BulkModel&, std::map<std::size_t, std::vector<FieldValue>>&)> write;
   /// Calls `f(id, card)` for every id the parsed cards define in `space`.
   std::function<void(const BulkModel&, const std::function<void(std::int64_t, std::size_t)>&)> each_id;
-  /// Calls `f(g, c, card)` for every connection point of a typed scalar element.
+  /// Calls `f(g, c, card)` for every connection point of a typed scalar element
+  /// (its scalar-point forms, CELAS3/4 and CMASS3/4, with c = 0).
   std::function<void(const BulkModel&, const std::function<void(std::int64_t, std::int64_t, std::size_t)>&)>
       each_scalar_end;
   /// Checks the references to coordinate systems (`coordinates`) or all the

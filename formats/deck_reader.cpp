@@ -308,7 +308,10 @@ struct Reader {
       if (section == Section::AfterEnddata) continue;
 
       if (tdata.empty()) continue;  // comment or blank line: verbatim, may sit inside a card
-      if (iequals_prefix(tdata, "ENDDATA") && upper(tdata).find_first_not_of(' ', 7) == std::string::npos) {
+      // ENDDATA in field 1; NASTRAN reads nothing after it, so later fields (pyNastran
+      // writes a checksum there: "ENDDATA 58e050da") do not matter.
+      if (iequals_prefix(tdata, "ENDDATA") &&
+          (tdata.size() == 7 || tdata[7] == ' ' || tdata[7] == ',' || tdata[7] == '\t')) {
         finish_card(fi, emitted, true);
         section = Section::AfterEnddata;
         continue;
@@ -335,7 +338,7 @@ struct Reader {
       card.end = l.next;
       card.format = lf.free ? FieldFormat::Free : (lf.large ? FieldFormat::Large : FieldFormat::Small);
       std::string_view name = lf.first;
-      if (!name.empty() && name.back() == '*') name.remove_suffix(1);
+      if (!name.empty() && name.back() == '*') name = trim(name.substr(0, name.size() - 1));  // "CORD2R *"
       card.name = std::string(name);
       fields.push_back(name);
       add_rows(lf, l.number);

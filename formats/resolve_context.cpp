@@ -90,4 +90,15 @@ void ResolveContext::scalar_end(std::int64_t g, std::int64_t c, std::size_t card
           label(card) + ": " + gname + " " + std::to_string(g) + " is a GRID, its component must be 1-6, got blank or 0");
 }
 
+void ResolveContext::scalar_point(std::int64_t s, std::size_t card, std::size_t field, const char* sname) {
+  if (s == 0) return;
+  IdRegistry& grids = ids(IdSpace::GridPoint);
+  grids.need(s, {}, card, field, sname);
+  const IdRegistry::Def* d = grids.find(s);
+  if (d && *d->type == "GRID")
+    error(card, field,
+          label(card) + ": " + sname + " " + std::to_string(s) + " is a GRID; " + m_deck.cards[card].name +
+              " connects scalar points only");
+}
+
 }  // namespace ssid::formats::detail

@@ -72,6 +72,8 @@ public:
   /// One end of a scalar element or an MPC term: a grid (component 1-6) or a
   /// scalar point (component 0 or blank); `field` is G's, C's is the next.
   void scalar_end(std::int64_t g, std::int64_t c, std::size_t card, std::size_t field, const char* gname);
+  /// S1 or S2 of CELAS3/4, CMASS3/4 at `field`: a scalar point only (0: grounded).
+  void scalar_point(std::int64_t s, std::size_t card, std::size_t field, const char* sname);
 
 private:
   const Deck& m_deck;

@@ -70,7 +70,16 @@ Baror parse_baror(const FieldReader& r) {
   if (!r.blank(3)) r.fail(3, "(blank)", "blank");
   if (!r.blank(4)) r.fail(4, "(blank)", "blank");
   b.has_orientation = read_orientation(r, 5, b.g0, b.x);
-  if (!r.blank(8)) b.offt = r.choice(8, "OFFT", k_offt_words, nullptr);
+  if (!r.blank(8) && r.is_integer(8)) {
+    // The older flag F of CBAR field 9 (1: X1-X3, 2: G0), which MSC Nastran still runs.
+    b.legacy_flag = r.integer(8, "F");
+    if (b.legacy_flag != 1 && b.legacy_flag != 2)
+      r.fail(8, "OFFT", "one of GGG, BGG, GGO, BGO, GOG, BOG, GOO, BOO, or the older flag 1 (X1-X3) or 2 (G0)");
+    if (b.has_orientation && (b.legacy_flag == 2) != (b.g0 > 0))
+      r.fail(8, "F", b.legacy_flag == 2 ? "1 (fields 6-8 hold X1-X3, not G0)" : "2 (field 6 holds G0, not X1)");
+  } else if (!r.blank(8)) {
+    b.offt = r.choice(8, "OFFT", k_offt_words, nullptr);
+  }
   r.at_most(9);
   return b;
 }
@@ -78,7 +87,7 @@ Baror parse_baror(const FieldReader& r) {
 std::vector<FieldValue> write_baror(const Baror& b) {
   std::vector<FieldValue> v = {std::string("BAROR"), FieldValue(), optional_value(b.pid), FieldValue(), FieldValue()};
   write_orientation(v, 5, b.g0, b.x, !b.has_orientation);
-  put(v, 8, text_or_blank(b.offt));
+  put(v, 8, b.legacy_flag ? FieldValue(b.legacy_flag) : text_or_blank(b.offt));
   trim_blanks(v);
   return v;
 }

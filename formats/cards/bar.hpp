@@ -63,6 +63,7 @@ struct Baror {
   std::int64_t g0 = 0;
   std::array<double, 3> x{0.0, 0.0, 0.0};
   std::string offt;  ///< "" = not given
+  std::int64_t legacy_flag = 0;  ///< field 9 as the older flag F (1 or 2), as on CBAR; 0 = not given
   std::size_t card = 0;
 };
 

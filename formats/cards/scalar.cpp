@@ -26,8 +26,26 @@ void read_ends(const FieldReader& r, std::size_t i, T& e) {
   if (e.g1 == e.g2 && e.c1 == e.c2) r.fail_card("G1/C1 and G2/C2 are the same degree of freedom", i + 2);
 }
 
+/// S1 S2 at fields i, i+1 of the scalar-point forms: components 0; blank = 0 (grounded).
+template <typename T>
+void read_scalar_points(const FieldReader& r, std::size_t i, T& e) {
+  e.g1 = r.integer_or(i, "S1", 0);
+  if (e.g1 < 0) r.fail(i, "S1", "integer >= 0 (0 or blank: grounded)");
+  e.g2 = r.integer_or(i + 1, "S2", 0);
+  if (e.g2 < 0) r.fail(i + 1, "S2", "integer >= 0 (0 or blank: grounded)");
+  if (e.g1 == 0 && e.g2 == 0) r.fail(i, "S1", "a scalar point (S1 and S2 both blank)");
+  if (e.g1 == e.g2) r.fail_card("S1 and S2 are the same scalar point", i + 1);
+  e.c1 = e.c2 = 0;
+  e.scalar_form = true;
+}
+
 template <typename T>
 void write_ends(std::vector<FieldValue>& v, const T& e) {
+  if (e.scalar_form) {
+    v.push_back(or_default(e.g1, std::int64_t{0}));
+    v.push_back(or_default(e.g2, std::int64_t{0}));
+    return;
+  }
   v.push_back(or_default(e.g1, std::int64_t{0}));
   v.push_back(or_default(e.c1, std::int64_t{0}));
   v.push_back(or_default(e.g2, std::int64_t{0}));
@@ -35,13 +53,18 @@ void write_ends(std::vector<FieldValue>& v, const T& e) {
 }
 
 template <typename T>
-T parse_scalar1(const FieldReader& r) {
+T parse_scalar1(const FieldReader& r, bool scalar_form) {
   T c;
   c.eid = r.id(1, "EID");
   c.pid_blank = r.blank(2);
   c.pid = r.id_or(2, "PID", c.eid);
-  read_ends(r, 3, c);
-  r.at_most(7);
+  if (scalar_form) {
+    read_scalar_points(r, 3, c);
+    r.at_most(5);
+  } else {
+    read_ends(r, 3, c);
+    r.at_most(7);
+  }
   return c;
 }
 
@@ -83,10 +106,12 @@ std::vector<FieldValue> write_conm2(const Conm2& c) {
   return v;
 }
 
-Cmass1 parse_cmass1(const FieldReader& r) { return parse_scalar1<Cmass1>(r); }
-std::vector<FieldValue> write_cmass1(const Cmass1& c) { return write_scalar1("CMASS1", c); }
-Celas1 parse_celas1(const FieldReader& r) { return parse_scalar1<Celas1>(r); }
-std::vector<FieldValue> write_celas1(const Celas1& c) { return write_scalar1("CELAS1", c); }
+Cmass1 parse_cmass1(const FieldReader& r) { return parse_scalar1<Cmass1>(r, false); }
+Cmass1 parse_cmass3(const FieldReader& r) { return parse_scalar1<Cmass1>(r, true); }
+std::vector<FieldValue> write_cmass1(const Cmass1& c) { return write_scalar1(c.scalar_form ? "CMASS3" : "CMASS1", c); }
+Celas1 parse_celas1(const FieldReader& r) { return parse_scalar1<Celas1>(r, false); }
+Celas1 parse_celas3(const FieldReader& r) { return parse_scalar1<Celas1>(r, true); }
+std::vector<FieldValue> write_celas1(const Celas1& c) { return write_scalar1(c.scalar_form ? "CELAS3" : "CELAS1", c); }
 
 Cmass2 parse_cmass2(const FieldReader& r) {
   Cmass2 c;
@@ -97,8 +122,26 @@ Cmass2 parse_cmass2(const FieldReader& r) {
   return c;
 }
 
+Cmass2 parse_cmass4(const FieldReader& r) {
+  Cmass2 c;
+  c.eid = r.id(1, "EID");
+  c.m = r.real_or(2, "M", 0.0);
+  read_scalar_points(r, 3, c);
+  r.at_most(5);
+  return c;
+}
+
+Celas2 parse_celas4(const FieldReader& r) {
+  Celas2 c;
+  c.eid = r.id(1, "EID");
+  c.k = r.real_or(2, "K", 0.0);
+  read_scalar_points(r, 3, c);
+  r.at_most(5);
+  return c;
+}
+
 std::vector<FieldValue> write_cmass2(const Cmass2& c) {
-  std::vector<FieldValue> v = {std::string("CMASS2"), c.eid, or_default(c.m, 0.0)};
+  std::vector<FieldValue> v = {std::string(c.scalar_form ? "CMASS4" : "CMASS2"), c.eid, or_default(c.m, 0.0)};
   write_ends(v, c);
   trim_blanks(v);
   return v;
@@ -116,10 +159,12 @@ Celas2 parse_celas2(const FieldReader& r) {
 }
 
 std::vector<FieldValue> write_celas2(const Celas2& c) {
-  std::vector<FieldValue> v = {std::string("CELAS2"), c.eid, or_default(c.k, 0.0)};
+  std::vector<FieldValue> v = {std::string(c.scalar_form ? "CELAS4" : "CELAS2"), c.eid, or_default(c.k, 0.0)};
   write_ends(v, c);
-  v.push_back(or_default(c.ge, 0.0));
-  v.push_back(or_default(c.s, 0.0));
+  if (!c.scalar_form) {
+    v.push_back(or_default(c.ge, 0.0));
+    v.push_back(or_default(c.s, 0.0));
+  }
   trim_blanks(v);
   return v;
 }

@@ -23,6 +23,19 @@
 /// (that end grounded). Ci: component 1-6 for a grid, 0 or blank for a scalar
 /// point. GE (damping), S (stress coefficient): blank = 0.0.
 ///
+/// | 1      | 2   | 3   | 4  | 5  |
+/// |--------|-----|-----|----|----|
+/// | CMASS3 | EID | PID | S1 | S2 |
+/// | CMASS4 | EID | M   | S1 | S2 |
+/// | CELAS3 | EID | PID | S1 | S2 |
+/// | CELAS4 | EID | K   | S1 | S2 |
+///
+/// The scalar-point forms: S1, S2 scalar points (blank or 0 = grounded, not
+/// both; a point on no SPOINT is one, SPOINT remark 2). They are read into the
+/// structs of CMASS1, CMASS2, CELAS1, CELAS2 with components 0 and
+/// `scalar_form` set, and written back in their own form; CELAS4 has no GE or S
+/// (0.0).
+///
 /// | 1     | 2    | 3  | 4    | 5  | 6    | 7  | 8    | 9  |
 /// |-------|------|----|------|----|------|----|------|----|
 /// | PELAS | PID1 | K1 | GE1  | S1 | PID2 | K2 | GE2  | S2 |
@@ -52,15 +65,17 @@ struct Conm2 {
   std::size_t card = 0;
 };
 
-/// CMASS1 / CELAS1: connection to a property.
+/// CMASS1 / CELAS1 (and CMASS3 / CELAS3, `scalar_form`): connection to a property.
 struct Cmass1 {
   std::int64_t eid = 0, pid = 0, g1 = 0, c1 = 0, g2 = 0, c2 = 0;
   bool pid_blank = false;
+  bool scalar_form = false;  ///< read from CMASS3
   std::size_t card = 0;
 };
 struct Celas1 {
   std::int64_t eid = 0, pid = 0, g1 = 0, c1 = 0, g2 = 0, c2 = 0;
   bool pid_blank = false;
+  bool scalar_form = false;  ///< read from CELAS3
   std::size_t card = 0;
 };
 
@@ -68,6 +83,7 @@ struct Cmass2 {
   std::int64_t eid = 0;
   double m = 0.0;
   std::int64_t g1 = 0, c1 = 0, g2 = 0, c2 = 0;
+  bool scalar_form = false;  ///< read from CMASS4
   std::size_t card = 0;
 };
 struct Celas2 {
@@ -75,6 +91,7 @@ struct Celas2 {
   double k = 0.0;
   std::int64_t g1 = 0, c1 = 0, g2 = 0, c2 = 0;
   double ge = 0.0, s = 0.0;
+  bool scalar_form = false;  ///< read from CELAS4
   std::size_t card = 0;
 };
 
@@ -105,6 +122,11 @@ Celas1 parse_celas1(const FieldReader& r);
 std::vector<FieldValue> write_celas1(const Celas1& c);
 Celas2 parse_celas2(const FieldReader& r);
 std::vector<FieldValue> write_celas2(const Celas2& c);
+/// The scalar-point forms; each writer above writes them back in their form.
+Cmass1 parse_cmass3(const FieldReader& r);
+Cmass2 parse_cmass4(const FieldReader& r);
+Celas1 parse_celas3(const FieldReader& r);
+Celas2 parse_celas4(const FieldReader& r);
 /// Both properties of a PELAS card (one or two).
 std::vector<Pelas> parse_pelas(const FieldReader& r);
 /// One PELAS property as a full 4-field entry (write_bulk joins entries of one card).

@@ -17,9 +17,7 @@ int pbarl_dim_count(const std::string& type) {
   return it == n.end() ? 0 : it->second;
 }
 
-bool pbarl_type_sectioned(const std::string& type) {
-  return type == "ROD" || type == "TUBE" || type == "BAR" || type == "BOX" || type == "I";
-}
+bool pbarl_type_sectioned(const std::string& type) { return pbarl_dim_count(type) > 0; }
 
 namespace {
 

@@ -34,7 +34,8 @@ namespace ssid::formats {
 
 /// Number of dimensions of a PBARL/PBEAML section type (MSC list); 0 when unknown.
 int pbarl_dim_count(const std::string& type);
-/// Types whose section properties ssid computes: ROD, TUBE, BAR, BOX, I.
+/// Types whose section properties ssid computes: every type of the MSC list
+/// (translators/elements/section.hpp), i.e. pbarl_dim_count(type) > 0.
 bool pbarl_type_sectioned(const std::string& type);
 
 struct Pbarl {

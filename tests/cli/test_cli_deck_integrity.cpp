@@ -179,8 +179,9 @@ TEST_CASE("a card ssid cannot assemble: every command names the first one's file
   const fs::path deck = write(dir / "quad.bdf", text);
   const std::string at = deck.string() + ":" + std::to_string(line_of(text, "CQUAD4  7"));
   const std::string msg = at + ": cannot assemble the model: CQUAD4 (2 cards, first at " + at +
-                          "): ssid cannot assemble this card and it may change K or M; remove it or model it with "
-                          "supported cards\n";
+                          "): ssid cannot assemble this card and it may change K or M; remove it, model it with "
+                          "supported cards, or export K and M from NASTRAN (OP4 or DMIG) and build the operators with "
+                          "`ssid assemble --import SPEC.json`\n";
   // A real card kept verbatim is no problem for deck summary.
   auto s = run_ssid("deck summary " + deck.string());
   CHECK(s.code == 0);

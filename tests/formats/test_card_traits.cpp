@@ -29,7 +29,8 @@ const std::map<std::string, IdSpace>& expected_spaces() {
                            "CELAS4", "CBUSH1D", "CFAST", "CWELD"});
     put(IdSpace::MassElement, {"CONM2", "CMASS1", "CMASS2", "CMASS3", "CMASS4", "CONM1"});
     put(IdSpace::RigidElement, {"RBAR", "RBE2", "RBE3", "RBAR1", "RBE1", "RROD", "RSPLINE", "RSSCON", "RTRPLT"});
-    put(IdSpace::PlotElement, {"PLOTEL"});
+    put(IdSpace::PlotElement, {"PLOTEL", "PLOTEL3", "PLOTEL4", "PLOTEL6", "PLOTEL8", "PLOTTET", "PLOTPEN", "PLOTPYR",
+                               "PLOTHEX"});
     put(IdSpace::Property, {"PROD",  "PBAR",   "PBARL", "PBEAM", "PBEAML", "PMASS", "PELAS", "PBUSH",
                             "PSHELL", "PCOMP", "PCOMPG", "PSOLID", "PSHEAR", "PTUBE", "PBEND", "PGAP",
                             "PDAMP", "PVISC", "PBUSH1D", "PBCOMP", "PFAST", "PWELD"});
@@ -64,7 +65,9 @@ const std::set<std::string>& expected_ignored() {
       "FLFACT",  "FLUTTER", "GUST",    "MKAERO1", "MKAERO2", "TRIM",    "UXVEC",   "MONPNT1", "MONPNT2", "MONPNT3",
       "MONDSP1", "ENDDATA", "EIGB",    "EIGC",    "SUPORT",  "SUPORT1", "CVISC",   "PVISC",   "CDAMP1",  "CDAMP2",
       "CDAMP3",  "CDAMP4",  "CDAMP5",  "PDAMP",   "PDAMP5",  "NLPARM",  "DMI",     "DMIJ",    "DMIJI",   "DMIK",
-      "TABLES1", "MATS1",   "CORD1R",  "CORD1C",  "CORD1S",  "DTI",     "USET",    "USET1",   "SEQGP",   "PLOTEL"};
+      "TABLES1", "MATS1",   "CORD1R",  "CORD1C",  "CORD1S",  "DTI",     "USET",    "USET1",   "SEQGP",   "PLOTEL",
+      // MSC's plot elements for faces and solids (display only), added with the corpus sweep
+      "PLOTEL3", "PLOTEL4", "PLOTEL6", "PLOTEL8", "PLOTTET", "PLOTPEN", "PLOTPYR", "PLOTHEX"};
   return s;
 }
 
@@ -94,11 +97,13 @@ TEST_CASE("card traits: every card the parser knows has exactly one entry", "[ca
   }
   // Typed: exactly the cards parse_bulk read before the table (its parsers list,
   // written out again here; is_supported_card asks the table itself).
+  // CELAS3/4, CMASS3/4: the scalar-point forms, typed since (h-nastran).
   const std::vector<std::string> parsed = {
-      "BAROR",  "BEAMOR", "CBAR",    "CBEAM",   "CBUSH",  "CELAS1", "CELAS2", "CMASS1", "CMASS2", "CONM2", "CONROD",
-      "CORD2C", "CORD2R", "CORD2S",  "CROD",    "DESVAR", "DMIG",   "DVMREL1", "DVPREL1", "EIGR",  "EIGRL", "GRDSET",
-      "GRID",   "MAT1",   "MPC",     "PARAM",   "PBAR",   "PBARL",  "PBEAM",  "PBEAML", "PBUSH",  "PELAS", "PMASS",
-      "PROD",   "RBAR",   "RBE2",    "RBE3",    "SPC",    "SPC1",   "SPCADD", "SPOINT"};
+      "BAROR",  "BEAMOR", "CBAR",   "CBEAM",  "CBUSH",   "CELAS1",  "CELAS2", "CELAS3", "CELAS4", "CMASS1",
+      "CMASS2", "CMASS3", "CMASS4", "CONM2",  "CONROD",  "CORD2C",  "CORD2R", "CORD2S", "CROD",   "DESVAR",
+      "DMIG",   "DVMREL1", "DVPREL1", "EIGR", "EIGRL",   "GRDSET",  "GRID",   "MAT1",   "MPC",    "PARAM",
+      "PBAR",   "PBARL",  "PBEAM",  "PBEAML", "PBUSH",   "PELAS",   "PMASS",  "PROD",   "RBAR",   "RBE2",
+      "RBE3",   "SPC",    "SPC1",   "SPCADD", "SPOINT"};
   CHECK(supported_card_names() == parsed);
   for (const std::string& name : parsed) {
     INFO(name);

@@ -188,7 +188,9 @@ TEST_CASE("PBARL: dimension count by type, NSM after the dimensions, unknown typ
   CHECK(pbarl_dim_count("BOX") == 4);
   CHECK(pbarl_dim_count("I") == 6);
   CHECK(pbarl_type_sectioned("BOX"));
-  CHECK_FALSE(pbarl_type_sectioned("CHAN"));
+  CHECK(pbarl_type_sectioned("CHAN"));
+  CHECK(pbarl_dim_count("L") == 4);
+  CHECK_FALSE(pbarl_type_sectioned("WEIRD"));
   auto u = parse_text("PBARL   1       2               WEIRD\n        1.      2.      3.\n", parse_pbarl);
   CHECK_FALSE(u.known_type);
   CHECK(u.dims == std::vector<double>{1, 2, 3});
@@ -315,7 +317,7 @@ TEST_CASE("CBEAM: OFFT or BIT in field 9, SA/SB, BEAMOR defaults", "[cards][beam
 }
 
 TEST_CASE("golden deck: materials, rods, bars, beams", "[cards][golden]") {
-  check_golden("elements", {"PBARL 23: TYPE CHAN is kept with its dimensions but not sectioned"});
+  check_golden("elements", {});  // PBARL 23 CHAN: sectioned since the full PBARL list
 }
 
 TEST_CASE("BAROR/BEAMOR fill blank CBAR/CBEAM fields in parse_bulk; missing orientation is a problem",

@@ -56,6 +56,39 @@ TEST_CASE("CMASS1/CMASS2/CELAS1/CELAS2: ends, components, PID default", "[cards]
         "t.bdf:1: CMASS1 10 field 3 (PID): expected integer, got \"1.\"");
 }
 
+TEST_CASE("CMASS3/CMASS4/CELAS3/CELAS4: the scalar-point forms", "[cards][scalar]") {
+  // QRG: EID, PID (CMASS3/CELAS3; blank = EID) or M/K (CMASS4/CELAS4), S1, S2.
+  auto m3 = parse_text("CMASS3  7               31      32\n", parse_cmass3);
+  CHECK(m3.pid == 7);
+  CHECK(m3.g1 == 31);
+  CHECK(m3.g2 == 32);
+  CHECK(m3.c1 == 0);
+  CHECK(m3.scalar_form);
+  check_roundtrip(m3, parse_cmass3, write_cmass1);
+  CHECK(write_cmass1(m3) == std::vector<FieldValue>{std::string("CMASS3"), std::int64_t{7}, FieldValue(),
+                                                    std::int64_t{31}, std::int64_t{32}});
+  auto m4 = parse_text("CMASS4  8       .5              33\n", parse_cmass4);
+  CHECK(m4.m == 0.5);
+  CHECK(m4.g1 == 0);  // grounded
+  CHECK(m4.g2 == 33);
+  check_roundtrip(m4, parse_cmass4, write_cmass2);
+  CHECK(std::get<std::string>(write_cmass2(m4)[0]) == "CMASS4");
+  auto e3 = parse_text("CELAS3  9       19      101\n", parse_celas3);
+  CHECK(e3.pid == 19);
+  check_roundtrip(e3, parse_celas3, write_celas1);
+  CHECK(std::get<std::string>(write_celas1(e3)[0]) == "CELAS3");
+  auto e4 = parse_text("CELAS4  10      1.+4    101     102\n", parse_celas4);
+  CHECK(e4.k == 1e4);
+  check_roundtrip(e4, parse_celas4, write_celas2);
+  CHECK(write_celas2(e4).size() == 5u);  // no GE, S
+  CHECK(error_of("CELAS4  10      1.+4\n", parse_celas4) ==
+        "t.bdf:1: CELAS4 10 field 4 (S1): expected a scalar point (S1 and S2 both blank), got blank");
+  CHECK(error_of("CMASS4  10      1.      5       5\n", parse_cmass4) ==
+        "t.bdf:1: CMASS4 10: S1 and S2 are the same scalar point");
+  CHECK(error_of("CELAS3  10      1       5       6       7\n", parse_celas3) ==
+        "t.bdf:1: CELAS3 10: too many fields (CELAS3 has 4 data fields)");
+}
+
 TEST_CASE("PELAS and PMASS: several properties per card", "[cards][scalar]") {
   auto p = parse_text("PELAS   1       1.+3    .1      2.      2       2.+3\n", parse_pelas);
   REQUIRE(p.size() == 2);

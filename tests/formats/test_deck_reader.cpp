@@ -80,6 +80,26 @@ TEST_CASE("large field: NAME* with four 16-column fields and '*' continuations",
   CHECK(c.field(6) == "0");
 }
 
+TEST_CASE("NASTRAN's tolerated forms: a blank before the large-field '*', text after ENDDATA's name", "[deck]") {
+  // "CORD2R *" in field 1 (a deck MSC ran: pyNastran's se_test_n11.asm) is the
+  // large-field CORD2R; "ENDDATA 58e050da" (pyNastran writes a checksum there)
+  // ends the bulk data as ENDDATA does: NASTRAN reads field 1 only.
+  const char* text =
+      "SOL 103\nCEND\nBEGIN BULK\n"
+      "CORD2R *               5               0              0.              0.\n"
+      "*                     0.              0.              0.              1.\n"
+      "*                     1.              0.              0.\n"
+      "ENDDATA 58e050da\n";
+  Deck d = read_deck_text(text, "t.bdf");
+  REQUIRE(d.cards.size() == 1);
+  CHECK(d.cards[0].name == "CORD2R");
+  CHECK(d.cards[0].format == FieldFormat::Large);
+  CHECK(d.cards[0].field(1) == "5");
+  CHECK(d.cards[0].field(8) == "1.");
+  CHECK(d.cards[0].field(9) == "1.");
+  CHECK(d.problems.empty());
+}
+
 TEST_CASE("free field, lower case, tabs, and mixed formats in one deck", "[deck]") {
   const char* text =
       "grid,1,,1.,2.,3.\n"

@@ -118,6 +118,15 @@ TEST_CASE("resolve: scalar points as NASTRAN defines them — repeated SPOINTs, 
   CHECK(m.implied_spoints == std::vector<std::int64_t>{100, 200, 300, 301});
 }
 
+TEST_CASE("resolve: CELAS3/4 and CMASS3/4 connect scalar points only", "[resolve]") {
+  auto got = problems_of(
+      "GRID    1               0.      0.      0.\n"
+      "CELAS3  2       7       1       5\n"
+      "PELAS   7       10.\n"
+      "CMASS4  3       1.      5\n");
+  CHECK(got == std::vector<std::string>{"r.bdf:2: CELAS3 2: S1 1 is a GRID; CELAS3 connects scalar points only"});
+}
+
 TEST_CASE("resolve: dangling references of every kind and properties of the wrong type", "[resolve]") {
   auto got = problems_of(
       "GRID    1               0.      0.      0.\n"                           // 1
@@ -148,7 +157,7 @@ TEST_CASE("resolve: dangling references of every kind and properties of the wron
                    "r.bdf:7: GRID 12 required by CROD 10 does not exist",
                    "r.bdf:7: CROD 10 refers to PID 3, which is a PBAR, expected PROD",
                    "r.bdf:8: PBAR/PBARL 8 required by CBAR 11 does not exist",
-                   "r.bdf:9: CBEAM 12 refers to PID 3, which is a PBAR, expected PBEAM/PBEAML",
+                   "r.bdf:9: CBEAM 12 refers to PID 3, which is a PBAR, expected PBEAM/PBEAML/PBCOMP",
                    "r.bdf:9: GRID 13 required by CBEAM 12 does not exist",
                    "r.bdf:10: CELAS2 13: G1 1 is a GRID, its component must be 1-6, got blank or 0",
                    "r.bdf:10: CELAS2 13: G2 9 is a scalar point (SPOINT), its component must be 0 or blank, got 3",
@@ -158,7 +167,8 @@ TEST_CASE("resolve: dangling references of every kind and properties of the wron
                    "r.bdf:5: MAT1 7 required by PBAR 3 does not exist",
                    "r.bdf:13: GRID 20 required by RBAR 16 does not exist",
                    "r.bdf:14: GRID 21 required by RBE3 17 does not exist",
-                   "r.bdf:15: grid or scalar point 3 required by SPC1 1 does not exist",
+                   "r.bdf:15: warning: grid or scalar point 3 required by SPC1 1 does not exist; ignored (NASTRAN: USER WARNING "
+                   "MESSAGE 2051)",
                    "r.bdf:16: warning: SPC set 5 required by SPCADD 2 does not exist (no SPC or SPC1 with that SID); it "
                    "adds no constraint",
                    "r.bdf:17: grid or scalar point 22 required by MPC 3 does not exist",
@@ -173,9 +183,10 @@ TEST_CASE("resolve: warnings — PARAM given twice, MAT1 E/G/NU inconsistent, PB
       "PARAM   WTMASS  .00259\n"
       "PARAM   WTMASS  1.\n"
       "MAT1    1       2.+11   5.+10   .3\n"
-      "PBARL   2       1               HAT\n        1.      1.      .1      .2\n");
+      "PBARL   2       1               HAT9\n        1.      1.      .1      .2\n");
   CHECK(got == std::vector<std::string>{
-                   "r.bdf:4: warning: PBARL 2: TYPE HAT is kept with its dimensions but not sectioned (ssid sections ROD, TUBE, BAR, BOX, I)",
+                   "r.bdf:4: warning: PBARL 2: TYPE HAT9 is not a section type of the PBARL/PBEAML list; kept with its values "
+                   "but not sectioned",
                    "r.bdf:2: warning: PARAM WTMASS given again (first at r.bdf:1)",
                    "r.bdf:3: warning: MAT1 1: E, G and NU are not related by E = 2(1+NU)G (E/(2(1+NU)G) = 1.538462)",
                });
@@ -207,9 +218,11 @@ TEST_CASE("resolve: a clean deck has no problems; DMIG is counted as supported, 
 TEST_CASE("resolve: an SPC1 THRU range over missing grids names five and counts the rest", "[resolve]") {
   auto got = problems_of("GRID    1               0.      0.      0.\nSPC1    1       123     1       THRU    100\n");
   REQUIRE(got.size() == 6);
-  CHECK(got[0] == "r.bdf:2: grid or scalar point 2 required by SPC1 1 does not exist");
-  CHECK(got[4] == "r.bdf:2: grid or scalar point 6 required by SPC1 1 does not exist");
-  CHECK(got[5] == "r.bdf:2: ... and 94 more grids or scalar points required by SPC1 1 do not exist");
+  CHECK(got[0] == "r.bdf:2: warning: grid or scalar point 2 required by SPC1 1 does not exist; ignored (NASTRAN: USER "
+                  "WARNING MESSAGE 2051)");
+  CHECK(got[4] == "r.bdf:2: warning: grid or scalar point 6 required by SPC1 1 does not exist; ignored (NASTRAN: USER "
+                  "WARNING MESSAGE 2051)");
+  CHECK(got[5] == "r.bdf:2: warning: ... and 94 more grids or scalar points required by SPC1 1 do not exist; ignored");
 }
 
 TEST_CASE("parse errors and resolve problems come together, in one list", "[resolve]") {

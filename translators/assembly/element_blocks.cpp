@@ -46,7 +46,7 @@ el::BarSection dims_section(const std::string& type, const std::vector<double>& 
   try {
     shape = el::parse_section_shape(type);
   } catch (const std::exception&) {
-    throw ModelError(who + ": section type " + type + " is not supported (ROD, TUBE, BAR, BOX, I are)");
+    throw ModelError(who + ": section type " + type + " is not supported (" + el::supported_section_types() + " are)");
   }
   el::BarSection s;
   try {
@@ -147,6 +147,17 @@ ElementSet::ElementSet(const formats::Deck& deck, const BulkModel& m, const Mode
         if (s.a != p.a || s.i1 != p.i1 || s.i2 != p.i2 || s.i12 != p.i12 || s.j != p.j || s.nsm != p.nsm)
           throw ModelError(who + ": PBEAM " + std::to_string(c.pid) +
                            " is tapered (its stations differ); only constant sections are assembled");
+      // CBEAM extras that change K or M and that ssid's beam does not model: refused by name.
+      const std::pair<const char*, bool> extras[] = {
+          {"warping coefficient CW", p.cwa != 0.0 || p.cwb != 0.0},
+          {"non-structural mass inertia NSI", p.nsia != 0.0 || p.nsib != 0.0},
+          {"non-structural mass offset M1/M2", p.m1a != 0.0 || p.m2a != 0.0 || p.m1b != 0.0 || p.m2b != 0.0},
+          {"neutral axis offset N1/N2", p.n1a != 0.0 || p.n2a != 0.0 || p.n1b != 0.0 || p.n2b != 0.0},
+          {"shear relief S1/S2", p.s1 != 0.0 || p.s2 != 0.0}};
+      for (const auto& e : extras)
+        if (e.second)
+          throw ModelError(who + ": PBEAM " + std::to_string(c.pid) + " " + e.first +
+                           " is not assembled (ssid's CBEAM: constant section, shear centre on the neutral axis)");
     } else {
       const auto& p = m.pbeamls[m_pbeaml.at(c.pid)];
       mid = p.mid;
@@ -154,6 +165,16 @@ ElementSet::ElementSet(const formats::Deck& deck, const BulkModel& m, const Mode
         if (s.dims != p.dims() || s.nsm != p.nsm())
           throw ModelError(who + ": PBEAML " + std::to_string(c.pid) +
                            " is tapered (its stations differ); only constant sections are assembled");
+      try {
+        const auto shape = el::parse_section_shape(p.type);
+        if (!el::shear_centre_at_centroid(shape, p.dims()))
+          throw ModelError(who + ": PBEAML " + std::to_string(c.pid) + " TYPE " + p.type +
+                           ": the shear centre is off the centroid for these dimensions; NASTRAN's CBEAM offsets "
+                           "the neutral axis from it (coupling bending and torsion), which ssid's CBEAM does not "
+                           "model (a CBAR with PBARL, which NASTRAN also assembles about one axis, is)");
+      } catch (const std::invalid_argument&) {
+        // Unknown TYPE: dims_section names it when the element is evaluated.
+      }
     }
     need_mat(mid, who, t + " " + std::to_string(c.pid));
     check_offt(c.offt, who);

@@ -59,6 +59,60 @@ std::optional<std::int64_t> case_control(const Deck& deck, const std::string& na
   return global ? global : first_subcase;
 }
 
+/// The case-control command `AUTOSPC[(options)] [= YES|NO]` (global, or the first
+/// subcase; a bare AUTOSPC is YES). NASTRAN's case-control AUTOSPC takes precedence
+/// over PARAM,AUTOSPC. Any other value is bad input, named at the statement.
+std::optional<bool> case_control_autospc(const Deck& deck, formats::SourceLocation& where) {
+  std::optional<bool> global, first_subcase;
+  formats::SourceLocation global_at, first_subcase_at;
+  int subcase = 0;
+  for (const auto& st : deck.statements) {
+    if (st.section != formats::Section::CaseControl) continue;
+    std::string t = upper(st.text);
+    if (const auto dollar = t.find('$'); dollar != std::string::npos) t = t.substr(0, dollar);
+    t.erase(std::remove_if(t.begin(), t.end(), [](unsigned char c) { return std::isspace(c); }), t.end());
+    if (t.rfind("SUBCASE", 0) == 0) {
+      ++subcase;
+      continue;
+    }
+    if (t.rfind("AUTOSPC", 0) != 0) continue;
+    std::string rest = t.substr(7);
+    if (!rest.empty() && rest[0] == '(') {
+      const auto close = rest.find(')');
+      rest = close == std::string::npos ? "" : rest.substr(close + 1);
+    }
+    bool v;
+    if (rest.empty() || rest == "=YES") v = true;
+    else if (rest == "=NO") v = false;
+    else
+      throw ModelError(deck.location(st.file, st.line), "case control " + st.text + ": expected AUTOSPC = YES or NO");
+    if (subcase == 0) {
+      global = v;
+      global_at = deck.location(st.file, st.line);
+    } else if (subcase == 1 && !first_subcase) {
+      first_subcase = v;
+      first_subcase_at = deck.location(st.file, st.line);
+    }
+  }
+  where = global ? global_at : first_subcase_at;
+  return global ? global : first_subcase;
+}
+
+/// MDLPRM parameters that cannot change K or M of what ssid assembles: HDF5
+/// output (HDF5, H5*), the PARDISO and pivoting controls of the solver (PRD*,
+/// NONUPIV), element output (INTOUT), aerodynamic spline selection (MLTSPLIN),
+/// shell-element formulations (QR6ROT, QRSHEAR, SHRTOQ4, IGNSHBDN, NSGRDS4: ssid
+/// refuses shells anyway), and OFFDEF = LROFF (large-rotation offsets: nonlinear
+/// solutions only). Any other MDLPRM parameter or value is refused by name.
+bool mdlprm_no_effect(const std::string& name, const std::string& value) {
+  static const std::set<std::string> names = {"HDF5",     "H5GM34",   "H5INFO",   "H5MDL",    "H5MTX",
+                                              "H5NORDOF", "H5XHH",    "PRDIDPVT", "PRDITRFN", "PRDMTYPE",
+                                              "PRDOOC",   "PRDWMTCH", "NONUPIV",  "INTOUT",   "MLTSPLIN",
+                                              "QR6ROT",   "QRSHEAR",  "SHRTOQ4",  "IGNSHBDN", "NSGRDS4"};
+  if (name == "OFFDEF") return value == "LROFF";
+  return names.count(name) != 0;
+}
+
 /// True when the deck has a case control section (selections then come from it).
 bool has_case_control(const Deck& deck) {
   for (const auto& st : deck.statements)
@@ -105,7 +159,21 @@ FeModel::FeModel(const Deck& deck, BulkModel model, AssemblyOptions options) : m
 
 /// Cards we do not assemble: harmless ones are noted, the others refused, at the first of them.
 void FeModel::refuse_unassembled_cards(const Deck& deck) {
+  for (const auto& c : deck.cards) {
+    if (c.name != "MDLPRM") continue;
+    // MDLPRM, PARAM1, VAL1, PARAM2, VAL2, ... (pairs run on into continuations).
+    for (std::size_t i = 1; i < c.size(); i += 2) {
+      const std::string name = upper(std::string(formats::detail::trim(c.field(i))));
+      if (name.empty()) continue;
+      const std::string value = upper(std::string(formats::detail::trim(c.field(i + 1))));
+      if (!mdlprm_no_effect(name, value))
+        throw ModelError(deck.location(c), "MDLPRM " + name + " " + value +
+                                               ": ssid does not apply this model parameter and it may change K or M");
+      m_notes.push_back("MDLPRM " + name + " " + value + " ignored: no effect on K or M of the assembled elements");
+    }
+  }
   for (const auto& [name, count] : m_model.unsupported) {
+    if (name == "MDLPRM") continue;  // checked parameter by parameter above
     if (ignored_in_sol103(name)) {
       m_notes.push_back(std::to_string(count) + " " + name + " card" + (count > 1 ? "s" : "") +
                         " ignored: no effect on K or M");
@@ -117,8 +185,9 @@ void FeModel::refuse_unassembled_cards(const Deck& deck) {
     const formats::SourceLocation at = first != deck.cards.end() ? deck.location(*first) : formats::SourceLocation{};
     throw ModelError(at, name + " (" + std::to_string(count) + " card" + (count > 1 ? "s" : "") +
                              (at.file.empty() ? "" : ", first at " + at.str()) +
-                             "): ssid cannot assemble this card and it may change K or M; remove it or model it with "
-                             "supported cards");
+                             "): ssid cannot assemble this card and it may change K or M; remove it, model it with "
+                             "supported cards, or export K and M from NASTRAN (OP4 or DMIG) and build the operators "
+                             "with `ssid assemble --import SPEC.json`");
   }
 }
 
@@ -143,7 +212,14 @@ FeModel::ReductionSettings FeModel::read_analysis_parameters(const Deck& deck, c
       else throw ModelError(card_label(deck, p->card) + ": PARAM WTMASS: expected a real value");
     }
   ReductionSettings r;
-  r.autospc = options.autospc ? *options.autospc : param_int("AUTOSPC").value_or(1) != 0;
+  formats::SourceLocation autospc_at;
+  const std::optional<bool> autospc_cc = case_control_autospc(deck, autospc_at);
+  r.autospc = options.autospc ? *options.autospc
+              : autospc_cc    ? *autospc_cc
+                              : param_int("AUTOSPC").value_or(1) != 0;
+  if (!options.autospc && autospc_cc && find_param(m, "AUTOSPC"))
+    m_notes.push_back(std::string("case control AUTOSPC = ") + (*autospc_cc ? "YES" : "NO") + " (" + autospc_at.str() +
+                      ") overrides PARAM AUTOSPC");
   r.epzero = options.epzero;
   if (const auto* p = find_param(m, "EPZERO"))
     if (auto v = p->real()) r.epzero = *v;
@@ -200,6 +276,11 @@ std::vector<std::size_t> FeModel::single_point_constraints(const Deck& deck, con
   const ModelGeometry& geo = *m_geometry;
   std::set<std::size_t> spc;
   auto add_components = [&](std::int64_t point, const std::string& comps, const std::string& who) {
+    if (!geo.is_scalar_point(point) && !geo.has_grid(point)) {
+      // resolve warned (NASTRAN's USER WARNING MESSAGE 2051); NASTRAN ignores the point
+      m_notes.push_back(who + ": grid or scalar point " + std::to_string(point) + " does not exist; ignored");
+      return;
+    }
     if (geo.is_scalar_point(point)) {
       spc.insert(geo.dof(point, 0, who));
       return;

@@ -51,7 +51,8 @@ TEST_CASE("assemble_deck: what it refuses names the first card or statement at f
   CHECK(refusal(head + kRods + "PSHELL  3       2       .01\nCQUAD4  7       3       1       2       2       1\n"
                     "CQUAD4  8       3       1       2       2       1\nENDDATA\n") ==
         "d.bdf:14: cannot assemble the model: CQUAD4 (2 cards, first at d.bdf:14): ssid cannot assemble this card and "
-        "it may change K or M; remove it or model it with supported cards");
+        "it may change K or M; remove it, model it with supported cards, or export K and M from NASTRAN (OP4 or "
+        "DMIG) and build the operators with `ssid assemble --import SPEC.json`");
   // A case control selection with no card: the statement.
   CHECK(refusal("SOL 103\nCEND\nSPC = 1\nMETHOD = 7\nBEGIN BULK\n" + std::string(kRods) + "ENDDATA\n") ==
         "d.bdf:4: cannot assemble the model: METHOD = 7: no EIGRL or EIGR with that SID");
@@ -61,5 +62,5 @@ TEST_CASE("assemble_deck: what it refuses names the first card or statement at f
   CHECK(refusal(head + kRods + "PBARL   5       2               BOX9\n        1.      1.      .1      .1\n"
                     "CBAR    20      5       1       2       0.      1.      0.\nENDDATA\n") ==
         "d.bdf: cannot assemble the model: d.bdf:15: CBAR 20: section type BOX9 is not supported (ROD, TUBE, BAR, BOX, "
-        "I are)");
+        "I, TUBE2, I1, CHAN, CHAN1, CHAN2, T, T1, T2, L, BOX1, CROSS, H, Z, HEXA, HAT, HAT1, DBOX are)");
 }

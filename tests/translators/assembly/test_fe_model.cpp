@@ -10,6 +10,7 @@
 #include "formats/bulk_model.hpp"
 #include "formats/deck.hpp"
 #include "translators/assembly/fe_model.hpp"
+#include "translators/assembly/model_geometry.hpp"
 
 using namespace ssid;
 using translators::FeModel;
@@ -219,7 +220,8 @@ TEST_CASE("every designable field: exact derivatives against central differences
       "PBAR,1,2,1.0E-3,2.0E-7,8.0E-7,1.0E-7\n"
       "PBARL,3,2,,TUBE\n,0.03,0.025\n"
       "PROD,4,8,2.0E-4,1.0E-8\n"
-      "PBEAML,6,2,,I\n,0.1,0.06,0.05,0.006,0.008,0.008\n"
+      "PBEAML,6,2,,I\n,0.1,0.06,0.06,0.006,0.008,0.008\n"  // symmetric: CBEAM refuses an off-centroid shear centre
+
       "PBUSH,7,K,1.0E5,2.0E5,3.0E5,1.0E3,2.0E3,3.0E3\n"
       "MAT1,2,7.0E10,,0.3,2700.\nMAT1,8,2.0E11,8.0E10,,7800.\n"
       "SPC1,1,123456,1\n"
@@ -234,10 +236,13 @@ TEST_CASE("every designable field: exact derivatives against central differences
       "DESVAR,9,WEB,0.006\nDVPREL1,20,PBEAML,6,DIM4,,,,\n,9,1.0\n"
       "DESVAR,10,XOFF,0.05\nDVPREL1,21,CONM2,8,X1,,,,\n,10,1.0\n"
       "DESVAR,11,GST,8.0E10\nDVMREL1,22,MAT1,8,G,,,,\n,11,1.0\n"
+      // A thin-walled section of the full PBARL list through DVPREL1 (the hat's top width).
+      "CBAR,9,10,1,3,0.,0.,1.\nPBARL,10,2,,HAT\n,0.04,0.003,0.05,0.01\n"
+      "DESVAR,12,HATW,0.05\nDVPREL1,23,PBARL,10,DIM3,,,,\n,12,1.0\n"
       "ENDDATA\n";
   auto l = load(deck);
   const FeModel& m = *l.model;
-  REQUIRE(m.parameters().size() == 11);
+  REQUIRE(m.parameters().size() == 12);
   const Eigen::VectorXd x0 = m.initial_parameters();
   const auto op = m.operators(x0, true);
   for (std::size_t j = 0; j < m.parameters().size(); ++j) {
@@ -361,4 +366,88 @@ TEST_CASE("scalar points named only by scalar elements are model DOFs; SOL 103's
   INFO(notes);
   CHECK_THAT(notes, Catch::Contains("1 CDAMP3 card ignored") && Catch::Contains("1 FLFACT card ignored") &&
                         Catch::Contains("1 TF card ignored") && Catch::Contains("1 EPOINT card ignored"));
+}
+
+TEST_CASE("CELAS3/4 and CMASS3/4: the scalar-point forms give the chain's closed form", "[assembly]") {
+  // The chain of the test above written with the scalar-point forms: CELAS4
+  // k = 1000 between 100 and 200, CELAS3 (PELAS 2000) from 200 to ground, CMASS4
+  // 2 at 100, CMASS3 (PMASS 1) at 200. det(K − λM) = 2λ² − 7000λ + 2·10⁶ = 0.
+  auto l = load(
+      "SOL 103\nCEND\nBEGIN BULK\n"
+      "CELAS4,1,1000.,100,200\nCELAS3,2,7,200\nPELAS,7,2000.\nCMASS4,3,2.,100\nCMASS3,4,8,,200\nPMASS,8,1.\n"
+      "ENDDATA\n");
+  const Eigen::VectorXd lambda = eigenvalues(l.model->operators(l.model->initial_parameters(), false));
+  const double root = std::sqrt(49.0e6 - 16.0e6);
+  REQUIRE(lambda.size() == 2);
+  CHECK(lambda(0) == Approx((7000.0 - root) / 4).epsilon(1e-12));
+  CHECK(lambda(1) == Approx((7000.0 + root) / 4).epsilon(1e-12));
+}
+
+TEST_CASE("case control AUTOSPC = NO keeps a massive, unstiffened DOF; it overrides PARAM AUTOSPC", "[assembly]") {
+  // A mass on a scalar point with no stiffness: AUTOSPC removes it; with
+  // AUTOSPC = NO (NASTRAN's case control command) it stays, a zero eigenvalue,
+  // as in MSC's run of pyNastran's actuator_tf_modeling.bdf.
+  const std::string bulk = "BEGIN BULK\nCELAS2,1,100.,1\nCMASS2,2,1.,1\nCMASS2,3,1.,2\n";
+  auto yes = load("SOL 103\nCEND\n" + bulk + "ENDDATA\n");
+  CHECK(eigenvalues(yes.model->operators(yes.model->initial_parameters(), false)).size() == 1);
+  for (const char* cc : {"AUTOSPC = NO\n", "AUTOSPC(NOPRINT)=NO\n", "SUBCASE 1\n  AUTOSPC = NO\n"}) {
+    INFO(cc);
+    auto no = load(std::string("SOL 103\nCEND\n") + cc + bulk + "PARAM,AUTOSPC,YES\nENDDATA\n");
+    const Eigen::VectorXd lambda = eigenvalues(no.model->operators(no.model->initial_parameters(), false));
+    REQUIRE(lambda.size() == 2);
+    CHECK(std::abs(lambda(0)) < 1e-9);
+    CHECK(lambda(1) == Approx(100.0).epsilon(1e-12));
+  }
+  auto bare = load("SOL 103\nCEND\nAUTOSPC\n" + bulk + "PARAM,AUTOSPC,NO\nENDDATA\n");
+  CHECK(eigenvalues(bare.model->operators(bare.model->initial_parameters(), false)).size() == 1);
+  const formats::Deck d = formats::read_deck_text("SOL 103\nCEND\nAUTOSPC = MAYBE\n" + bulk + "ENDDATA\n", "a.bdf");
+  try {
+    FeModel(d, formats::parse_bulk(d));
+    FAIL("AUTOSPC = MAYBE accepted");
+  } catch (const translators::ModelError& e) {
+    CHECK(e.where().str() == "a.bdf:3");
+    CHECK(std::string(e.what()) == "case control AUTOSPC = MAYBE: expected AUTOSPC = YES or NO");
+  }
+}
+
+TEST_CASE("MDLPRM: output and solver controls noted, model parameters refused by name", "[assembly]") {
+  const std::string head = "SOL 103\nCEND\nBEGIN BULK\nCELAS2,1,100.,1\nCMASS2,2,1.,1\n";
+  auto l = load(head + "MDLPRM,HDF5,1,OFFDEF,LROFF\nENDDATA\n");
+  std::string notes;
+  for (const auto& n : l.model->notes()) notes += n + "\n";
+  CHECK_THAT(notes, Catch::Contains("MDLPRM HDF5 1 ignored: no effect on K or M of the assembled elements") &&
+                        Catch::Contains("MDLPRM OFFDEF LROFF ignored"));
+  const formats::Deck d = formats::read_deck_text(head + "MDLPRM,OFFDEF,NOMASS\nENDDATA\n", "m.bdf");
+  try {
+    FeModel(d, formats::parse_bulk(d));
+    FAIL("MDLPRM OFFDEF NOMASS accepted");
+  } catch (const translators::ModelError& e) {
+    CHECK(e.where().str() == "m.bdf:6");
+    CHECK(std::string(e.what()) == "MDLPRM OFFDEF NOMASS: ssid does not apply this model parameter and it may change K or M");
+  }
+}
+
+TEST_CASE("CBEAM extras that ssid does not model are refused by name", "[assembly][errors]") {
+  const std::string head =
+      "SOL 103\nCEND\nBEGIN BULK\nGRID,1,,0.,0.,0.\nGRID,2,,1.,0.,0.\nCBEAM,7,3,1,2,0.,1.,0.\n"
+      "MAT1,2,7.0E10,,0.3,2700.\n";
+  auto refusal = [&](const std::string& prop) {
+    const formats::Deck d = formats::read_deck_text(head + prop + "ENDDATA\n", "b.bdf");
+    try {
+      FeModel(d, formats::parse_bulk(d));
+    } catch (const std::exception& e) {
+      return std::string(e.what());
+    }
+    return std::string("accepted");
+  };
+  // A channel's shear centre lies off its centroid: NASTRAN's PBEAML offsets the neutral axis.
+  CHECK(refusal("PBEAML,3,2,,CHAN\n,0.03,0.06,0.004,0.005\n") ==
+        "b.bdf:6: CBEAM 7: PBEAML 3 TYPE CHAN: the shear centre is off the centroid for these dimensions; NASTRAN's "
+        "CBEAM offsets the neutral axis from it (coupling bending and torsion), which ssid's CBEAM does not model (a "
+        "CBAR with PBARL, which NASTRAN also assembles about one axis, is)");
+  // A doubly symmetric I is fine; a warping coefficient is not.
+  CHECK(refusal("PBEAML,3,2,,I1\n,0.03,0.004,0.05,0.06\n") == "accepted");
+  CHECK(refusal("PBEAM,3,2,1.0E-3,1.0E-7,1.0E-7,,1.0E-7\n,0.,0.,0.,0.,0.,0.,0.,0.\n,,,,,,,1.0E-9\n") ==
+        "b.bdf:6: CBEAM 7: PBEAM 3 warping coefficient CW is not assembled (ssid's CBEAM: constant section, shear "
+        "centre on the neutral axis)");
 }
