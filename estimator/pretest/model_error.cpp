@@ -7,6 +7,7 @@
 #include <vector>
 
 #include "formats/bulk_model.hpp"
+#include "formats/card_traits.hpp"
 #include "formats/parse_error.hpp"
 
 namespace ssid::estimator::pretest {
@@ -17,12 +18,14 @@ AreaPerturbation perturb_strut_areas(formats::Deck& deck, std::uint64_t seed, do
   const formats::BulkModel bulk = formats::resolved_bulk(deck, "area perturbation");
   std::map<std::int64_t, const formats::Prod*> prods;
   std::map<std::int64_t, const formats::Pbar*> pbars;
-  std::int64_t max_pid = 0;
   for (const auto& p : bulk.prods) prods[p.pid] = &p;
   for (const auto& p : bulk.pbars) pbars[p.pid] = &p;
-  auto props = [&](const auto& v) { for (const auto& x : v) max_pid = std::max(max_pid, x.pid); };
-  props(bulk.prods); props(bulk.pbars); props(bulk.pbarls); props(bulk.pbeams); props(bulk.pbeamls);
-  props(bulk.pelases); props(bulk.pmasses); props(bulk.pbushes);
+  // The largest property id, over the card traits' property space (as the deck
+  // editor finds its fresh ids), so a new property card never reuses an id.
+  std::int64_t max_pid = 0;
+  for (const formats::CardTraits& t : formats::card_traits())
+    if (t.each_id && t.space == formats::IdSpace::Property)
+      t.each_id(bulk, [&max_pid](std::int64_t id, std::size_t) { max_pid = std::max(max_pid, id); });
 
   enum class Kind { Crod, Conrod, Cbar };
   std::vector<std::pair<Kind, std::size_t>> struts;
