@@ -41,7 +41,8 @@ estimator::EstimationProblem load_problem(const po::variables_map& vm, bool allo
   if (deck.empty()) throw formats::InputError("no deck: give DECK MEASURED.unv (or --problem FILE)");
   if (is_problem_file(deck)) throw formats::InputError(deck + " is a problem file, not a deck");
   const std::string measured = vm.count("measured") ? vm["measured"].as<std::string>() : "";
-  const estimator::Study study = vm.count("study") ? estimator::read_study(vm["study"].as<std::string>()) : estimator::Study{};
+  estimator::Study study = vm.count("study") ? estimator::read_study(vm["study"].as<std::string>()) : estimator::Study{};
+  if (vm.count("frequencies-only")) study.frequencies_only = true;
   if (measured.empty() && study.configurations.empty())
     throw formats::InputError("no measured modes: give MEASURED.unv after the deck (or configurations in --study)");
   return estimator::prepare_problem(study, deck, measured);
@@ -72,8 +73,10 @@ nlohmann::json partial_problem_json(const estimator::EstimationProblem& problem,
 int cmd_estimate(const Args& args) {
   po::options_description desc("ssid estimate options");
   desc.add_options()("deck", po::value<std::string>(), "NASTRAN deck with DESVAR parameters")(
-      "measured", po::value<std::string>(), "measured modes: universal file with dataset 55 (+ nodes 15/2411)")(
-      "study", po::value<std::string>(), "study file (JSON, docs/estimation.md): priors, weights, pairing, configurations")(
+      "measured", po::value<std::string>(),
+      "measured modes: universal file with dataset 55 (+ nodes 15/2411), or frequencies only (.csv, .txt, .json)")(
+      "study", po::value<std::string>(), "study file (JSON, docs/estimation.md): priors, weights, pairing, pairs, configurations")(
+      "frequencies-only", "use the measured frequencies only, not the shapes (study \"measurement\": {\"frequencies_only\": true})")(
       "json", po::value<std::string>(), "write the result as JSON to this file ('-' for stdout)")(
       "problem", po::value<std::string>(),
       "estimate from this problem file (ssid translate) instead of DECK MEASURED.unv: imported operators, Taylor model")(
