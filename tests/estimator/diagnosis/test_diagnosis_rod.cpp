@@ -133,8 +133,8 @@ TEST_CASE("a wrongly assumed noise level raises no false alarm and the implied n
   const auto measured = synthetic_test(truth.fe, spec);
   for (const double factor : {0.3, 3.0}) {
     dx::DiagnosisOptions opt;
-    opt.problem.frequency_std_pct = factor * spec.freq_noise_pct;
-    opt.problem.shape_std_pct = factor * spec.shape_noise_pct;
+    opt.study.frequency_std_pct = factor * spec.freq_noise_pct;
+    opt.study.shape_std_pct = factor * spec.shape_noise_pct;
     const dx::Diagnosis d = run(nominal, measured, opt);
     CAPTURE(factor, ranking(d), d.residual.text, d.noise.frequency_pct, d.noise.shape_pct);
     CHECK(d.cause_kind == "parameter");
