@@ -346,18 +346,25 @@ void print_report(const dx::Diagnosis& dg, const dx::Hypothesis& cause, const st
   // Frequencies to 7 significant digits: any error the error column shows is visible in them.
   {
     const auto& n = dg.noise;
+    // Frequency-only data has no shape rows: no shape noise to imply or test.
+    const bool shapes = n.scale.rows[dx::kShapeRows] > 0;
     std::cout << "   - noise " << (n.estimated ? "the data imply" : "(given)") << ": frequencies "
-              << estimator::significant(n.frequency_pct, 3) << " %, shapes " << estimator::significant(n.shape_pct, 3)
-              << " % of the RMS component";
-    if (n.estimated)
+              << estimator::significant(n.frequency_pct, 3) << " %";
+    if (shapes) std::cout << ", shapes " << estimator::significant(n.shape_pct, 3) << " % of the RMS component";
+    if (n.estimated && shapes)
       std::cout << " (assumed " << estimator::significant(n.assumed_frequency_pct, 3) << " % and "
                 << estimator::significant(n.assumed_shape_pct, 3) << " %; " << estimator::significant(n.scale.dof[dx::kFrequencyRows], 3)
                 << " and " << estimator::significant(n.scale.dof[dx::kShapeRows], 4) << " degrees of freedom"
                 << (n.scale.pooled ? ", one scale for both" : "") << ")";
+    else if (n.estimated)
+      std::cout << " (assumed " << estimator::significant(n.assumed_frequency_pct, 3) << " %; "
+                << estimator::significant(n.scale.dof[dx::kFrequencyRows], 3) << " degrees of freedom; no shapes measured)";
     std::cout << "\n   - against the assumed noise: frequency chi^2 " << estimator::significant(n.scale.chi2[dx::kFrequencyRows], 4)
-              << " (p = " << estimator::significant(dg.residual.chi2_p[dx::kFrequencyRows], 2) << "), shape chi^2 "
-              << estimator::significant(n.scale.chi2[dx::kShapeRows], 4) << " (p = "
-              << estimator::significant(dg.residual.chi2_p[dx::kShapeRows], 2) << ")\n";
+              << " (p = " << estimator::significant(dg.residual.chi2_p[dx::kFrequencyRows], 2) << ")";
+    if (shapes)
+      std::cout << ", shape chi^2 " << estimator::significant(n.scale.chi2[dx::kShapeRows], 4) << " (p = "
+                << estimator::significant(dg.residual.chi2_p[dx::kShapeRows], 2) << ")";
+    std::cout << "\n";
     std::cout << "   - anything left to explain? " << (dg.residual.text.empty() ? "not tested" : dg.residual.text) << "\n";
   }
   std::cout << "\n   test mode   test [Hz]  FE mode      FE [Hz]  error [%]    MAC   MEMS e^2\n";
@@ -397,9 +404,13 @@ void print_report(const dx::Diagnosis& dg, const dx::Hypothesis& cause, const st
       break;
     }
   if (!std::isnan(dg.noise.frequency_pct_cause))
+  {
     std::cout << "   noise the data imply with the cause in the model: frequencies "
-              << estimator::significant(dg.noise.frequency_pct_cause, 3) << " %, shapes "
-              << estimator::significant(dg.noise.shape_pct_cause, 3) << " %\n";
+              << estimator::significant(dg.noise.frequency_pct_cause, 3) << " %";
+    if (dg.noise.scale.rows[dx::kShapeRows] > 0)
+      std::cout << ", shapes " << estimator::significant(dg.noise.shape_pct_cause, 3) << " %";
+    std::cout << "\n";
+  }
   if (dg.second.tested) std::cout << "   a second effect: " << dg.second.text << "\n";
   std::cout << "\n5. Gain:              before     after\n";
   std::cout << "   freq RMS error %  " << std::setw(8) << estimator::fixed(dg.nominal.before.freq_rms_pct, 3) << std::setw(10)

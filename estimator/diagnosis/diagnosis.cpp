@@ -746,9 +746,11 @@ class Diagnoser {
     }
     try {
       if (options.calibration.estimate_noise)
-        report(options.progress, "ordinary update at the noise the data imply (frequencies " +
-                                     significant(dg.noise.frequency_pct, 3) + " %, shapes " +
-                                     significant(dg.noise.shape_pct, 3) + " % of the RMS component)",
+        report(options.progress,
+               "ordinary update at the noise the data imply (frequencies " + significant(dg.noise.frequency_pct, 3) +
+                   (dg.noise.scale.rows[kShapeRows] > 0
+                        ? " %, shapes " + significant(dg.noise.shape_pct, 3) + " % of the RMS component)"
+                        : " %; no shapes measured)"),
                0.05);
     } catch (const Interrupted& ex) {  // the update at the assumed σ stands: a partial diagnosis
       dg.interrupted = true;

@@ -83,6 +83,16 @@ TEST_CASE("ssid diagnose: hidden mass found, JSON layout, extended deck written"
   CHECK(few.code == 2);
   CHECK(few.err.find("diagnose: 50 bootstrap replicates cannot show a false-alarm probability of 0.01 or less (the smallest "
                      "is 1/(replicates + 1)); use at least 99") != std::string::npos);
+  // The same file read for its frequencies only: no shape noise is implied or
+  // tested (there are no shape rows), and none is printed.
+  const auto fo = run_ssid("diagnose " + (dir / "rod.bdf").string() + " " + (dir / "test.unv").string() +
+                           " --frequencies-only --kinds missing_mass --shortlist 1");
+  CAPTURE(fo.out, fo.err);
+  REQUIRE((fo.code == 0 || fo.code == 3));
+  CHECK(fo.out.find("degrees of freedom; no shapes measured)") != std::string::npos);
+  CHECK(fo.out.find("% of the RMS component") == std::string::npos);
+  CHECK(fo.out.find("shape chi^2") == std::string::npos);
+  CHECK(fo.err.find("no shapes measured)") != std::string::npos);
   fs::remove_all(dir);
 }
 
