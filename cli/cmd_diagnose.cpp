@@ -17,8 +17,7 @@
 #include "estimator/diagnosis/diagnosis.hpp"
 #include "estimator/reporting/number_text.hpp"
 #include "formats/parse_error.hpp"
-#include "formats/uff.hpp"
-#include "translators/measurement/mode_set.hpp"
+#include "estimator/study/deck_study.hpp"
 
 namespace ssid::cli {
 
@@ -34,14 +33,17 @@ std::string read_text(const std::string& path) {
   return s.str();
 }
 
-dx::ConfigurationInput load_configuration(const std::string& deck, const std::string& unv) {
+/// One configuration as the diagnosis takes it: the deck's text and the
+/// measured data read as `ssid estimate` reads them (deck_study's read_measured).
+dx::ConfigurationInput load_configuration(const estimator::ConfigurationSource& src) {
   dx::ConfigurationInput c;
-  c.name = deck;
-  c.deck_text = read_text(deck);
-  translators::ModeSetReport rep;
-  c.measured = translators::modes_from_uff(formats::uff::read_uff(unv), &rep);
-  for (const auto& p : rep.problems) std::cerr << "warning: " << unv << ": " << p << "\n";
-  if (c.measured.frequency_hz.empty()) throw formats::InputError(unv + ": no real normal modes (dataset 55, analysis type 2)");
+  c.name = src.deck;
+  c.deck_text = read_text(src.deck);
+  c.measured = src.data.modes;
+  c.nodes = src.data.nodes;
+  c.measured_name = src.measured;
+  c.configuration = src.name;
+  for (const auto& n : src.data.notes) std::cerr << "warning: " << n << "\n";
   return c;
 }
 
@@ -60,17 +62,24 @@ nlohmann::json fit_json(const dx::Fit& f) {
 /// The command line's options.
 void add_diagnose_options(po::options_description& desc) {
   desc.add_options()("deck", po::value<std::string>()->required(), "the nominal deck with its DESVAR parameters")(
-      "measured", po::value<std::string>()->required(), "measured modes: universal file, dataset 55 at grid ids")(
-      "study", po::value<std::string>(), "study file (JSON, docs/diagnosis.md): noise, priors, kinds, configurations")(
+      "measured", po::value<std::string>()->required(),
+      "measured modes: universal file (dataset 55), or frequencies only (.csv, .txt, .json: docs/estimation.md)")(
+      "study", po::value<std::string>(),
+      "study file (JSON, docs/estimation.md; its \"diagnosis\" section: docs/diagnosis.md): noise, priors, pairs, kinds, configurations")(
       "json", po::value<std::string>(), "write the diagnosis as JSON to this file ('-' for stdout)")(
       "output,o", po::value<std::string>(), "write the extended, updated deck into this folder")(
       "report", po::value<std::string>(), "write an HTML report (residuals, ranking, the cause on the structure, the gain) to this file")(
       "also", po::value<std::vector<std::string>>()->composing(),
       "another tested configuration sharing the parameters: DECK=MEASURED.unv (repeatable)")(
       "kinds", po::value<std::string>(), "comma-separated extension kinds to try (default: all)")(
-      "freq-std", po::value<double>(), "measured frequency standard deviation, % (default 0.5)")(
-      "shape-std", po::value<double>(), "measured shape standard deviation, % of the RMS component (default 3)")(
-      "prior-std", po::value<double>(), "prior standard deviation of the deck's parameters, relative (default 0.3)")(
+      "freq-std", po::value<double>(),
+      "measured frequency standard deviation, % (default 1; study \"measurement\": {\"frequency_std_pct\"})")(
+      "shape-std", po::value<double>(),
+      "measured shape standard deviation, % of the RMS component (default 5; study \"measurement\": {\"shape_std_pct\"})")(
+      "prior-std", po::value<double>(),
+      "prior standard deviation of the deck's parameters, relative to XINIT (default: half the distance to the "
+      "nearer DESVAR bound; study \"prior_std_pct\")")(
+      "frequencies-only", "use the measured frequencies only, not the shapes (study \"measurement\": {\"frequencies_only\": true})")(
       "shortlist", po::value<int>(), "candidates per kind re-estimated exactly (default 3)")(
       "margin", po::value<double>(), "decision margin in nats (default 3)")(
       "noise", po::value<std::string>(), "the measurement noise: 'estimated' from the data (default) or 'given' (the assumed sigma)")(
@@ -80,51 +89,29 @@ void add_diagnose_options(po::options_description& desc) {
       "quiet,q", "no progress lines on stderr (phases, counts of candidates, the time left)");
 }
 
-/// The diagnosis options from the study file and the flags (flags win), and the
-/// further configurations (`extra`: DECK, MEASURED). Returns false with the exit
-/// code in `rc` for a --noise other than estimated/given, an unknown kind or a
-/// malformed --also.
+/// The diagnosis options from the study file (its estimation settings and its
+/// "diagnosis" section) and the flags (flags win), and the configurations
+/// (the study's, the command line's DECK MEASURED, --also). Returns false with
+/// the exit code in `rc` for a --noise other than estimated/given, an unknown
+/// kind or a malformed --also.
 bool diagnosis_options(const po::variables_map& vm, dx::DiagnosisOptions& opt,
-                       std::vector<std::pair<std::string, std::string>>& extra, int& rc) {
-  std::string noise = "estimated";
-  if (vm.count("study")) {
-    const std::string path = vm["study"].as<std::string>();
-    nlohmann::json s;
-    try {
-      s = nlohmann::json::parse(read_text(path));
-    } catch (const nlohmann::json::parse_error& e) {
-      throw formats::InputError(path + ": not valid JSON: " + e.what());
-    }
-    static const std::set<std::string> known = {"frequency_std_pct", "shape_std_pct", "prior_rel_std", "kinds",
-                                                "shortlist", "decision_margin", "hold_back", "mass_prior_fraction",
-                                                "stiffness_prior_fraction", "configurations", "max_iterations",
-                                                "noise", "replicates", "false_alarm"};
-    for (auto it = s.begin(); it != s.end(); ++it)
-      if (!known.count(it.key())) throw formats::InputError(path + ": unknown key \"" + it.key() + "\"");
-    try {
-      if (s.count("frequency_std_pct")) opt.problem.frequency_std_pct = s["frequency_std_pct"].get<double>();
-      if (s.count("shape_std_pct")) opt.problem.shape_std_pct = s["shape_std_pct"].get<double>();
-      if (s.count("prior_rel_std")) opt.problem.prior_rel_std = s["prior_rel_std"].get<double>();
-      if (s.count("max_iterations")) opt.problem.update.max_iterations = s["max_iterations"].get<int>();
-      if (s.count("kinds")) opt.kinds = s["kinds"].get<std::vector<std::string>>();
-      if (s.count("shortlist")) opt.shortlist = s["shortlist"].get<int>();
-      if (s.count("decision_margin")) opt.decision_margin = s["decision_margin"].get<double>();
-      if (s.count("hold_back")) opt.hold_back = s["hold_back"].get<int>();
-      if (s.count("noise")) noise = s["noise"].get<std::string>();
-      if (s.count("replicates")) opt.calibration.replicates = s["replicates"].get<int>();
-      if (s.count("false_alarm")) opt.calibration.false_alarm = s["false_alarm"].get<double>();
-      if (s.count("mass_prior_fraction")) opt.extension.mass_prior_fraction = s["mass_prior_fraction"].get<double>();
-      if (s.count("stiffness_prior_fraction"))
-        opt.extension.stiffness_prior_fraction = s["stiffness_prior_fraction"].get<double>();
-      if (s.count("configurations"))
-        for (const auto& c : s["configurations"]) extra.emplace_back(c.at("deck").get<std::string>(), c.at("measured").get<std::string>());
-    } catch (const nlohmann::json::exception& e) {
-      throw formats::InputError(path + ": " + e.what());
-    }
+                       std::vector<dx::ConfigurationInput>& configs, int& rc) {
+  // Assigned, not chosen by ?: (GCC 12 then warns of a maybe-uninitialized Study).
+  estimator::Study study;
+  if (vm.count("study")) study = estimator::read_study(vm["study"].as<std::string>());
+  dx::read_diagnosis_section(study, opt);
+  std::string noise = opt.calibration.estimate_noise ? "estimated" : "given";
+  // The flags that override the study's estimation settings.
+  if (vm.count("freq-std")) study.frequency_std_pct = vm["freq-std"].as<double>();
+  if (vm.count("shape-std")) {
+    study.shape_std.reset();
+    study.shape_std_pct = vm["shape-std"].as<double>();
   }
-  if (vm.count("freq-std")) opt.problem.frequency_std_pct = vm["freq-std"].as<double>();
-  if (vm.count("shape-std")) opt.problem.shape_std_pct = vm["shape-std"].as<double>();
-  if (vm.count("prior-std")) opt.problem.prior_rel_std = vm["prior-std"].as<double>();
+  if (vm.count("prior-std")) study.prior_std_pct = 100.0 * vm["prior-std"].as<double>();
+  if (vm.count("frequencies-only")) study.frequencies_only = true;
+  for (const char* flag : {"freq-std", "shape-std", "prior-std"})
+    if (vm.count(flag) && !(vm[flag].as<double>() > 0))
+      throw formats::InputError(std::string("--") + flag + ": expected a positive number");
   if (vm.count("shortlist")) opt.shortlist = vm["shortlist"].as<int>();
   if (vm.count("margin")) opt.decision_margin = vm["margin"].as<double>();
   if (vm.count("hold-back")) opt.hold_back = vm["hold-back"].as<int>();
@@ -155,6 +142,7 @@ bool diagnosis_options(const po::variables_map& vm, dx::DiagnosisOptions& opt,
       rc = kExitBadInput;
       return false;
     }
+  std::vector<std::pair<std::string, std::string>> also;
   if (vm.count("also"))
     for (const auto& a : vm["also"].as<std::vector<std::string>>()) {
       const auto eq = a.find('=');
@@ -163,8 +151,19 @@ bool diagnosis_options(const po::variables_map& vm, dx::DiagnosisOptions& opt,
         rc = kExitBadInput;
         return false;
       }
-      extra.emplace_back(a.substr(0, eq), a.substr(eq + 1));
+      also.emplace_back(a.substr(0, eq), a.substr(eq + 1));
     }
+  for (const auto& src : estimator::load_configurations(study, vm["deck"].as<std::string>(), vm["measured"].as<std::string>()))
+    configs.push_back(load_configuration(src));
+  for (const auto& [d, m] : also) {
+    estimator::ConfigurationSource src;
+    src.name = d;
+    src.deck = d;
+    src.measured = m;
+    src.data = estimator::read_measured(m, study.frequencies_only);
+    configs.push_back(load_configuration(src));
+  }
+  opt.study = std::move(study);
   return true;
 }
 
@@ -240,6 +239,19 @@ nlohmann::json diagnosis_json(const dx::Diagnosis& dg, const dx::Hypothesis& cau
       r["parameters"].push_back({{"name", h.added[k].label},
                                  {"estimate", h.estimate(static_cast<Eigen::Index>(p0 + k))},
                                  {"std", h.posterior_std(static_cast<Eigen::Index>(p0 + k))}});
+    // Every parameter (the deck's, then the new ones) with its posterior: the
+    // "parameter" row is what `ssid estimate` gives on the same study.
+    r["all_parameters"] = nlohmann::json::array();
+    for (std::size_t k = 0; k < h.names.size(); ++k)
+      r["all_parameters"].push_back({{"name", h.names[k]},
+                                     {"estimate", h.estimate(static_cast<Eigen::Index>(k))},
+                                     {"std", h.posterior_std(static_cast<Eigen::Index>(k))}});
+    r["posterior_covariance"] = nlohmann::json::array();
+    for (Eigen::Index a = 0; a < h.posterior_cov.rows(); ++a) {
+      std::vector<double> row(static_cast<std::size_t>(h.posterior_cov.cols()));
+      for (Eigen::Index b = 0; b < h.posterior_cov.cols(); ++b) row[static_cast<std::size_t>(b)] = h.posterior_cov(a, b);
+      r["posterior_covariance"].push_back(row);
+    }
     j["ranking"].push_back(r);
   }
   j["gain"] = {{"before", fit_json(dg.nominal.before)}, {"after", fit_json(cause.after)}};
@@ -334,18 +346,25 @@ void print_report(const dx::Diagnosis& dg, const dx::Hypothesis& cause, const st
   // Frequencies to 7 significant digits: any error the error column shows is visible in them.
   {
     const auto& n = dg.noise;
+    // Frequency-only data has no shape rows: no shape noise to imply or test.
+    const bool shapes = n.scale.rows[dx::kShapeRows] > 0;
     std::cout << "   - noise " << (n.estimated ? "the data imply" : "(given)") << ": frequencies "
-              << estimator::significant(n.frequency_pct, 3) << " %, shapes " << estimator::significant(n.shape_pct, 3)
-              << " % of the RMS component";
-    if (n.estimated)
+              << estimator::significant(n.frequency_pct, 3) << " %";
+    if (shapes) std::cout << ", shapes " << estimator::significant(n.shape_pct, 3) << " % of the RMS component";
+    if (n.estimated && shapes)
       std::cout << " (assumed " << estimator::significant(n.assumed_frequency_pct, 3) << " % and "
                 << estimator::significant(n.assumed_shape_pct, 3) << " %; " << estimator::significant(n.scale.dof[dx::kFrequencyRows], 3)
                 << " and " << estimator::significant(n.scale.dof[dx::kShapeRows], 4) << " degrees of freedom"
                 << (n.scale.pooled ? ", one scale for both" : "") << ")";
+    else if (n.estimated)
+      std::cout << " (assumed " << estimator::significant(n.assumed_frequency_pct, 3) << " %; "
+                << estimator::significant(n.scale.dof[dx::kFrequencyRows], 3) << " degrees of freedom; no shapes measured)";
     std::cout << "\n   - against the assumed noise: frequency chi^2 " << estimator::significant(n.scale.chi2[dx::kFrequencyRows], 4)
-              << " (p = " << estimator::significant(dg.residual.chi2_p[dx::kFrequencyRows], 2) << "), shape chi^2 "
-              << estimator::significant(n.scale.chi2[dx::kShapeRows], 4) << " (p = "
-              << estimator::significant(dg.residual.chi2_p[dx::kShapeRows], 2) << ")\n";
+              << " (p = " << estimator::significant(dg.residual.chi2_p[dx::kFrequencyRows], 2) << ")";
+    if (shapes)
+      std::cout << ", shape chi^2 " << estimator::significant(n.scale.chi2[dx::kShapeRows], 4) << " (p = "
+                << estimator::significant(dg.residual.chi2_p[dx::kShapeRows], 2) << ")";
+    std::cout << "\n";
     std::cout << "   - anything left to explain? " << (dg.residual.text.empty() ? "not tested" : dg.residual.text) << "\n";
   }
   std::cout << "\n   test mode   test [Hz]  FE mode      FE [Hz]  error [%]    MAC   MEMS e^2\n";
@@ -385,9 +404,13 @@ void print_report(const dx::Diagnosis& dg, const dx::Hypothesis& cause, const st
       break;
     }
   if (!std::isnan(dg.noise.frequency_pct_cause))
+  {
     std::cout << "   noise the data imply with the cause in the model: frequencies "
-              << estimator::significant(dg.noise.frequency_pct_cause, 3) << " %, shapes "
-              << estimator::significant(dg.noise.shape_pct_cause, 3) << " %\n";
+              << estimator::significant(dg.noise.frequency_pct_cause, 3) << " %";
+    if (dg.noise.scale.rows[dx::kShapeRows] > 0)
+      std::cout << ", shapes " << estimator::significant(dg.noise.shape_pct_cause, 3) << " %";
+    std::cout << "\n";
+  }
   if (dg.second.tested) std::cout << "   a second effect: " << dg.second.text << "\n";
   std::cout << "\n5. Gain:              before     after\n";
   std::cout << "   freq RMS error %  " << std::setw(8) << estimator::fixed(dg.nominal.before.freq_rms_pct, 3) << std::setw(10)
@@ -415,17 +438,13 @@ int cmd_diagnose(const Args& args) {
     return rc;
 
   dx::DiagnosisOptions opt;
-  std::vector<std::pair<std::string, std::string>> extra;
-  if (!diagnosis_options(vm, opt, extra, rc)) return rc;
+  std::vector<dx::ConfigurationInput> configs;
+  if (!diagnosis_options(vm, opt, configs, rc)) return rc;
   const std::string json_path = vm.count("json") ? vm["json"].as<std::string>() : "";
   const bool quiet_json = json_path == "-";
   // Candidates can number hundreds: their counts at most every 2 s.
   ProgressLines lines("ssid diagnose", vm.count("quiet") != 0, 2.0);
   opt.progress = lines.callback();
-
-  std::vector<dx::ConfigurationInput> configs;
-  configs.push_back(load_configuration(vm["deck"].as<std::string>(), vm["measured"].as<std::string>()));
-  for (const auto& [d, m] : extra) configs.push_back(load_configuration(d, m));
 
   const InterruptFlag interrupt;
   dx::Diagnosis dg;

@@ -45,6 +45,7 @@ estimator::EstimationProblem load_problem(const po::variables_map& vm, bool allo
   // Assigned, not chosen by ?: (GCC 12 then warns of a maybe-uninitialized Study).
   estimator::Study study;
   if (vm.count("study")) study = estimator::read_study(vm["study"].as<std::string>());
+  if (vm.count("frequencies-only")) study.frequencies_only = true;
   if (measured.empty() && study.configurations.empty())
     throw formats::InputError("no measured modes: give MEASURED.unv after the deck (or configurations in --study)");
   return estimator::prepare_problem(study, deck, measured);
@@ -75,8 +76,10 @@ nlohmann::json partial_problem_json(const estimator::EstimationProblem& problem,
 int cmd_estimate(const Args& args) {
   po::options_description desc("ssid estimate options");
   desc.add_options()("deck", po::value<std::string>(), "NASTRAN deck with DESVAR parameters")(
-      "measured", po::value<std::string>(), "measured modes: universal file with dataset 55 (+ nodes 15/2411)")(
-      "study", po::value<std::string>(), "study file (JSON, docs/estimation.md): priors, weights, pairing, configurations")(
+      "measured", po::value<std::string>(),
+      "measured modes: universal file with dataset 55 (+ nodes 15/2411), or frequencies only (.csv, .txt, .json)")(
+      "study", po::value<std::string>(), "study file (JSON, docs/estimation.md): priors, weights, pairing, pairs, configurations")(
+      "frequencies-only", "use the measured frequencies only, not the shapes (study \"measurement\": {\"frequencies_only\": true})")(
       "json", po::value<std::string>(), "write the result as JSON to this file ('-' for stdout)")(
       "report", po::value<std::string>(),
       "write an HTML report (MAC, frequencies before and after, parameters, convergence, mode shapes) to this file; "

@@ -14,6 +14,8 @@
 #include "estimator/updating/sensitivity.hpp"
 #include "formats/deck_writer.hpp"
 #include "formats/parse_error.hpp"
+#include "formats/text_util.hpp"
+#include "estimator/study/study_reader.hpp"
 
 namespace ssid::estimator::diagnosis {
 
@@ -109,27 +111,109 @@ class Engine {
     }
   }
 
+  /// The estimation problem of one hypothesis: every configuration's deck text
+  /// through the study's builder (estimator/study/deck_study), the new
+  /// parameters' priors added to the study, the iteration started at the kind's
+  /// start values and, for the deck's own parameters, where the ordinary update
+  /// ended (the prior is unchanged: each hypothesis then only has to move from
+  /// the best fit without it, not repeat the ordinary update's whole path).
+  EstimationProblem build_problem(const std::vector<std::string>& texts, const std::vector<ext::NewParameter>& added) const {
+    Study study = m_opt.study;
+    for (const auto& p : added) {
+      PriorSetting ps;
+      ps.mean = p.prior_mean;
+      ps.std = p.prior_std;
+      study.priors[formats::detail::upper(p.label)] = ps;
+      if (!study.parameters.empty()) study.parameters.push_back(formats::detail::upper(p.label));
+    }
+    std::vector<ConfigurationSource> sources;
+    for (std::size_t k = 0; k < texts.size(); ++k) {
+      const ConfigurationInput& c = m_setup.est[k];
+      ConfigurationSource src;
+      src.name = c.configuration;
+      src.deck = c.name;
+      src.deck_text = texts[k];
+      src.measured = c.measured_name.empty() ? "measured modes of " + c.name : c.measured_name;
+      src.data.modes = c.measured;
+      src.data.nodes = c.nodes;
+      sources.push_back(std::move(src));
+    }
+    EstimationProblem pb = prepare_problem(study, sources);
+    const auto& names = pb.prior.names;
+    pb.options.start = pb.prior.mean;
+    for (std::size_t j = 0; j < names.size(); ++j) {
+      const auto i = static_cast<Eigen::Index>(j);
+      for (const auto& p : added)
+        if (formats::detail::upper(p.label) == names[j] && !std::isnan(p.start)) pb.options.start(i) = p.start;
+      if (auto it = m_warm.find(names[j]); it != m_warm.end())
+        pb.options.start(i) = std::clamp(it->second, pb.prior.lower(i), pb.prior.upper(i));
+    }
+    return pb;
+  }
+
+  /// The analyst's fixed pairs name analysis modes of the deck as given, where
+  /// the ordinary update starts. A hypothesis starts elsewhere (the ordinary
+  /// update's estimate) and may add DOFs and with them modes: its partner of
+  /// test mode i is the mode most like the nominal partner (MAC over the
+  /// nominal model's g-set DOFs) at its own start. The first call (the ordinary
+  /// update) records the nominal partners and changes nothing.
+  void carry_fixed_pairs(EstimationProblem& pb) {
+    for (std::size_t k = 0; k < pb.configurations.size(); ++k) {
+      PreparedConfiguration& c = pb.configurations[k];
+      if (std::none_of(c.test.begin(), c.test.end(), [](const MeasuredMode& t) { return t.fixed_partner >= 0; })) continue;
+      c.model->solve(pb.options.start);
+      const Eigen::MatrixXd phi = c.fe->expand(c.model->modes());
+      const translators::DofMap& gset = c.fe->geometry().gset();
+      if (m_reference.size() <= k) {  // the deck as given
+        m_reference.resize(k + 1);
+        m_reference[k].gset = gset;
+        m_reference[k].shapes = phi;
+        continue;
+      }
+      const Reference& ref = m_reference[k];
+      std::vector<Eigen::Index> here, there;  // rows of the common DOFs
+      for (std::size_t i = 0; i < ref.gset.size(); ++i)
+        if (auto j = gset.find(ref.gset.at(i))) {
+          there.push_back(static_cast<Eigen::Index>(i));
+          here.push_back(static_cast<Eigen::Index>(*j));
+        }
+      for (auto& t : c.test) {
+        if (t.fixed_partner < 0 || t.fixed_partner >= ref.shapes.cols()) continue;
+        Eigen::VectorXd a(static_cast<Eigen::Index>(there.size()));
+        for (std::size_t r = 0; r < there.size(); ++r) a(static_cast<Eigen::Index>(r)) = ref.shapes(there[r], t.fixed_partner);
+        int best = t.fixed_partner;
+        double best_mac = -1;
+        for (Eigen::Index j = 0; j < phi.cols(); ++j) {
+          double ab = 0, bb = 0;
+          for (std::size_t r = 0; r < here.size(); ++r) {
+            const double b = phi(here[r], j);
+            ab += a(static_cast<Eigen::Index>(r)) * b;
+            bb += b * b;
+          }
+          const double mac = bb > 0 ? ab * ab / (a.squaredNorm() * bb) : 0.0;
+          if (mac > best_mac) {
+            best_mac = mac;
+            best = static_cast<int>(j);
+          }
+        }
+        t.fixed_partner = best;
+      }
+    }
+  }
+
+  /// The estimate of a problem (every configuration together).
+  UpdateResult estimate(EstimationProblem& pb) const {
+    std::vector<Configuration> confs;
+    for (auto& c : pb.configurations) confs.push_back({c.name, c.model.get(), c.test});
+    return update(confs, pb.prior, pb.options, m_update_progress);
+  }
+
   /// Builds, estimates and scores one hypothesis given the deck text of each configuration.
   Hypothesis evaluate(const std::string& kind, const std::vector<std::string>& texts,
-                      const std::vector<ext::NewParameter>& added, std::vector<DeckProblem>* keep = nullptr) {
-    std::map<std::string, PriorOverride> priors;
-    for (const auto& p : added) priors[p.label] = {p.prior_mean, p.prior_std, p.start};
-    std::vector<DeckProblem> pbs;
-    for (std::size_t k = 0; k < texts.size(); ++k) {
-      pbs.push_back(make_deck_problem(texts[k], m_setup.est[k].name, m_setup.est[k].measured, m_opt.problem, priors));
-      // The deck's own parameters start where the ordinary update ended (the
-      // prior is unchanged): each hypothesis then only has to move from the
-      // best fit without it, not repeat the ordinary update's whole path.
-      auto& pb = pbs.back();
-      for (std::size_t j = 0; j < pb.prior.names.size(); ++j)
-        if (auto it = m_warm.find(pb.prior.names[j]); it != m_warm.end()) {
-          const auto i = static_cast<Eigen::Index>(j);
-          pb.start(i) = std::clamp(it->second, pb.prior.lower(i), pb.prior.upper(i));
-        }
-    }
-    std::vector<DeckProblem*> ptrs;
-    for (auto& pb : pbs) ptrs.push_back(&pb);
-    UpdateResult res = estimate(ptrs, m_opt.problem);
+                      const std::vector<ext::NewParameter>& added, EstimationProblem* keep = nullptr) {
+    EstimationProblem pb = build_problem(texts, added);
+    carry_fixed_pairs(pb);
+    UpdateResult res = estimate(pb);
     // A numerical failure after the first cycle fails the hypothesis, as one in
     // the first; an interruption leaves it as far as it got (interrupted()).
     if (!res.stopped.empty() && !res.interrupted) throw formats::NumericalError(res.stopped);
@@ -138,10 +222,10 @@ class Engine {
     // to its test partner only pairs when the estimate is restarted from there.
     for (int again = 0; again < 2 && !m_interrupted; ++again) {
       std::size_t more = 0;
-      for (auto& pb : pbs) more += pair_for_update(pb.test, pb.model->solve(res.r), m_opt.problem.update).size();
+      for (auto& c : pb.configurations) more += pair_for_update(c.test, c.model->solve(res.r), pb.options).size();
       if (more <= res.history.back().pairs.size()) break;
-      for (auto& pb : pbs) pb.start = res.r;
-      UpdateResult next = estimate(ptrs, m_opt.problem);
+      pb.options.start = res.r;
+      UpdateResult next = estimate(pb);
       if (!next.stopped.empty() && !next.interrupted) throw formats::NumericalError(next.stopped);
       m_interrupted = next.interrupted;
       next.history.front() = res.history.front();  // "before" stays the model at its start
@@ -150,42 +234,42 @@ class Engine {
     Hypothesis h;
     h.kind = kind;
     h.added = added;
-    h.names = pbs.front().prior.names;
+    h.names = pb.prior.names;
     h.estimate = res.r;
     h.posterior_std = res.posterior_std;
-    h.prior_mean = pbs.front().prior.mean;
+    h.posterior_cov = res.posterior_cov;
+    h.prior_mean = pb.prior.mean;
     h.log_evidence = res.log_evidence;
     h.converged = res.converged;
     h.notes = res.notes;
     int measured = 0;
-    for (const auto& pb : pbs) measured += static_cast<int>(pb.test.size());
+    for (const auto& c : pb.configurations) measured += static_cast<int>(c.test.size());
     h.before = fit_of(res.history.front(), measured);
     h.after = fit_of(res.history.back(), measured);
     h.pairs = res.history.back().pairs;
-    const bool shapes = m_opt.problem.update.shape_derivatives;
-    for (std::size_t k = 0; k < pbs.size(); ++k) {
+    const bool shapes = pb.options.shape_derivatives;
+    for (std::size_t k = 0; k < pb.configurations.size(); ++k) {
       std::set<int> paired;
       for (const auto& p : res.history.back().pairs)
         if (p.config == static_cast<int>(k)) paired.insert(p.test);
-      for (std::size_t i = 0; i < pbs[k].test.size(); ++i)
-        if (!paired.count(static_cast<int>(i)))
-          h.miss_penalty += miss_loglik(pbs[k].test[i], m_opt.miss_frequency_pct, shapes);
+      const auto& test = pb.configurations[k].test;
+      for (std::size_t i = 0; i < test.size(); ++i)
+        if (!paired.count(static_cast<int>(i))) h.miss_penalty += miss_loglik(test[i], m_opt.miss_frequency_pct, shapes);
     }
     h.score = h.log_evidence + h.miss_penalty;
     h.deck_text = texts.front();
     // Prediction of the held-back modes.
     if (!m_setup.held.frequency_hz.empty()) {
-      auto& pb = pbs.front();
-      const ModalSolution sol = pb.model->solve(res.r);
-      const translators::ModeSet held = translators::restrict_to(m_setup.held, pb.dofs);
-      const auto test = measured_modes(held, m_opt.problem);
-      const auto pairs = pair_for_update(test, sol, m_opt.problem.update);
+      auto& pc = pb.configurations.front();
+      const ModalSolution sol = pc.model->solve(res.r);
+      const auto test = measured_at_sensors(m_opt.study, m_setup.held, pc);
+      const auto pairs = pair_for_update(test, sol, pb.options);
       double s2 = 0;
       for (const auto& p : pairs) s2 += p.error_pct * p.error_pct;
       h.predicted = static_cast<int>(pairs.size());
       h.prediction_rms_pct = pairs.empty() ? -1 : std::sqrt(s2 / static_cast<double>(pairs.size()));
     }
-    if (keep) *keep = std::move(pbs);
+    if (keep) *keep = std::move(pb);
     m_last = res;
     return h;
   }
@@ -194,20 +278,22 @@ class Engine {
   void warm_start(const std::vector<std::string>& names, const Eigen::VectorXd& r) {
     for (std::size_t j = 0; j < names.size(); ++j) m_warm[names[j]] = r(static_cast<Eigen::Index>(j));
   }
-  /// The first configuration's problem for deck `text` with the priors of the
-  /// new parameters `added` (no estimate).
-  DeckProblem problem(const std::string& text, const std::vector<ext::NewParameter>& added) const {
-    std::map<std::string, PriorOverride> priors;
-    for (const auto& p : added) priors[p.label] = {p.prior_mean, p.prior_std, p.start};
-    return make_deck_problem(text, m_setup.est.front().name, m_setup.est.front().measured, m_opt.problem, priors);
+  /// The first configuration's estimation problem for deck `text` with the
+  /// priors of the new parameters `added` (no estimate; the other
+  /// configurations are not built).
+  EstimationProblem problem(const std::string& text, const std::vector<ext::NewParameter>& added) const {
+    return build_problem({text}, added);
   }
-  /// The measurement σ of the next hypotheses' estimates (the noise the data imply).
+  /// The measurement σ of the next hypotheses' estimates (the noise the data
+  /// imply): frequencies in % of each, shapes in % of the RMS component (an
+  /// absolute shape σ of the study gives way to it).
   void set_noise(double frequency_std_pct, double shape_std_pct) {
-    m_opt.problem.frequency_std_pct = frequency_std_pct;
-    m_opt.problem.shape_std_pct = shape_std_pct;
+    m_opt.study.frequency_std_pct = frequency_std_pct;
+    m_opt.study.shape_std.reset();
+    m_opt.study.shape_std_pct = shape_std_pct;
   }
   /// Where the estimates of the next hypotheses report their cycles.
-  void set_update_progress(Progress p) { m_opt.problem.update_progress = std::move(p); }
+  void set_update_progress(Progress p) { m_update_progress = std::move(p); }
   /// The last evaluate()'s estimate was interrupted (its hypothesis is as far as it got).
   bool interrupted() const { return m_interrupted; }
   const UpdateResult& last() const { return m_last; }
@@ -215,7 +301,15 @@ class Engine {
   const DiagnosisOptions& options() const { return m_opt; }
 
  private:
+  /// The deck as given at the ordinary update's start, per configuration: its
+  /// g-set DOFs and modes (for the fixed pairs, carry_fixed_pairs).
+  struct Reference {
+    translators::DofMap gset;
+    Eigen::MatrixXd shapes;
+  };
+  std::vector<Reference> m_reference;
   DiagnosisOptions m_opt;
+  Progress m_update_progress;
   Setup m_setup;
   UpdateResult m_last;
   std::map<std::string, double> m_warm;
@@ -229,11 +323,11 @@ struct Screen {
   std::vector<Row> rows;
 };
 
-Screen prepare_screen(DeckProblem& pb, const Eigen::VectorXd& r, const std::vector<UpdatePair>& all_pairs,
-                      const DeckProblemOptions& opt) {
+Screen prepare_screen(PreparedConfiguration& pb, const ParameterPrior& prior, const Eigen::VectorXd& r,
+                      const std::vector<UpdatePair>& all_pairs, const UpdateOptions& opt) {
   Screen sc;
   const ModalSolution sol = pb.model->solve(r);
-  const Eigen::VectorXd d = pb.prior.cov.diagonal().array().sqrt();
+  const Eigen::VectorXd d = prior.cov.diagonal().array().sqrt();
   std::vector<double> e;
   std::vector<Eigen::VectorXd> w;
   std::vector<const MeasuredMode*> tests;  // each row's test mode
@@ -248,7 +342,7 @@ Screen prepare_screen(DeckProblem& pb, const Eigen::VectorXd& r, const std::vect
     row.norm = phi_s.norm();
     row.u = phi_s / row.norm;
     row.use_f = t.use_frequency && t.frequency_std_hz > 0;
-    row.use_s = opt.update.shape_derivatives && t.use_shape && t.shape.size() && t.shape_std > 0;
+    row.use_s = opt.shape_derivatives && t.use_shape && t.shape.size() && t.shape_std > 0;
     row.sigma_f = t.frequency_std_hz;
     row.sigma_s = t.shape_std;
     sc.rows.push_back(row);
@@ -284,7 +378,7 @@ Screen prepare_screen(DeckProblem& pb, const Eigen::VectorXd& r, const std::vect
   sc.lin.e = Eigen::Map<Eigen::VectorXd>(e.data(), m);
   sc.lin.W.resize(m, d.size());
   for (Eigen::Index k = 0; k < m; ++k) sc.lin.W.row(k) = w[static_cast<std::size_t>(k)].transpose();
-  sc.lin.theta = ((r - pb.prior.mean).array() / d.array()).matrix();
+  sc.lin.theta = ((r - prior.mean).array() / d.array()).matrix();
   return sc;
 }
 
@@ -312,7 +406,7 @@ Eigen::VectorXd screen_column(const Screen& sc, const OperatorModel& model, cons
 /// For each unexplained test mode (the evidence's order), the g-set shape of
 /// the analysis mode of `sol` (the model's last solve) most like it at the
 /// sensors (highest MAC within ±30 % in frequency; any frequency when none).
-std::vector<Eigen::VectorXd> neighbours_of_unexplained(DeckProblem& pb, const ModalSolution& sol, const Evidence& ev) {
+std::vector<Eigen::VectorXd> neighbours_of_unexplained(PreparedConfiguration& pb, const ModalSolution& sol, const Evidence& ev) {
   std::vector<Eigen::VectorXd> out;
   const Eigen::MatrixXd& phi = pb.model->modes();
   for (const auto& u : ev.unpaired_test) {
@@ -455,6 +549,39 @@ void residual_test(Diagnosis& dg, const Hypothesis& param, const Screening& scre
 
 }  // namespace
 
+void read_diagnosis_section(const Study& study, DiagnosisOptions& options) {
+  const nlohmann::json& d = study.diagnosis;
+  if (d.is_null()) return;
+  const StudyReader rd(study.source);
+  rd.keys(d, "diagnosis",
+          {"kinds", "shortlist", "decision_margin", "hold_back", "mass_prior_fraction", "stiffness_prior_fraction",
+           "miss_frequency_pct", "noise", "replicates", "false_alarm", "comment"});
+  if (d.contains("kinds")) {
+    const auto& k = d["kinds"];
+    if (!k.is_array()) rd.fail("diagnosis.kinds", "expected an array of extension kinds, got " + StudyReader::shown(k));
+    options.kinds.clear();
+    for (std::size_t i = 0; i < k.size(); ++i)
+      options.kinds.push_back(rd.text(k[i], "diagnosis.kinds[" + std::to_string(i) + "]"));
+  }
+  if (d.contains("shortlist")) options.shortlist = rd.integer(d["shortlist"], "diagnosis.shortlist");
+  if (d.contains("decision_margin"))
+    options.decision_margin = rd.number(d["decision_margin"], "diagnosis.decision_margin", false, true);
+  if (d.contains("hold_back")) options.hold_back = rd.integer(d["hold_back"], "diagnosis.hold_back", 0);
+  if (d.contains("mass_prior_fraction"))
+    options.extension.mass_prior_fraction = rd.number(d["mass_prior_fraction"], "diagnosis.mass_prior_fraction", true);
+  if (d.contains("stiffness_prior_fraction"))
+    options.extension.stiffness_prior_fraction =
+        rd.number(d["stiffness_prior_fraction"], "diagnosis.stiffness_prior_fraction", true);
+  if (d.contains("miss_frequency_pct"))
+    options.miss_frequency_pct = rd.number(d["miss_frequency_pct"], "diagnosis.miss_frequency_pct", true);
+  if (d.contains("noise")) {
+    options.calibration.estimate_noise = rd.choice(d["noise"], "diagnosis.noise", {"estimated", "given"}) == "estimated";
+  }
+  if (d.contains("replicates")) options.calibration.replicates = rd.integer(d["replicates"], "diagnosis.replicates");
+  if (d.contains("false_alarm"))
+    options.calibration.false_alarm = rd.number(d["false_alarm"], "diagnosis.false_alarm", true);
+}
+
 std::string deck_at(const std::string& deck_text, const std::string& name, const Eigen::VectorXd& x) {
   formats::Deck deck = formats::read_deck_text(deck_text, name);
   const std::unique_ptr<translators::FeModel> fe = translators::assemble_deck(deck, name);
@@ -531,7 +658,7 @@ class Diagnoser {
   const std::vector<ConfigurationInput>& m_est;
   Diagnosis m_dg;
   std::vector<std::string> m_base_texts;
-  std::vector<DeckProblem> m_base;
+  EstimationProblem m_base;
   UpdateResult m_base_res;
   Hypothesis m_param;
   std::string m_stage;
@@ -552,7 +679,7 @@ class Diagnoser {
                           double f1) const {
     const DiagnosisOptions& options = m_options;
     return [&options, phase, done, total, item, f0, f1](const ProgressEvent& e) {
-      if (options.problem.update_progress) options.problem.update_progress(e);
+      if (options.update_progress) options.update_progress(e);
       if (!options.progress) return;
       ProgressEvent out = e;
       out.fraction = e.fraction >= 0 ? f0 + (f1 - f0) * e.fraction : -1.0;
@@ -606,21 +733,24 @@ class Diagnoser {
     Diagnosis& dg = m_dg;
     const DiagnosisOptions& options = m_options;
     dg.noise.estimated = options.calibration.estimate_noise;
-    dg.noise.assumed_frequency_pct = dg.noise.frequency_pct = options.problem.frequency_std_pct;
-    dg.noise.assumed_shape_pct = dg.noise.shape_pct = options.problem.shape_std_pct;
+    dg.noise.assumed_frequency_pct = dg.noise.frequency_pct = options.study.frequency_std_pct;
+    dg.noise.assumed_shape_pct = dg.noise.shape_pct = assumed_shape_pct();
     if (m_engine.interrupted()) return;
     const UpdateResult& first = m_engine.last();
-    const Screen s1 = prepare_screen(m_base.front(), first.r, first.history.back().pairs, options.problem);
+    const Screen s1 =
+        prepare_screen(m_base.configurations.front(), m_base.prior, first.r, first.history.back().pairs, m_base.options);
     dg.noise.scale = estimate_noise(s1.lin, s1.lin.e, options.calibration.estimate_noise, options.calibration.min_dof);
     if (options.calibration.estimate_noise) {
-      dg.noise.frequency_pct = options.problem.frequency_std_pct * dg.noise.scale.scale[kFrequencyRows];
-      dg.noise.shape_pct = options.problem.shape_std_pct * dg.noise.scale.scale[kShapeRows];
+      dg.noise.frequency_pct = dg.noise.assumed_frequency_pct * dg.noise.scale.scale[kFrequencyRows];
+      dg.noise.shape_pct = dg.noise.assumed_shape_pct * dg.noise.scale.scale[kShapeRows];
     }
     try {
       if (options.calibration.estimate_noise)
-        report(options.progress, "ordinary update at the noise the data imply (frequencies " +
-                                     significant(dg.noise.frequency_pct, 3) + " %, shapes " +
-                                     significant(dg.noise.shape_pct, 3) + " % of the RMS component)",
+        report(options.progress,
+               "ordinary update at the noise the data imply (frequencies " + significant(dg.noise.frequency_pct, 3) +
+                   (dg.noise.scale.rows[kShapeRows] > 0
+                        ? " %, shapes " + significant(dg.noise.shape_pct, 3) + " % of the RMS component)"
+                        : " %; no shapes measured)"),
                0.05);
     } catch (const Interrupted& ex) {  // the update at the assumed σ stands: a partial diagnosis
       dg.interrupted = true;
@@ -630,7 +760,6 @@ class Diagnoser {
       m_engine.warm_start(m_param.names, first.r);
       m_engine.set_noise(dg.noise.frequency_pct, dg.noise.shape_pct);
       const Fit before = m_param.before;  // the deck as given, not the warm start
-      m_base.clear();
       m_param = m_engine.evaluate("parameter", m_base_texts, {}, &m_base);
       m_param.before = before;
     }
@@ -639,7 +768,7 @@ class Diagnoser {
   /// 1. The evidence: what the updated model gets wrong.
   void gather() {
     between_phases("evidence: what the updated model gets wrong", 0.1);
-    m_dg.evidence = gather_evidence(m_base.front(), m_base_res.r, [&] {
+    m_dg.evidence = gather_evidence(m_base.configurations.front(), m_base_res.r, [&] {
       std::vector<UpdatePair> v;
       for (const auto& p : m_base_res.history.back().pairs)
         if (p.config == 0) v.push_back(p);
@@ -653,20 +782,19 @@ class Diagnoser {
     h.kind = "none";
     h.description = "the deck as given";
     h.names = m_param.names;
-    h.estimate = m_base.front().prior.mean;
+    h.estimate = m_base.prior.mean;
     h.prior_mean = h.estimate;
     h.before = h.after = m_param.before;
-    const bool shapes = m_options.problem.update.shape_derivatives;
+    const bool shapes = m_base.options.shape_derivatives;
     double ll = 0;
-    for (std::size_t k = 0; k < m_base.size(); ++k) {
-      const ModalSolution sol = m_base[k].model->solve(m_base[k].prior.mean);
-      std::vector<UpdatePair> pairs = pair_for_update(m_base[k].test, sol, m_options.problem.update);
-      ll += pair_loglik(m_base[k].test, sol, pairs, shapes);
+    for (auto& c : m_base.configurations) {
+      const ModalSolution sol = c.model->solve(m_base.prior.mean);
+      std::vector<UpdatePair> pairs = pair_for_update(c.test, sol, m_base.options);
+      ll += pair_loglik(c.test, sol, pairs, shapes);
       std::set<int> paired;
       for (const auto& p : pairs) paired.insert(p.test);
-      for (std::size_t i = 0; i < m_base[k].test.size(); ++i)
-        if (!paired.count(static_cast<int>(i)))
-          h.miss_penalty += miss_loglik(m_base[k].test[i], m_options.miss_frequency_pct, shapes);
+      for (std::size_t i = 0; i < c.test.size(); ++i)
+        if (!paired.count(static_cast<int>(i))) h.miss_penalty += miss_loglik(c.test[i], m_options.miss_frequency_pct, shapes);
     }
     h.log_evidence = ll;
     h.score = ll + h.miss_penalty;
@@ -683,18 +811,19 @@ class Diagnoser {
     const auto& measured_hz = m_est.front().measured.frequency_hz;
     m_eo.lowest_test_hz = *std::min_element(measured_hz.begin(), measured_hz.end());
     m_eo.highest_test_hz = *std::max_element(measured_hz.begin(), measured_hz.end());
-    if (!(m_eo.total_mass > 0)) m_eo.total_mass = ext::total_mass(*m_base.front().fe);
+    if (!(m_eo.total_mass > 0)) m_eo.total_mass = ext::total_mass(*m_base.configurations.front().fe);
     report(m_options.progress, "screening: sensitivities of the " + std::to_string(m_base_res.history.back().pairs.size()) +
                                    " paired modes at the updated parameters",
            0.1);
-    m_screen = prepare_screen(m_base.front(), m_base_res.r, m_base_res.history.back().pairs, m_options.problem);
-    m_sol_star = m_base.front().model->solve(m_base_res.r);
-    m_eo.unexplained_neighbours = neighbours_of_unexplained(m_base.front(), m_sol_star, m_dg.evidence);
+    m_screen = prepare_screen(m_base.configurations.front(), m_base.prior, m_base_res.r, m_base_res.history.back().pairs,
+                              m_base.options);
+    m_sol_star = m_base.configurations.front().model->solve(m_base_res.r);
+    m_eo.unexplained_neighbours = neighbours_of_unexplained(m_base.configurations.front(), m_sol_star, m_dg.evidence);
   }
 
   /// 2. Every kind's candidates first, so that the screening is counted over all of them.
   void list_candidates() {
-    const translators::FeModel& nominal = *m_base.front().fe;
+    const translators::FeModel& nominal = *m_base.configurations.front().fe;
     for (auto& kind : ext::standard_extensions(m_eo))
       if (m_options.kinds.empty() ||
           std::find(m_options.kinds.begin(), m_options.kinds.end(), kind->kind()) != m_options.kinds.end())
@@ -715,7 +844,7 @@ class Diagnoser {
   /// kinds that add no DOF, the others ranked by their priority or the misfit
   /// at their grids.
   void screen() {
-    const translators::FeModel& nominal = *m_base.front().fe;
+    const translators::FeModel& nominal = *m_base.configurations.front().fe;
     std::map<std::int64_t, double> grid_weight;
     for (const auto& g : m_dg.evidence.grid_misfit) grid_weight[g.grid] += g.share;
     for (const auto& u : m_dg.evidence.unpaired_test)
@@ -732,7 +861,7 @@ class Diagnoser {
                0.1 + 0.05 * static_cast<double>(screened_so_far) / static_cast<double>(total));
         auto deriv = kind->screening(nominal, m_cands[q][i]);
         if (deriv) {
-          m_columns.push_back(screen_column(m_screen, *m_base.front().model, m_sol_star.eigenvalues, m_base.front().sensors,
+          m_columns.push_back(screen_column(m_screen, *m_base.configurations.front().model, m_sol_star.eigenvalues, m_base.configurations.front().sensors,
                                             deriv->dK[0], deriv->dM[0], deriv->prior_std.at(0)));
           m_column_of.push_back({q, i});
           m_scored[q].push_back({0.0, i, static_cast<int>(m_columns.size()) - 1});
@@ -773,7 +902,7 @@ class Diagnoser {
 
   /// 2. The shortlist: each kind's best candidates by gain (or rank).
   void make_shortlist() {
-    const auto a_size = m_base.front().fe->reduction().a_to_g.size();
+    const auto a_size = m_base.configurations.front().fe->reduction().a_to_g.size();
     for (std::size_t q = 0; q < m_kinds.size(); ++q) {
       const auto& kind = m_kinds[q];
       if (m_cands[q].empty()) continue;
@@ -797,7 +926,7 @@ class Diagnoser {
 
   /// 3. Exact re-estimation of the shortlist.
   void test_shortlist() {
-    const translators::FeModel& nominal = *m_base.front().fe;
+    const translators::FeModel& nominal = *m_base.configurations.front().fe;
     const auto n_short = static_cast<long>(m_shortlist.size());
     for (std::size_t k = 0; k < m_shortlist.size(); ++k) {
       const auto& s = m_shortlist[k];
@@ -853,10 +982,20 @@ class Diagnoser {
   }
 
   /// The noise the comparisons of fits use: the estimates' σ.
+  /// The assumed shape σ in % of the RMS component: the study's, or its
+  /// absolute σ on the unit shape of the first configuration's sensors
+  /// (deck_study.hpp: σ = (pct/100)/√n_s).
+  double assumed_shape_pct() const {
+    const Study& st = m_options.study;
+    if (!st.shape_std) return st.shape_std_pct;
+    const auto ns = static_cast<double>(m_base.configurations.front().dofs.size());
+    return *st.shape_std * 100.0 * std::sqrt(std::max(ns, 1.0));
+  }
+
   FitNoise fit_noise() const {
     FitNoise n;
     n.frequency_pct = m_dg.noise.frequency_pct;
-    const auto ns = static_cast<double>(m_base.front().dofs.size());  // the sensors the shapes have
+    const auto ns = static_cast<double>(m_base.configurations.front().dofs.size());  // the sensors the shapes have
     n.shape_unit = m_dg.noise.shape_pct / 100.0 / std::sqrt(std::max(ns, 1.0));
     return n;
   }
@@ -909,7 +1048,7 @@ class Diagnoser {
     const auto& kinds = m_kinds;
     const auto& cands = m_cands;
     const auto& column_of = m_column_of;
-    const translators::FeModel* nominal = m_base.front().fe.get();
+    const translators::FeModel* nominal = m_base.configurations.front().fe.get();
     if (dg.cause >= 0 && !dg.interrupted && m_screening &&
         dg.ranking[static_cast<std::size_t>(dg.cause)].screening_column >= 0) {
       try {
@@ -919,11 +1058,12 @@ class Diagnoser {
         // second search (the cause's parameter is one of its own); every other
         // screened candidate gets its column at that model.
         report(options.progress, "a second effect: screening at the cause's model", 0.95);
-        DeckProblem pb1 = engine.problem(first.deck_text, first.added);
+        EstimationProblem ep1 = engine.problem(first.deck_text, first.added);
+        PreparedConfiguration& pb1 = ep1.configurations.front();
         std::vector<UpdatePair> pairs1;
         for (const auto& p : first.pairs)
           if (p.config == 0) pairs1.push_back(p);
-        const Screen sc1 = prepare_screen(pb1, first.estimate, pairs1, engine.options().problem);
+        const Screen sc1 = prepare_screen(pb1, ep1.prior, first.estimate, pairs1, ep1.options);
         const ModalSolution sol1 = pb1.model->solve(first.estimate);
         std::vector<int> kept;
         std::vector<Eigen::VectorXd> cols;
@@ -943,8 +1083,8 @@ class Diagnoser {
                0.96);
         Screening ext_screen(sc1.lin, std::move(U1), options.calibration);
         ext_screen.bootstrap();
-        dg.noise.frequency_pct_cause = engine.options().problem.frequency_std_pct * ext_screen.noise().scale[kFrequencyRows];
-        dg.noise.shape_pct_cause = engine.options().problem.shape_std_pct * ext_screen.noise().scale[kShapeRows];
+        dg.noise.frequency_pct_cause = dg.noise.frequency_pct * ext_screen.noise().scale[kFrequencyRows];
+        dg.noise.shape_pct_cause = dg.noise.shape_pct * ext_screen.noise().scale[kShapeRows];
         SecondEffect& se = dg.second;
         se.tested = true;
         int best = -1;

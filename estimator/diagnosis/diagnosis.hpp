@@ -43,23 +43,35 @@
 #include <vector>
 
 #include "estimator/diagnosis/calibration.hpp"
-#include "estimator/diagnosis/deck_problem.hpp"
 #include "estimator/diagnosis/evidence.hpp"
 #include "estimator/reporting/progress.hpp"
 #include "estimator/diagnosis/hypotheses/model_extension.hpp"
+#include "estimator/study/deck_study.hpp"
 
 namespace ssid::estimator::diagnosis {
 
-/// One tested configuration: deck text (name for INCLUDEs and messages) and
-/// its measured modes labelled by grid id.
+/// One tested configuration: deck text (`name`: the deck's path or name, for
+/// INCLUDEs and messages) and its measured modes, labelled by test node (grid
+/// ids, or nodes at `nodes`' positions when the study maps by position); a
+/// mode set without DOFs is frequencies only.
 struct ConfigurationInput {
   std::string name;
   std::string deck_text;
   translators::ModeSet measured;
+  std::vector<translators::TestNode> nodes = {};
+  std::string measured_name = {};  ///< the measured file (messages)
+  std::string configuration = {};  ///< the study's configuration name (its fixed pairs)
 };
 
 struct DiagnosisOptions {
-  DeckProblemOptions problem;
+  /// The estimation problem's settings — noise, priors, pairs, pairing, modes —
+  /// as `ssid estimate` takes them from its study file (deck_study.hpp): every
+  /// hypothesis is built by the same builder, so the "parameter" hypothesis is
+  /// what `ssid estimate` computes. Its `configurations` are not used here
+  /// (the configurations are diagnose()'s argument).
+  Study study;
+  /// Reports of every estimate's cycles (each solve, each step halving).
+  Progress update_progress;
   estimator::diagnosis::hypotheses::ExtensionOptions extension;
   std::vector<std::string> kinds;  ///< extension kinds to try; empty: all
   int shortlist = 3;               ///< candidates per kind re-estimated exactly
@@ -86,6 +98,7 @@ struct Hypothesis {
   std::vector<std::string> names;  ///< every parameter (deck DESVARs, then the new ones)
   std::vector<estimator::diagnosis::hypotheses::NewParameter> added;
   Eigen::VectorXd estimate, posterior_std, prior_mean;
+  Eigen::MatrixXd posterior_cov;  ///< Eq. (8), every parameter
   double log_evidence = 0;   ///< Laplace, paired data only
   double miss_penalty = 0;   ///< Σ log p_miss over unpaired test modes (≤ 0)
   double look_elsewhere = 0; ///< log N_kind
@@ -168,10 +181,16 @@ struct Diagnosis {
   bool partial() const { return !partial_reason.empty(); }
 };
 
+/// Reads the study's "diagnosis" section (Study::diagnosis) into `options`:
+/// kinds, shortlist, decision_margin, hold_back, mass_prior_fraction,
+/// stiffness_prior_fraction, miss_frequency_pct. Unknown keys and wrong types
+/// throw formats::InputError naming the study file and the key path.
+void read_diagnosis_section(const Study& study, DiagnosisOptions& options);
+
 /// Runs the phases of the file comment. Bad input (decks, test data) throws
 /// formats::InputError; a failed ordinary update formats::NumericalError; a
 /// candidate that fails either way is left out with a note. Interrupted thrown
-/// by `options.progress` (or by `options.problem.update_progress`) returns the
+/// by `options.progress` (or by `options.update_progress`) returns the
 /// diagnosis so far, marked partial, once the ordinary update has a cycle;
 /// before that it passes to the caller.
 Diagnosis diagnose(const std::vector<ConfigurationInput>& configurations, const DiagnosisOptions& options);

@@ -13,13 +13,13 @@ namespace ssid::estimator::diagnosis {
 namespace {
 
 /// Shares of a sensor vector per grid, largest first.
-std::vector<GridShare> shares(const std::vector<translators::MeasuredDof>& dofs, const Eigen::VectorXd& v,
+std::vector<GridShare> shares(const std::vector<std::int64_t>& grids, const Eigen::VectorXd& v,
                               std::size_t keep) {
   std::map<std::int64_t, double> by;
   double total = 0;
-  for (std::size_t k = 0; k < dofs.size(); ++k) {
+  for (std::size_t k = 0; k < grids.size(); ++k) {
     const double x = v(static_cast<Eigen::Index>(k)) * v(static_cast<Eigen::Index>(k));
-    by[dofs[k].node] += x;
+    by[grids[k]] += x;
     total += x;
   }
   std::vector<GridShare> out;
@@ -31,7 +31,7 @@ std::vector<GridShare> shares(const std::vector<translators::MeasuredDof>& dofs,
 
 }  // namespace
 
-Evidence gather_evidence(DeckProblem& pb, const Eigen::VectorXd& r, const std::vector<UpdatePair>& pairs) {
+Evidence gather_evidence(PreparedConfiguration& pb, const Eigen::VectorXd& r, const std::vector<UpdatePair>& pairs) {
   const ModalSolution sol = pb.model->solve(r);
   Evidence ev;
   const auto& test = pb.test;
@@ -45,7 +45,7 @@ Evidence gather_evidence(DeckProblem& pb, const Eigen::VectorXd& r, const std::v
   Eigen::MatrixXd U = sol.sensor_shapes;
   for (Eigen::Index j = 0; j < U.cols(); ++j)
     if (U.col(j).norm() > 0) U.col(j).normalize();
-  const auto ns = static_cast<double>(pb.dofs.size());
+  const auto ns = static_cast<double>(pb.sensor_grids.size());
   std::map<std::int64_t, double> grid_e;
   double max_test_hz = 0;
   std::vector<double> errs, freqs;
@@ -75,16 +75,16 @@ Evidence gather_evidence(DeckProblem& pb, const Eigen::VectorXd& r, const std::v
         u.normalize();
         if (u.dot(z) < 0) u = -u;
         const Eigen::VectorXd e = z - u;
-        me.error_grids = shares(pb.dofs, e, 3);
+        me.error_grids = shares(pb.sensor_grids, e, 3);
         const double s2 = t.shape_std > 0 ? t.shape_std * t.shape_std : 1.0 / ns;
-        for (std::size_t k = 0; k < pb.dofs.size(); ++k)
-          grid_e[pb.dofs[k].node] += e(static_cast<Eigen::Index>(k)) * e(static_cast<Eigen::Index>(k)) / s2;
+        for (std::size_t k = 0; k < pb.sensor_grids.size(); ++k)
+          grid_e[pb.sensor_grids[k]] += e(static_cast<Eigen::Index>(k)) * e(static_cast<Eigen::Index>(k)) / s2;
       }
     } else {
       UnpairedTestMode u;
       u.id = t.id;
       u.frequency_hz = t.frequency_hz;
-      if (z.size()) u.moves = shares(pb.dofs, z, 5);
+      if (z.size()) u.moves = shares(pb.sensor_grids, z, 5);
       u.mems_error = me.mems_error;
       ev.unpaired_test.push_back(u);
     }

@@ -16,7 +16,7 @@
 #include <string>
 #include <vector>
 
-#include "estimator/diagnosis/deck_problem.hpp"
+#include "estimator/study/deck_study.hpp"
 #include "estimator/reporting/number_text.hpp"
 
 namespace ssid::estimator::diagnosis {
@@ -57,8 +57,8 @@ struct Evidence {
   std::vector<std::string> findings;
 };
 
-/// Builds the evidence from one problem solved at `r` and the pairs of the
-/// update's final cycle.
-Evidence gather_evidence(DeckProblem& problem, const Eigen::VectorXd& r, const std::vector<UpdatePair>& pairs);
+/// Builds the evidence from one configuration solved at `r` and the pairs of
+/// the update's final cycle.
+Evidence gather_evidence(PreparedConfiguration& problem, const Eigen::VectorXd& r, const std::vector<UpdatePair>& pairs);
 
 }  // namespace ssid::estimator::diagnosis

@@ -1,4 +1,5 @@
 #include "estimator/study/deck_study.hpp"
+#include "estimator/study/study_reader.hpp"
 
 #include <Eigen/Dense>
 #include <algorithm>
@@ -25,71 +26,6 @@ namespace ssid::estimator {
 namespace {
 
 using json = nlohmann::json;
-
-// ---------------------------------------------------------------------------
-// Study file parsing: every value goes through these readers, so every error
-// names the file and the key path.
-
-class StudyReader {
- public:
-  explicit StudyReader(std::string source) : m_source(std::move(source)) {}
-
-  [[noreturn]] void fail(const std::string& path, const std::string& what) const {
-    throw formats::InputError(m_source + ": " + path + ": " + what);
-  }
-  static std::string shown(const json& v) {
-    std::string s = v.dump();
-    return s.size() > 60 ? s.substr(0, 57) + "..." : s;
-  }
-  void keys(const json& obj, const std::string& path, const std::set<std::string>& allowed) const {
-    if (!obj.is_object()) fail(path.empty() ? "(top level)" : path, "expected an object, got " + shown(obj));
-    for (const auto& [k, v] : obj.items())
-      if (!allowed.count(k)) {
-        std::string list;
-        for (const auto& a : allowed) list += (list.empty() ? "" : ", ") + a;
-        fail(path.empty() ? k : path + "." + k, "unknown key (allowed here: " + list + ")");
-      }
-  }
-  double number(const json& v, const std::string& path, bool positive = false, bool non_negative = false) const {
-    if (!v.is_number()) fail(path, "expected a number, got " + shown(v));
-    const double x = v.get<double>();
-    if (!std::isfinite(x)) fail(path, "expected a finite number");
-    if (positive && !(x > 0)) fail(path, "expected a positive number, got " + shown(v));
-    if (non_negative && x < 0) fail(path, "expected a number >= 0, got " + shown(v));
-    return x;
-  }
-  int integer(const json& v, const std::string& path, int min = 1) const {
-    if (!v.is_number_integer()) fail(path, "expected an integer, got " + shown(v));
-    const auto x = v.get<long long>();
-    if (x < min || x > 1000000000) fail(path, "expected an integer >= " + std::to_string(min) + ", got " + shown(v));
-    return static_cast<int>(x);
-  }
-  bool boolean(const json& v, const std::string& path) const {
-    if (!v.is_boolean()) fail(path, "expected true or false, got " + shown(v));
-    return v.get<bool>();
-  }
-  std::string text(const json& v, const std::string& path) const {
-    if (!v.is_string()) fail(path, "expected a string, got " + shown(v));
-    return v.get<std::string>();
-  }
-  std::string choice(const json& v, const std::string& path, const std::vector<std::string>& options) const {
-    const std::string s = text(v, path);
-    for (const auto& o : options)
-      if (s == o) return s;
-    std::string list;
-    for (const auto& o : options) list += (list.empty() ? "" : ", ") + o;
-    fail(path, "expected one of " + list + ", got " + shown(v));
-  }
-  std::vector<int> integers(const json& v, const std::string& path) const {
-    if (!v.is_array()) fail(path, "expected an array of mode numbers, got " + shown(v));
-    std::vector<int> out;
-    for (std::size_t i = 0; i < v.size(); ++i) out.push_back(integer(v[i], path + "[" + std::to_string(i) + "]", 0));
-    return out;
-  }
-
- private:
-  std::string m_source;
-};
 
 std::string folder_of(const std::string& path) {
   const auto slash = path.find_last_of('/');
@@ -118,6 +54,14 @@ LoadedDeck load_deck(const std::string& path) {
   return l;
 }
 
+/// A deck held in memory (`name`: INCLUDEs resolve from its folder; messages).
+LoadedDeck load_deck_text(const std::string& text, const std::string& name) {
+  LoadedDeck l;
+  l.deck = std::make_shared<formats::Deck>(formats::read_deck_text(text, name));
+  l.fe = translators::assemble_deck(*l.deck, name);
+  return l;
+}
+
 /// Where the parameters' units come from, for the summary.
 std::string units_note(const translators::DeckUnits& du) {
   if (du.source.empty())
@@ -137,14 +81,21 @@ double default_prior_std(double x, double lo, double hi) {
 }
 
 /// The eigen-solve the estimator uses: the CHOLMOD shift-invert Lanczos,
-/// analysis kept between cycles (the sparsity never changes).
-OperatorModel::EigenSolve make_eigen_solve(const std::string& who, const std::string& method = "auto") {
+/// analysis kept between cycles (the sparsity never changes). The lowest
+/// `nmodes`; when they stop below `band_hz`, the lowest `max_modes` instead
+/// (models with many local modes below and among the tested global ones).
+OperatorModel::EigenSolve make_eigen_solve(const std::string& who, const std::string& method = "auto",
+                                           double band_hz = 0, int max_modes = 0) {
   auto solver = std::make_shared<EigenSolver>();
   if (method == "spectra") solver->options().method = EigenMethod::Spectra;
   if (method == "block-lanczos") solver->options().method = EigenMethod::BlockLanczos;
-  return [solver, who](const SparseMatrix& K, const SparseMatrix& M, int nmodes) {
+  return [solver, who, band_hz, max_modes](const SparseMatrix& K, const SparseMatrix& M, int nmodes) {
     solver->options().nd = nmodes;
     EigenResult r = solver->solve(K, M);
+    if (r.ok() && r.size() >= nmodes && r.cycles(r.size() - 1) < band_hz && nmodes < max_modes) {
+      solver->options().nd = max_modes;
+      r = solver->solve(K, M);
+    }
     if (!r.ok()) throw_solve_failure(r, who + ": eigen-solve failed: " + r.message);
     if (r.size() < nmodes)
       throw formats::NumericalError(who + ": eigen-solve returned " + std::to_string(r.size()) + " of " +
@@ -179,9 +130,9 @@ Study parse_study(const json& j, const std::string& source) {
   const StudyReader rd(source);
   Study s;
   s.source = source;
-  rd.keys(j, "", {"title", "parameters", "priors", "measurement", "pairing", "mapping", "modes", "configurations",
+  rd.keys(j, "", {"title", "parameters", "priors", "measurement", "pairing", "pairs", "mapping", "modes", "configurations",
                   "convergence", "recursive", "sensitivity", "operators", "analysis_modes", "eigen_method", "identifiability",
-                  "comment"});
+                  "prior_std_pct", "diagnosis", "comment"});
   if (j.contains("title")) s.title = rd.text(j["title"], "title");
   if (j.contains("parameters")) {
     const auto& p = j["parameters"];
@@ -203,17 +154,46 @@ Study parse_study(const json& j, const std::string& source) {
       s.priors[formats::detail::upper(label)] = ps;
     }
   }
+  if (j.contains("prior_std_pct")) s.prior_std_pct = rd.number(j["prior_std_pct"], "prior_std_pct", true);
   if (j.contains("measurement")) {
     const auto& m = j["measurement"];
-    rd.keys(m, "measurement", {"frequency_std_pct", "shape_std", "use_shapes"});
+    rd.keys(m, "measurement", {"frequency_std_pct", "shape_std", "shape_std_pct", "use_shapes", "frequencies_only"});
     if (m.contains("frequency_std_pct"))
       s.frequency_std_pct = rd.number(m["frequency_std_pct"], "measurement.frequency_std_pct", true);
     if (m.contains("shape_std")) s.shape_std = rd.number(m["shape_std"], "measurement.shape_std", true);
+    if (m.contains("shape_std_pct")) s.shape_std_pct = rd.number(m["shape_std_pct"], "measurement.shape_std_pct", true);
+    if (m.contains("shape_std") && m.contains("shape_std_pct"))
+      rd.fail("measurement", "give \"shape_std\" or \"shape_std_pct\", not both");
     if (m.contains("use_shapes")) s.use_shapes = rd.boolean(m["use_shapes"], "measurement.use_shapes");
+    if (m.contains("frequencies_only"))
+      s.frequencies_only = rd.boolean(m["frequencies_only"], "measurement.frequencies_only");
+  }
+  if (j.contains("pairs")) {
+    const auto& p = j["pairs"];
+    if (!p.is_array())
+      rd.fail("pairs", "expected an array of {\"test_mode\", \"fe_mode\"} (and \"configuration\"), got " +
+                           StudyReader::shown(p));
+    for (std::size_t i = 0; i < p.size(); ++i) {
+      const std::string path = "pairs[" + std::to_string(i) + "]";
+      rd.keys(p[i], path, {"configuration", "test_mode", "fe_mode", "comment"});
+      FixedPair fp;
+      if (p[i].contains("configuration")) fp.configuration = rd.text(p[i]["configuration"], path + ".configuration");
+      if (!p[i].contains("test_mode")) rd.fail(path, "needs \"test_mode\" (the measured mode number)");
+      if (!p[i].contains("fe_mode")) rd.fail(path, "needs \"fe_mode\" (the analysis mode, 1-based)");
+      fp.test_mode = rd.integer(p[i]["test_mode"], path + ".test_mode", 0);
+      fp.fe_mode = rd.integer(p[i]["fe_mode"], path + ".fe_mode", 1);
+      for (const auto& q : s.pairs)
+        if (q.configuration == fp.configuration && (q.test_mode == fp.test_mode || q.fe_mode == fp.fe_mode))
+          rd.fail(path, "test mode " + std::to_string(fp.test_mode) + " or analysis mode " + std::to_string(fp.fe_mode) +
+                            " is paired twice");
+      s.pairs.push_back(fp);
+    }
   }
   if (j.contains("pairing")) {
     const auto& p = j["pairing"];
-    rd.keys(p, "pairing", {"mac_min", "frequency_window_pct", "track_mac_min"});
+    rd.keys(p, "pairing", {"mac_min", "frequency_window_pct", "track_mac_min", "track_on"});
+    if (p.contains("track_on"))
+      s.track_on_sensors = rd.choice(p["track_on"], "pairing.track_on", {"sensors", "all"}) == "sensors";
     if (p.contains("mac_min")) s.mac_min = rd.number(p["mac_min"], "pairing.mac_min", false, true);
     if (p.contains("frequency_window_pct"))
       s.frequency_window_pct = rd.number(p["frequency_window_pct"], "pairing.frequency_window_pct", true);
@@ -278,6 +258,10 @@ Study parse_study(const json& j, const std::string& source) {
   if (j.contains("analysis_modes")) s.analysis_modes = rd.integer(j["analysis_modes"], "analysis_modes");
   if (j.contains("eigen_method"))
     s.eigen_method = rd.choice(j["eigen_method"], "eigen_method", {"auto", "spectra", "block-lanczos"});
+  if (j.contains("diagnosis")) {
+    if (!j["diagnosis"].is_object()) rd.fail("diagnosis", "expected an object, got " + StudyReader::shown(j["diagnosis"]));
+    s.diagnosis = j["diagnosis"];
+  }
   if (j.contains("identifiability")) {
     const auto& i = j["identifiability"];
     rd.keys(i, "identifiability", {"uninformed_ratio", "strong_correlation"});
@@ -321,26 +305,7 @@ void set_options(const Study& study, EstimationProblem& problem) {
   problem.options.mac_min = study.mac_min;
   problem.options.freq_tol_pct = study.frequency_window_pct;
   problem.options.track_mac_min = study.track_mac_min;
-  problem.options.shape_derivatives = study.use_shapes;
-}
-
-/// The study's configurations with the command line's deck and measured file
-/// filled in where a configuration names none (one configuration when the study
-/// has none).
-std::vector<StudyConfiguration> configurations_with_files(const Study& study, const std::string& deck,
-                                                          const std::string& measured) {
-  std::vector<StudyConfiguration> configs = study.configurations;
-  if (configs.empty()) configs.push_back({"", "", "", std::nullopt});
-  for (auto& c : configs) {
-    if (c.deck.empty()) c.deck = deck;
-    if (c.measured.empty()) c.measured = measured;
-    if (c.deck.empty())
-      throw formats::InputError(study.source + ": configuration '" + c.name + "' names no deck and none was given");
-    if (c.measured.empty())
-      throw formats::InputError(study.source + ": configuration '" + c.name +
-                                  "' names no measured universal file and none was given");
-  }
-  return configs;
+  problem.options.shape_derivatives = study.use_shapes && !study.frequencies_only;
 }
 
 /// The estimated parameters' labels (upper case): the study's list, or every
@@ -394,6 +359,7 @@ void set_prior(const Study& study, const std::vector<std::string>& labels, const
     const auto& d = params[index[static_cast<std::size_t>(j)]];
     problem.desvar_ids.push_back(d.id);
     double mean = d.initial, s = default_prior_std(d.initial, d.lower, d.upper);
+    if (study.prior_std_pct && d.initial != 0) s = *study.prior_std_pct / 100.0 * std::abs(d.initial);
     if (auto it = study.priors.find(labels[static_cast<std::size_t>(j)]); it != study.priors.end()) {
       if (it->second.mean) mean = *it->second.mean;
       if (it->second.std) s = *it->second.std;
@@ -419,32 +385,24 @@ void set_prior(const Study& study, const std::vector<std::string>& labels, const
   problem.units_note = units_note(du);
 }
 
-/// The real normal modes of a measured file, with its problems as notes.
-translators::ModeSet read_measured_modes(const formats::uff::UffFile& file, const std::string& measured,
-                                         PreparedConfiguration& pc) {
-  translators::ModeSetReport rep;
-  translators::ModeSet set = translators::modes_from_uff(file, &rep);
-  for (const auto& pr : rep.problems) pc.notes.push_back(measured + ": " + pr);
-  if (rep.complex_modes)
-    pc.notes.push_back(measured + ": " + std::to_string(rep.complex_modes) +
-                       " complex mode(s) read and not used (the update uses real normal modes)");
-  if (set.frequency_hz.empty())
-    throw formats::InputError(measured + ": no real normal modes (dataset 55, analysis type 2) to estimate from");
-  return set;
-}
-
 /// Which row of the measured shapes each sensor row of pc.sensors holds.
 using ShapeRows = std::vector<Eigen::Index>;
 
 /// Test nodes onto grids, measured DOFs onto analysis DOFs: pc.sensors (the
-/// observation matrix on the a-set, rows that see an analysis DOF only) and
-/// their labels. Returns the measured shapes' row of each sensor.
-ShapeRows map_sensors(const Study& study, const StudyConfiguration& sc, const formats::uff::UffFile& file,
-                      const translators::ModeSet& set, const translators::FeModel& fe, PreparedConfiguration& pc) {
+/// observation matrix on the a-set, rows that see an analysis DOF only), their
+/// labels and grids. Returns the measured shapes' row of each sensor. Data
+/// without shapes has no sensors.
+ShapeRows map_sensors(const Study& study, const ConfigurationSource& sc, const translators::FeModel& fe,
+                      PreparedConfiguration& pc) {
+  const translators::ModeSet& set = sc.data.modes;
+  const auto na = static_cast<Eigen::Index>(fe.reduction().a_to_g.size());
+  if (set.dofs.empty()) {
+    pc.sensors = SparseMatrix(0, na);
+    return {};
+  }
   std::vector<translators::GridPosition> grids;
   for (const auto& g : fe.geometry().grids()) grids.push_back({g.id, g.x, g.frame});
-  std::vector<translators::TestNode> nodes;
-  for (const auto& n : file.nodes()) nodes.push_back({n.id, Eigen::Vector3d(n.xyz[0], n.xyz[1], n.xyz[2]), n.displacement_cs});
+  std::vector<translators::TestNode> nodes = sc.data.nodes;
   std::set<std::int64_t> shape_nodes;
   for (const auto& d : set.dofs) shape_nodes.insert(d.node);
   if (nodes.empty()) {
@@ -485,7 +443,9 @@ ShapeRows map_sensors(const Study& study, const StudyConfiguration& sc, const fo
     }
     keep_rows.push_back(static_cast<Eigen::Index>(i));
     shape_rows.push_back(dof_row.at({md.node, md.direction}));
-    pc.sensor_labels.push_back(std::to_string(*mapping.grid_of(md.node)) + ":" + std::to_string(md.direction));
+    const std::int64_t grid = *mapping.grid_of(md.node);
+    pc.sensor_labels.push_back(std::to_string(grid) + ":" + std::to_string(md.direction));
+    pc.sensor_grids.push_back(grid);
   }
   if (constrained)
     pc.notes.push_back(sc.measured + ": " + std::to_string(constrained) +
@@ -500,16 +460,41 @@ ShapeRows map_sensors(const Study& study, const StudyConfiguration& sc, const fo
   return shape_rows;
 }
 
-/// The measured modes the study's selection keeps, at the sensor rows, with
-/// their σ (pc.test, pc.test_numbers).
-void select_measured_modes(const Study& study, const StudyConfiguration& sc, const std::string& who,
-                           const translators::ModeSet& set, const ShapeRows& shape_rows, PreparedConfiguration& pc) {
+/// The analyst's pairs of configuration `sc` (index `k`): test mode number →
+/// analysis mode (0-based).
+std::map<int, int> fixed_pairs_of(const Study& study, const ConfigurationSource& sc, std::size_t k) {
+  std::map<int, int> out;
+  for (const auto& fp : study.pairs)
+    if (fp.configuration == sc.name || (fp.configuration.empty() && k == 0)) out[fp.test_mode] = fp.fe_mode - 1;
+  return out;
+}
+
+/// Measured mode `m` of `set` at the sensor rows, with the study's σ.
+MeasuredMode measured_mode(const Study& study, const translators::ModeSet& set, std::size_t m, const ShapeRows& shape_rows) {
   const auto ns = static_cast<Eigen::Index>(shape_rows.size());
-  const double shape_std = study.shape_std ? *study.shape_std : (ns ? 0.05 / std::sqrt(static_cast<double>(ns)) : 0.0);
+  MeasuredMode mm;
+  mm.id = m < set.numbers.size() ? set.numbers[m] : static_cast<int>(m + 1);
+  mm.frequency_hz = set.frequency_hz[m];
+  mm.frequency_std_hz = study.frequency_std_pct / 100.0 * mm.frequency_hz;
+  mm.shape.resize(ns);
+  for (Eigen::Index r = 0; r < ns; ++r) mm.shape(r) = set.shapes(shape_rows[static_cast<std::size_t>(r)], static_cast<Eigen::Index>(m));
+  if (ns == 0 || mm.shape.norm() == 0) mm.shape.resize(0);
+  mm.shape_std =
+      study.shape_std ? *study.shape_std : (ns ? study.shape_std_pct / 100.0 / std::sqrt(static_cast<double>(ns)) : 0.0);
+  mm.use_shape = study.use_shapes && mm.shape.size() > 0;
+  return mm;
+}
+
+/// The measured modes the study's selection keeps, at the sensor rows, with
+/// their σ and fixed partners (pc.test, pc.test_numbers).
+void select_measured_modes(const Study& study, const ConfigurationSource& sc, std::size_t k, const std::string& who,
+                           const ShapeRows& shape_rows, PreparedConfiguration& pc) {
+  const translators::ModeSet& set = sc.data.modes;
   const auto& sel = study.modes;
+  const std::map<int, int> fixed = fixed_pairs_of(study, sc, k);
   std::vector<int> left_out;
   for (std::size_t m = 0; m < set.frequency_hz.size(); ++m) {
-    const int number = set.numbers[m];
+    const int number = m < set.numbers.size() ? set.numbers[m] : static_cast<int>(m + 1);
     const double f = set.frequency_hz[m];
     const bool chosen = (sel.modes.empty() || contains(sel.modes, number)) && !contains(sel.exclude, number) &&
                         f >= sel.min_hz && f <= sel.max_hz;
@@ -522,22 +507,21 @@ void select_measured_modes(const Study& study, const StudyConfiguration& sc, con
                          " Hz: left out (rigid-body or bad data)");
       continue;
     }
-    MeasuredMode mm;
+    MeasuredMode mm = measured_mode(study, set, m, shape_rows);
     mm.id = number;
-    mm.frequency_hz = f;
-    mm.frequency_std_hz = study.frequency_std_pct / 100.0 * f;
-    mm.shape.resize(ns);
-    for (Eigen::Index r = 0; r < ns; ++r) mm.shape(r) = set.shapes(shape_rows[static_cast<std::size_t>(r)], static_cast<Eigen::Index>(m));
-    if (ns == 0 || mm.shape.norm() == 0) mm.shape.resize(0);
-    mm.shape_std = shape_std;
     mm.use_frequency = !contains(sel.shape_only, number);
-    mm.use_shape = study.use_shapes && !contains(sel.frequency_only, number) && mm.shape.size() > 0;
+    mm.use_shape = mm.use_shape && !contains(sel.frequency_only, number);
+    if (auto it = fixed.find(number); it != fixed.end()) mm.fixed_partner = it->second;
     pc.test.push_back(mm);
     pc.test_numbers.push_back(number);
   }
   for (int n : sel.modes)
     if (!contains(set.numbers, n))
       throw formats::InputError(study.source + ": modes.use: " + sc.measured + " has no mode " + std::to_string(n));
+  for (const auto& [n, j] : fixed)
+    if (!contains(pc.test_numbers, n))
+      throw formats::InputError(study.source + ": pairs: test mode " + std::to_string(n) + " is not among the modes of " +
+                                sc.measured + " the estimate uses");
   if (!left_out.empty()) {
     std::string l;
     for (int n : left_out) l += " " + std::to_string(n);
@@ -548,7 +532,7 @@ void select_measured_modes(const Study& study, const StudyConfiguration& sc, con
 
 /// The analysis DOFs, the number of analysis modes, and the modal model at
 /// parameter values (exact re-assembly or the Taylor operators).
-void attach_model(const Study& study, const StudyConfiguration& sc, const std::string& who, const LoadedDeck& ld,
+void attach_model(const Study& study, const ConfigurationSource& sc, const std::string& who, const LoadedDeck& ld,
                   const std::vector<std::size_t>& index, const EstimationProblem& problem, PreparedConfiguration& pc) {
   const translators::FeModel& fe = *ld.fe;
   const translators::DofMap& gset = fe.geometry().gset();
@@ -557,15 +541,26 @@ void attach_model(const Study& study, const StudyConfiguration& sc, const std::s
     pc.dofs.emplace_back(d.point, d.component);
   }
   const int na = static_cast<int>(pc.dofs.size());
+  int fixed_max = 0;
+  for (const auto& t : pc.test) fixed_max = std::max(fixed_max, t.fixed_partner + 1);
+  const bool given = sc.analysis_modes || study.analysis_modes;
   int nmodes = sc.analysis_modes    ? *sc.analysis_modes
                : study.analysis_modes ? *study.analysis_modes
-                                      : 2 * static_cast<int>(pc.test.size()) + 6;
-  nmodes = std::min(nmodes, na - 1);
+                                      : 2 * static_cast<int>(pc.test.size()) + study.extra_analysis_modes;
+  nmodes = std::min(std::max(nmodes, fixed_max), na - 1);
   if (nmodes < static_cast<int>(pc.test.size()))
     pc.notes.push_back("only " + std::to_string(nmodes) + " analysis modes for " + std::to_string(pc.test.size()) +
                        " test modes");
   if (nmodes < 1) throw formats::InputError(sc.deck + ": the model has too few analysis DOFs (" + std::to_string(na) + ")");
+  if (fixed_max > nmodes)
+    throw formats::InputError(study.source + ": pairs: analysis mode " + std::to_string(fixed_max) + " of " + who +
+                              " does not exist (the model has " + std::to_string(na) + " analysis DOFs)");
   pc.analysis_modes = nmodes;
+  // The band rule only where the study does not name the number of modes.
+  double f_max = 0;
+  for (const auto& t : pc.test) f_max = std::max(f_max, t.frequency_hz);
+  const double band_hz = given ? 0.0 : study.analysis_band_factor * f_max;
+  const int max_modes = std::min(na - 1, std::max(study.max_analysis_modes, nmodes));
 
   Eigen::VectorXd x_fixed = fe.initial_parameters();
   for (std::size_t j = 0; j < index.size(); ++j)
@@ -576,22 +571,185 @@ void attach_model(const Study& study, const StudyConfiguration& sc, const std::s
   OperatorModel::Assemble assemble = [exact, deck_keep](const Eigen::VectorXd& r) { return exact(r); };
   if (study.operators == OperatorUpdate::Taylor) assemble = taylor_operators(exact(problem.prior.mean), problem.prior.mean);
   pc.assemble = assemble;
-  pc.model = std::make_shared<OperatorModel>(assemble, make_eigen_solve(who, study.eigen_method), pc.sensors, nmodes,
-                                             study.shape_derivative);
+  pc.model = std::make_shared<OperatorModel>(assemble, make_eigen_solve(who, study.eigen_method, band_hz, max_modes),
+                                             pc.sensors, nmodes, study.shape_derivative);
+  pc.model->set_tracking_on_sensors(study.track_on_sensors);
+  if (pc.sensors.rows() == 0)
+    pc.notes.push_back(sc.measured + ": no measured shapes: pairs " + (study.pairs.empty() ? "" : "as fixed, else ") +
+                       "by frequency; modes followed by their shapes at every analysis DOF");
+  pc.fe = ld.fe;
   for (const auto& n : fe.notes()) pc.notes.push_back(sc.deck + ": " + n);
 }
 
 }  // namespace
 
+std::vector<MeasuredMode> measured_at_sensors(const Study& study, const translators::ModeSet& set,
+                                              const PreparedConfiguration& pc) {
+  std::vector<MeasuredMode> out;
+  for (std::size_t m = 0; m < set.frequency_hz.size(); ++m) out.push_back(measured_mode(study, set, m, pc.shape_rows));
+  return out;
+}
+
+// ---------------------------------------------------------------------------
+// Measured data.
+
+translators::ModeSet parse_frequency_list(const std::string& text, const std::string& name, bool is_json) {
+  translators::ModeSet set;
+  auto add = [&](int number, double hz, const std::string& where) {
+    if (!std::isfinite(hz) || !(hz > 0))
+      throw formats::InputError(where + ": expected a positive frequency [Hz], got " + significant(hz, 6));
+    if (contains(set.numbers, number)) throw formats::InputError(where + ": mode " + std::to_string(number) + " is given twice");
+    set.numbers.push_back(number);
+    set.frequency_hz.push_back(hz);
+  };
+  if (is_json) {
+    json j;
+    try {
+      j = json::parse(text);
+    } catch (const json::parse_error& e) {
+      throw formats::InputError(name + ": not valid JSON (byte " + std::to_string(e.byte) + "): " + e.what());
+    }
+    const StudyReader rd(name);
+    if (!j.is_array() || j.empty())
+      rd.fail("(top level)", "expected a non-empty array of frequencies [Hz] or of {\"mode\", \"hz\"}");
+    for (std::size_t i = 0; i < j.size(); ++i) {
+      const std::string path = "[" + std::to_string(i) + "]";
+      if (j[i].is_object()) {
+        rd.keys(j[i], path, {"mode", "hz", "comment"});
+        if (!j[i].contains("hz")) rd.fail(path, "needs \"hz\"");
+        const int number = j[i].contains("mode") ? rd.integer(j[i]["mode"], path + ".mode", 0) : static_cast<int>(i + 1);
+        add(number, rd.number(j[i]["hz"], path + ".hz", true), name + ": " + path);
+      } else {
+        add(static_cast<int>(i + 1), rd.number(j[i], path, true), name + ": " + path);
+      }
+    }
+    return set;
+  }
+  std::istringstream in(text);
+  std::string line;
+  int line_no = 0;
+  bool header_allowed = true;
+  while (std::getline(in, line)) {
+    ++line_no;
+    const std::string where = name + ":" + std::to_string(line_no);
+    if (const auto hash = line.find('#'); hash != std::string::npos) line.resize(hash);
+    std::vector<std::string> fields;
+    std::string field;
+    std::istringstream ls(line);
+    while (std::getline(ls, field, ',')) {
+      const auto b = field.find_first_not_of(" \t\r"), e = field.find_last_not_of(" \t\r");
+      fields.push_back(b == std::string::npos ? "" : field.substr(b, e - b + 1));
+    }
+    if (fields.size() == 1 && fields[0].empty()) continue;
+    if (fields.empty()) continue;
+    auto as_number = [&](const std::string& f, double& x) {
+      std::size_t used = 0;
+      try {
+        x = std::stod(f, &used);
+      } catch (const std::exception&) {
+        return false;
+      }
+      return used == f.size();
+    };
+    double a = 0, b = 0;
+    const bool first_numeric = as_number(fields[0], a);
+    if (!first_numeric && header_allowed) {  // a header line
+      header_allowed = false;
+      continue;
+    }
+    header_allowed = false;
+    if (fields.size() > 2)
+      throw formats::InputError(where + ": expected \"HZ\" or \"MODE, HZ\", got " + std::to_string(fields.size()) + " fields");
+    if (!first_numeric)
+      throw formats::InputError(where + ": expected a number, got \"" + fields[0] + "\"");
+    if (fields.size() == 1) {
+      add(static_cast<int>(set.frequency_hz.size() + 1), a, where);
+    } else {
+      if (!as_number(fields[1], b)) throw formats::InputError(where + ": expected a frequency [Hz], got \"" + fields[1] + "\"");
+      if (a != std::floor(a) || a < 0) throw formats::InputError(where + ": expected a mode number, got \"" + fields[0] + "\"");
+      add(static_cast<int>(a), b, where);
+    }
+  }
+  if (set.frequency_hz.empty()) throw formats::InputError(name + ": no frequency in the list");
+  return set;
+}
+
+MeasuredData read_measured(const std::string& path, bool frequencies_only) {
+  auto ends_with = [&](const std::string& ext) {
+    if (path.size() < ext.size()) return false;
+    std::string tail = path.substr(path.size() - ext.size());
+    for (auto& c : tail) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
+    return tail == ext;
+  };
+  MeasuredData d;
+  if (ends_with(".csv") || ends_with(".txt") || ends_with(".json")) {
+    std::ifstream in(path, std::ios::binary);
+    if (!in) throw formats::InputError(path + ": cannot open the measured file");
+    std::stringstream ss;
+    ss << in.rdbuf();
+    d.modes = parse_frequency_list(ss.str(), path, ends_with(".json"));
+    return d;
+  }
+  const formats::uff::UffFile file = formats::uff::read_uff(path);
+  translators::ModeSetReport rep;
+  d.modes = translators::modes_from_uff(file, &rep);
+  for (const auto& pr : rep.problems) d.notes.push_back(path + ": " + pr);
+  if (rep.complex_modes)
+    d.notes.push_back(path + ": " + std::to_string(rep.complex_modes) +
+                      " complex mode(s) read and not used (the update uses real normal modes)");
+  if (d.modes.frequency_hz.empty())
+    throw formats::InputError(path + ": no real normal modes (dataset 55, analysis type 2) to estimate from");
+  for (const auto& n : file.nodes()) d.nodes.push_back({n.id, Eigen::Vector3d(n.xyz[0], n.xyz[1], n.xyz[2]), n.displacement_cs});
+  if (frequencies_only) {
+    d.modes.dofs.clear();
+    d.modes.shapes.resize(0, static_cast<Eigen::Index>(d.modes.frequency_hz.size()));
+    d.nodes.clear();
+  }
+  return d;
+}
+
+std::vector<ConfigurationSource> load_configurations(const Study& study, const std::string& deck,
+                                                     const std::string& measured) {
+  std::vector<StudyConfiguration> configs = study.configurations;
+  if (configs.empty()) configs.push_back({"", "", "", std::nullopt});
+  std::vector<ConfigurationSource> out;
+  for (auto& c : configs) {
+    if (c.deck.empty()) c.deck = deck;
+    if (c.measured.empty()) c.measured = measured;
+    if (c.deck.empty())
+      throw formats::InputError(study.source + ": configuration '" + c.name + "' names no deck and none was given");
+    if (c.measured.empty())
+      throw formats::InputError(study.source + ": configuration '" + c.name +
+                                  "' names no measured universal file and none was given");
+    // A missing deck is named before its measured file is read.
+    if (!std::ifstream(c.deck)) throw formats::InputError(c.deck + ": cannot open the deck");
+    ConfigurationSource src;
+    src.name = c.name;
+    src.deck = c.deck;
+    src.measured = c.measured;
+    src.data = read_measured(c.measured, study.frequencies_only);
+    src.analysis_modes = c.analysis_modes;
+    out.push_back(std::move(src));
+  }
+  return out;
+}
+
 EstimationProblem prepare_problem(const Study& study, const std::string& deck, const std::string& measured) {
+  return prepare_problem(study, load_configurations(study, deck, measured));
+}
+
+EstimationProblem prepare_problem(const Study& study, const std::vector<ConfigurationSource>& configs) {
   EstimationProblem problem;
   set_options(study, problem);
   std::vector<std::string> labels;  // upper case
-  const std::vector<StudyConfiguration> configs = configurations_with_files(study, deck, measured);
+  for (const auto& fp : study.pairs)
+    if (!fp.configuration.empty() &&
+        std::none_of(configs.begin(), configs.end(), [&](const ConfigurationSource& c) { return c.name == fp.configuration; }))
+      throw formats::InputError(study.source + ": pairs: no configuration named '" + fp.configuration + "'");
   for (std::size_t k = 0; k < configs.size(); ++k) {
     const auto& sc = configs[k];
     const std::string who = sc.name.empty() ? sc.deck : "configuration '" + sc.name + "' (" + sc.deck + ")";
-    const LoadedDeck ld = load_deck(sc.deck);
+    const LoadedDeck ld = sc.deck_text.empty() ? load_deck(sc.deck) : load_deck_text(sc.deck_text, sc.deck);
     const auto& params = ld.fe->parameters();
     if (params.empty())
       throw formats::InputError(sc.deck + ": the deck has no DESVAR: nothing to estimate (add DESVAR and "
@@ -604,10 +762,12 @@ EstimationProblem prepare_problem(const Study& study, const std::string& deck, c
     pc.name = sc.name;
     pc.deck = sc.deck;
     pc.measured = sc.measured;
-    const formats::uff::UffFile file = formats::uff::read_uff(sc.measured);
-    const translators::ModeSet set = read_measured_modes(file, sc.measured, pc);
-    const ShapeRows shape_rows = map_sensors(study, sc, file, set, *ld.fe, pc);
-    select_measured_modes(study, sc, who, set, shape_rows, pc);
+    pc.notes = sc.data.notes;
+    if (sc.data.modes.frequency_hz.empty())
+      throw formats::InputError(sc.measured + ": no measured mode to estimate from");
+    const ShapeRows shape_rows = map_sensors(study, sc, *ld.fe, pc);
+    pc.shape_rows = shape_rows;
+    select_measured_modes(study, sc, k, who, shape_rows, pc);
     attach_model(study, sc, who, ld, index, problem, pc);
     problem.configurations.push_back(std::move(pc));
   }
@@ -760,6 +920,7 @@ EstimationProblem problem_from_file(const formats::ProblemFile& file) {
       pc.assemble = taylor_operators(nominal, problem.prior.mean);
     }
     pc.model = std::make_shared<OperatorModel>(pc.assemble, make_eigen_solve(who), pc.sensors, c.modes, sdk);
+    pc.model->set_tracking_on_sensors(true);  // the study's default (deck_study.hpp)
     problem.configurations.push_back(std::move(pc));
   }
   return problem;

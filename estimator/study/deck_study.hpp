@@ -15,14 +15,31 @@
 ///                              tracking, then the correlation at the answer;
 ///   result_json                the result as `ssid estimate --json` writes it.
 ///
-/// Defaults (every one can be overridden by the study):
+/// Defaults (every one can be overridden by the study). `ssid estimate` and
+/// `ssid diagnose` build their problems here, so both use these:
 ///  - prior mean: DESVAR XINIT; prior σ: half the distance from XINIT to the
 ///    nearer DESVAR bound (the bounds then lie at 2σ or more), or 30 % of |XINIT|
-///    when both bounds are open (|bound| ≥ 1e20), or 1 when XINIT is 0;
+///    when both bounds are open (|bound| ≥ 1e20), or 1 when XINIT is 0 — the
+///    bounds are the analyst's own statement of the plausible range;
 ///  - frequency σ: 1 % of the measured frequency; shape σ (each component of
-///    the unit-normalised test shape): 0.05/√n_s with n_s sensor DOFs;
-///  - pairing: MAC ≥ 0.6 within ±50 % in frequency; tracking MAC ≥ 0.5;
-///  - analysis modes: 2 n_test + 6 (at most the number of analysis DOFs − 1);
+///    the unit-normalised test shape): 5 % of its RMS component, 0.05/√n_s with
+///    n_s sensor DOFs — both above what a good modal test resolves (about 0.2 %
+///    and 2 %): they must also cover the model's own form error, and a σ assumed
+///    too small makes the diagnosis explain noise (issue 26);
+///  - sensors: measured DOFs on constrained analysis DOFs are dropped (they
+///    measure nothing the model can move), with a note;
+///  - pairing: the study's fixed pairs first, then MAC ≥ 0.6 within ±50 % in
+///    frequency (modes without a shape: nearest frequency); modes are followed
+///    from cycle to cycle by MAC ≥ 0.5 of their shapes at the sensors (all the
+///    analysis DOFs when the test has no shapes): strut-local modes crowd the
+///    spectrum of beam models, a global mode mixes with them as parameters move
+///    (veering) and its full shape changes a lot, while at the sensors — which
+///    see global motion — it stays recognisable;
+///  - analysis modes: 2 n_test + 12, or the lowest 120 when those do not reach
+///    1.25 × the highest test frequency (beam models: strut-local modes below
+///    and among the global ones); at least the highest fixed partner; at most
+///    the number of analysis DOFs − 1;
+///  - shape sensitivities by Nelson's method (exact);
 ///  - at most 20 cycles, stop when no parameter moves by 1e-4 prior σ.
 #include <Eigen/Core>
 #include <Eigen/SparseCore>
@@ -39,7 +56,9 @@
 #include "estimator/reporting/progress.hpp"
 #include "estimator/updating/updating.hpp"
 #include "formats/problem_file.hpp"
+#include "translators/assembly/fe_model.hpp"
 #include "translators/assembly/parameter_units.hpp"
+#include "translators/measurement/mode_set.hpp"
 #include "translators/measurement/sensor_mapping.hpp"
 
 namespace ssid::estimator {
@@ -75,14 +94,32 @@ enum class OperatorUpdate {
   Taylor  ///< first-order Taylor model of K and M about the prior mean
 };
 
+/// The analyst's pair of a test mode with an analysis mode (study "pairs").
+struct FixedPair {
+  std::string configuration;  ///< configuration name; empty: the first (or only) one
+  int test_mode = 0;          ///< test mode number as the measured file labels it
+  int fe_mode = 0;            ///< analysis mode, 1-based, ascending, at the start of the estimate
+};
+
 struct Study {
   std::string source = "<defaults>";  ///< study file path (messages, relative paths)
   std::string title;
   std::vector<std::string> parameters;  ///< DESVAR labels to estimate; empty: every DESVAR
   std::map<std::string, PriorSetting> priors;
+  /// σ of every parameter without a prior of its own, % of |XINIT| (default: from
+  /// the DESVAR bounds, see above; `ssid diagnose --prior-std`).
+  std::optional<double> prior_std_pct;
   double frequency_std_pct = 1.0;
-  std::optional<double> shape_std;  ///< default 0.05/√n_s
+  std::optional<double> shape_std;  ///< absolute, on the unit shape; default from shape_std_pct
+  double shape_std_pct = 5.0;       ///< % of the RMS component: σ = (pct/100)/√n_s
   bool use_shapes = true;
+  /// Ignore the measured shapes altogether (a UFF read for its frequencies only):
+  /// no sensors, pairs fixed or by frequency, modes followed by their full shapes.
+  bool frequencies_only = false;
+  std::vector<FixedPair> pairs;
+  /// Modes followed from cycle to cycle by their shapes at the sensors (default)
+  /// or at every analysis DOF ("pairing": {"track_on": "all"}).
+  bool track_on_sensors = true;
   double mac_min = 0.6;
   double frequency_window_pct = 50.0;
   double track_mac_min = 0.5;
@@ -96,11 +133,17 @@ struct Study {
   ShapeDerivative shape_derivative = ShapeDerivative::Nelson;
   OperatorUpdate operators = OperatorUpdate::Exact;
   std::optional<int> analysis_modes;
+  int extra_analysis_modes = 12;  ///< analysis modes: 2 n_test + this ...
+  double analysis_band_factor = 1.25;  ///< ... or, when they stop below this × the highest test frequency,
+  int max_analysis_modes = 120;        ///< the lowest this many
   /// Krylov iteration of the eigen-solver ("auto", "spectra", "block-lanczos";
   /// eigen_solver.hpp): the eigen-solve dominates a cycle on large models.
   std::string eigen_method = "auto";
   double uninformed_ratio = 0.9;     ///< posterior σ / prior σ above this: not informed by the data
   double strong_correlation = 0.9;   ///< |posterior correlation| above this: reported as a pair
+  /// The "diagnosis" section as written (`ssid diagnose` reads it:
+  /// estimator/diagnosis/diagnosis.hpp, read_diagnosis_options); null when absent.
+  nlohmann::json diagnosis;
 };
 
 /// Parses a study from JSON; unknown keys and wrong types are errors naming
@@ -109,6 +152,43 @@ struct Study {
 Study parse_study(const nlohmann::json& j, const std::string& source);
 /// Reads and parses a study file; JSON syntax errors name the file and byte offset.
 Study read_study(const std::string& path);
+
+/// Measured modes held in memory: the modes (shapes labelled by test node and
+/// direction; no DOFs for frequencies only) and the test nodes' positions
+/// (empty: test nodes are grid ids).
+struct MeasuredData {
+  translators::ModeSet modes;
+  std::vector<translators::TestNode> nodes;
+  std::vector<std::string> notes;  ///< problems of the file (complex modes, DOFs some mode lacks)
+};
+
+/// Reads measured modes: a universal file (dataset 55, nodes 15/2411), or a
+/// list of frequencies — `.csv`/`.txt` (one mode a line: `HZ` or `MODE, HZ`;
+/// `#` comments; a first line that is not a number is a header) or `.json`
+/// (`[7.75, 11.65]` or `[{"mode": 1, "hz": 7.75}, ...]`). With
+/// `frequencies_only` the shapes of a universal file are dropped. Errors name
+/// the file (and line).
+MeasuredData read_measured(const std::string& path, bool frequencies_only = false);
+
+/// A list of frequencies (see read_measured) from text; `name` for messages.
+translators::ModeSet parse_frequency_list(const std::string& text, const std::string& name, bool json);
+
+/// One configuration's inputs held in memory (what `ssid diagnose` builds for
+/// every hypothesis: an extended deck text per configuration).
+struct ConfigurationSource {
+  std::string name;       ///< configuration name (empty: the only one)
+  std::string deck;       ///< deck path or name: INCLUDEs resolve from its folder, messages name it
+  std::string deck_text;  ///< the deck; empty: read from the file `deck`
+  std::string measured;   ///< measured file path or name (messages)
+  MeasuredData data;
+  std::optional<int> analysis_modes;
+};
+
+/// The study's configurations with the command line's deck and measured file
+/// filled in where one names none (one configuration when the study has none),
+/// their measured files read (decks are left to prepare_problem).
+std::vector<ConfigurationSource> load_configurations(const Study& study, const std::string& deck,
+                                                     const std::string& measured);
 
 /// One configuration ready to estimate.
 struct PreparedConfiguration {
@@ -119,7 +199,12 @@ struct PreparedConfiguration {
   std::vector<std::pair<std::int64_t, int>> dofs;  ///< analysis (a-set) DOFs
   Eigen::SparseMatrix<double> sensors;           ///< n_s × n_a
   int analysis_modes = 0;
-  std::shared_ptr<ModalModel> model;
+  std::shared_ptr<OperatorModel> model;
+  /// The assembled deck (null for a problem file): what a model-form extension
+  /// of the deck refers to.
+  std::shared_ptr<translators::FeModel> fe;
+  std::vector<std::int64_t> sensor_grids;        ///< grid of each sensor row
+  std::vector<Eigen::Index> shape_rows;          ///< row of the measured mode set each sensor row holds
   /// K, M, ∂K, ∂M at given parameters (exact re-assembly, or the imported
   /// operators' Taylor model): what the model solves, and what a problem file stores.
   OperatorModel::Assemble assemble;
@@ -147,6 +232,14 @@ struct EstimationProblem {
 /// `measured` are the command line's (used by configurations that name none).
 /// Throws std::invalid_argument / ParseError / ModelError with the file named.
 EstimationProblem prepare_problem(const Study& study, const std::string& deck, const std::string& measured);
+/// The same from configurations held in memory.
+EstimationProblem prepare_problem(const Study& study, const std::vector<ConfigurationSource>& configurations);
+
+/// Modes of `set` (the same DOFs as the configuration's measured data, e.g.
+/// modes held back from it) as the estimate of configuration `pc` takes them:
+/// shapes at its sensor rows, the study's σ; every mode, no selection.
+std::vector<MeasuredMode> measured_at_sensors(const Study& study, const translators::ModeSet& set,
+                                              const PreparedConfiguration& pc);
 
 /// The problem as a problem file (operators at the prior mean).
 formats::ProblemFile to_problem_file(const EstimationProblem& problem);

@@ -40,7 +40,8 @@ ModalSolution OperatorModel::solve(const Eigen::VectorXd& r) {
   ModalSolution s;
   s.eigenvalues = m_lambda;
   s.sensor_shapes = m_sensors * m_phi;
-  s.tracking_shapes = m_phi;
+  // At the sensors when asked and there are sensors (see set_tracking_on_sensors).
+  s.tracking_shapes = m_track_on_sensors && m_sensors.rows() > 0 ? s.sensor_shapes : m_phi;
   return s;
 }
 

@@ -83,6 +83,13 @@ class OperatorModel : public ModalModel {
   /// Threads for sensitivities(); 0 (the default): one per core, at most
   /// kMaxSensitivityThreads.
   void set_sensitivity_threads(int threads) { m_threads = threads; }
+  /// Follow modes from cycle to cycle by their shapes at the sensors (true)
+  /// rather than at every DOF (false, the default; also when there are no
+  /// sensors). Strut-local modes crowd the spectrum of beam models; a global
+  /// mode mixes with them as parameters move (veering) and its full shape
+  /// changes a lot, while at the sensors — which see global motion only — it
+  /// stays recognisable.
+  void set_tracking_on_sensors(bool on) { m_track_on_sensors = on; }
 
   const Operators& operators() const { return m_ops; }
   ShapeDerivative shape_derivative() const { return m_shape_derivative; }
@@ -96,6 +103,7 @@ class OperatorModel : public ModalModel {
   ShapeDerivative m_shape_derivative;
   int m_parameters = -1;
   int m_threads = 0;
+  bool m_track_on_sensors = false;
   Operators m_ops;
   Eigen::VectorXd m_lambda;
   Eigen::MatrixXd m_phi;

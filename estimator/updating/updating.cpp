@@ -53,7 +53,7 @@ std::vector<UpdatePair> track_pairs(const std::vector<UpdatePair>& previous, con
             std::to_string(best_mac) + ")";
     else if (taken[static_cast<std::size_t>(best)])
       why = "analysis mode " + std::to_string(best + 1) + " is claimed by another test mode";
-    else if (t.shape.size() && mac_matrix(t.shape, fem.sensor_shapes.col(best))(0, 0) < options.mac_min)
+    else if (t.fixed_partner < 0 && t.shape.size() && mac_matrix(t.shape, fem.sensor_shapes.col(best))(0, 0) < options.mac_min)
       why = "its partner, analysis mode " + std::to_string(best + 1) + ", no longer matches the test shape";
     if (!why.empty()) {
       notes.push_back("cycle " + std::to_string(cycle) + ": test mode " + std::to_string(t.id) +
@@ -155,8 +155,24 @@ std::vector<UpdatePair> pair_for_update(const std::vector<MeasuredMode>& test, c
   const auto m = fem.eigenvalues.size();
   struct Candidate { int t, f; double mac; };
   std::vector<Candidate> candidates;
+  std::vector<bool> test_done(test.size(), false), fem_done(static_cast<std::size_t>(m), false);
+  std::vector<UpdatePair> pairs;
   for (std::size_t i = 0; i < test.size(); ++i) {
-    if (!test[i].shape.size()) continue;
+    const int j = test[i].fixed_partner;
+    if (j < 0) continue;
+    if (j >= m)
+      throw formats::InputError("test mode " + std::to_string(test[i].id) + " is paired with analysis mode " +
+                                std::to_string(j + 1) + ", but only " + std::to_string(m) + " were solved");
+    if (fem_done[static_cast<std::size_t>(j)])
+      throw formats::InputError("analysis mode " + std::to_string(j + 1) + " is paired with two test modes");
+    test_done[i] = fem_done[static_cast<std::size_t>(j)] = true;
+    UpdatePair q;
+    q.test = static_cast<int>(i);
+    q.fem = j;
+    pairs.push_back(q);
+  }
+  for (std::size_t i = 0; i < test.size(); ++i) {
+    if (!test[i].shape.size() || test_done[i]) continue;
     if (test[i].shape.size() != fem.sensor_shapes.rows())
       throw std::invalid_argument("test mode " + std::to_string(test[i].id) + " has " +
                                   std::to_string(test[i].shape.size()) + " shape components, the sensors " +
@@ -169,8 +185,6 @@ std::vector<UpdatePair> pair_for_update(const std::vector<MeasuredMode>& test, c
     }
   }
   std::stable_sort(candidates.begin(), candidates.end(), [](const Candidate& a, const Candidate& b) { return a.mac > b.mac; });
-  std::vector<bool> test_done(test.size(), false), fem_done(static_cast<std::size_t>(m), false);
-  std::vector<UpdatePair> pairs;
   for (const auto& c : candidates) {
     if (test_done[static_cast<std::size_t>(c.t)] || fem_done[static_cast<std::size_t>(c.f)]) continue;
     test_done[static_cast<std::size_t>(c.t)] = fem_done[static_cast<std::size_t>(c.f)] = true;

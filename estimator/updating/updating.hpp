@@ -45,6 +45,13 @@ struct MeasuredMode {
   double shape_std = 0;          ///< σ of each component of the unit-normalised shape
   bool use_frequency = true;
   bool use_shape = true;
+  /// The analyst's pair: the analysis mode (0-based, in ascending order of the
+  /// model where the estimate starts) this test mode is paired with, whatever
+  /// MAC says; −1: paired by MAC (or by frequency when it has no shape). The
+  /// partner is then followed from cycle to cycle like any other, and kept even
+  /// where its MAC with the test shape falls below `mac_min` (the seed's MPI
+  /// reconciliation paired by hand where MAC failed: mid-strut nodes unmeasured).
+  int fixed_partner = -1;
 };
 
 struct ParameterPrior {
@@ -119,9 +126,11 @@ struct UpdateResult {
   std::vector<ModalSolution> final_solutions;  ///< per configuration, at r
 };
 
-/// Pairs measured modes with analysis modes by MAC and frequency: greedily
-/// by decreasing MAC, one partner each; modes without a shape pair by nearest
-/// frequency among the remaining ones.
+/// Pairs measured modes with analysis modes: first the analyst's pairs
+/// (MeasuredMode::fixed_partner), then by MAC and frequency, greedily by
+/// decreasing MAC, one partner each; modes without a shape pair by nearest
+/// frequency among the remaining ones. A fixed partner beyond the solved modes
+/// throws formats::InputError.
 std::vector<UpdatePair> pair_for_update(const std::vector<MeasuredMode>& test, const ModalSolution& fem,
                                  const UpdateOptions& options);
 

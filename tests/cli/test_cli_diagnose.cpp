@@ -7,7 +7,7 @@
 #include <nlohmann/json.hpp>
 
 #include "formats/bulk_model.hpp"
-#include "estimator/diagnosis/deck_problem.hpp"
+#include "estimator/study/deck_study.hpp"
 #include "formats/uff.hpp"
 #include "tests/cli/cli_run.hpp"
 #include "tests/estimator/diagnosis/truss_cases.hpp"
@@ -50,7 +50,7 @@ TEST_CASE("ssid diagnose: hidden mass found, JSON layout, extended deck written"
   // The calibrated decision's figures: the noise the data imply, the test of
   // what is left, the cause's false-alarm probability and held-out gain.
   CHECK(j["noise"]["mode"] == "estimated");
-  CHECK(j["noise"]["frequency"]["assumed_pct"] == 0.5);
+  CHECK(j["noise"]["frequency"]["assumed_pct"] == 1.0);  // the default shared with ssid estimate (issue 26)
   CHECK(j["noise"]["shape"]["implied_pct"].is_number());
   CHECK(j["noise"]["shape"]["implied_with_cause_pct"].is_number());
   CHECK(j["residual_test"]["consistent"] == false);
@@ -83,6 +83,16 @@ TEST_CASE("ssid diagnose: hidden mass found, JSON layout, extended deck written"
   CHECK(few.code == 2);
   CHECK(few.err.find("diagnose: 50 bootstrap replicates cannot show a false-alarm probability of 0.01 or less (the smallest "
                      "is 1/(replicates + 1)); use at least 99") != std::string::npos);
+  // The same file read for its frequencies only: no shape noise is implied or
+  // tested (there are no shape rows), and none is printed.
+  const auto fo = run_ssid("diagnose " + (dir / "rod.bdf").string() + " " + (dir / "test.unv").string() +
+                           " --frequencies-only --kinds missing_mass --shortlist 1");
+  CAPTURE(fo.out, fo.err);
+  REQUIRE((fo.code == 0 || fo.code == 3));
+  CHECK(fo.out.find("degrees of freedom; no shapes measured)") != std::string::npos);
+  CHECK(fo.out.find("% of the RMS component") == std::string::npos);
+  CHECK(fo.out.find("shape chi^2") == std::string::npos);
+  CHECK(fo.err.find("no shapes measured)") != std::string::npos);
   fs::remove_all(dir);
 }
 
@@ -94,10 +104,15 @@ TEST_CASE("ssid diagnose: bad input is refused with a clear message", "[cli][dia
   CHECK(kind.code == 2);
   CHECK(kind.err.find("unknown extension kind") != std::string::npos);
   const fs::path study = fs::temp_directory_path() / ("ssid_diag_study_" + std::to_string(::getpid()) + ".json");
-  std::ofstream(study) << R"({"kinds": ["missing_mass"], "shortlist": 2, "frequency_std": 0.3})";
+  // One study file for estimate and diagnose: errors by key path.
+  std::ofstream(study) << R"({"diagnosis": {"kinds": ["missing_mass"], "shortlist": 2}, "frequency_std": 0.3})";
   const auto bad = run_ssid("diagnose a.bdf b.unv --study " + study.string());
   CHECK(bad.code == 2);
-  CHECK(bad.err.find("unknown key \"frequency_std\"") != std::string::npos);
+  CHECK_THAT(bad.err, Catch::Contains(study.string() + ": frequency_std: unknown key (allowed here: "));
+  std::ofstream(study) << R"({"diagnosis": {"shortlist": "two"}})";
+  const auto bad_type = run_ssid("diagnose a.bdf b.unv --study " + study.string());
+  CHECK(bad_type.code == 2);
+  CHECK_THAT(bad_type.err, Catch::Contains(study.string() + ": diagnosis.shortlist: expected an integer, got \"two\""));
   std::ofstream(study) << "{\"kinds\": [";
   const auto broken = run_ssid("diagnose a.bdf b.unv --study " + study.string());
   CHECK(broken.code == 2);
@@ -109,4 +124,40 @@ TEST_CASE("ssid diagnose: bad input is refused with a clear message", "[cli][dia
   const auto help = run_ssid("diagnose --help");
   CHECK(help.code == 0);
   CHECK(help.out.find("--study") != std::string::npos);
+}
+
+TEST_CASE("ssid diagnose's \"parameter\" hypothesis is ssid estimate's result on the same study", "[cli][diagnose][study]") {
+  // One estimation problem, one study file: the same deck, data and study give
+  // the same estimates, covariance and evidence (issue 26 item 1).
+  const fs::path dir = fs::temp_directory_path() / ("ssid_diag_same_" + std::to_string(::getpid()));
+  fs::create_directories(dir);
+  std::ofstream(dir / "study.json") << R"({"measurement": {"frequency_std_pct": 0.8, "shape_std_pct": 4},
+      "priors": {"STRUTA": {"std_pct": 20}}, "modes": {"exclude": [12]},
+      "convergence": {"max_iterations": 60, "tolerance": 1e-3},
+      "diagnosis": {"kinds": ["missing_mass"], "shortlist": 1, "noise": "given"}})";
+  const std::string args = std::string(SSID_SOURCE_DIR) + "/samples/mpi_rod.bdf " + SSID_SOURCE_DIR +
+                           "/samples/mpi_rod_hidden_mass.unv --study " + (dir / "study.json").string() + " --json -";
+  const auto e = run_ssid("estimate " + args);
+  const auto d = run_ssid("diagnose " + args);
+  CAPTURE(e.err, d.err);
+  REQUIRE(e.code == 0);
+  REQUIRE(d.code == 0);
+  const auto je = nlohmann::json::parse(e.out), jd = nlohmann::json::parse(d.out);
+  const nlohmann::json* p = nullptr;
+  for (const auto& h : jd["ranking"])
+    if (h["kind"] == "parameter") p = &h;
+  REQUIRE(p);
+  const auto& ep = je["parameters"];
+  REQUIRE((*p)["all_parameters"].size() == ep.size());
+  for (std::size_t k = 0; k < ep.size(); ++k) {
+    CHECK((*p)["all_parameters"][k]["name"] == ep[k]["name"]);
+    CHECK((*p)["all_parameters"][k]["estimate"].get<double>() == Approx(ep[k]["estimate"].get<double>()).epsilon(1e-10));
+    CHECK((*p)["all_parameters"][k]["std"].get<double>() == Approx(ep[k]["posterior_std"].get<double>()).epsilon(1e-8));
+    for (std::size_t l = 0; l < ep.size(); ++l)
+      CHECK((*p)["posterior_covariance"][k][l].get<double>() ==
+            Approx(je["posterior_covariance"][k][l].get<double>()).epsilon(1e-8).margin(1e-30));
+  }
+  CHECK((*p)["laplace_log_evidence"].get<double>() == Approx(je["log_evidence"].get<double>()).epsilon(1e-10));
+  CHECK((*p)["paired"] == je["pairs"].size());
+  fs::remove_all(dir);
 }

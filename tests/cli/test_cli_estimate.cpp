@@ -1,5 +1,8 @@
 // ssid estimate / translate / update-deck on the generator's rod deck.
 #include <catch2/catch.hpp>
+#include <cmath>
+#include <fstream>
+#include <iomanip>
 
 #include <nlohmann/json.hpp>
 #include <set>
@@ -226,4 +229,111 @@ TEST_CASE("samples/estimate: the script runs end to end and the truth lies withi
     const double a = r["parameters"][k]["estimate"].get<double>(), b = c["parameters"][k]["estimate"].get<double>();
     CHECK(std::abs(a - b) <= 1e-3 * r["parameters"][k]["posterior_std"].get<double>());
   }
+}
+
+namespace {
+
+/// A fixed-free chain of four equal rods (EA/L = k) with four equal masses m
+/// on the free grids, the rod area a DESVAR. Its frequencies in closed form:
+/// ω_j² = 4 (k/m) sin²((2j − 1)π / 18), j = 1..4.
+std::string chain_deck() {
+  auto card = [](std::vector<std::string> f) {
+    std::string line;
+    for (const auto& x : f) line += x + std::string(8 - std::min<std::size_t>(8, x.size()), ' ');
+    return line + "\n";
+  };
+  std::string d = "SOL 103\nCEND\nBEGIN BULK\n";
+  d += card({"GRID", "1", "", "0.", "0.", "0.", "", "123456"});
+  for (int g = 2; g <= 5; ++g) d += card({"GRID", std::to_string(g), "", std::to_string(g - 1) + ".", "0.", "0.", "", "23456"});
+  for (int e = 1; e <= 4; ++e) d += card({"CROD", std::to_string(10 + e), "10", std::to_string(e), std::to_string(e + 1)});
+  for (int g = 2; g <= 5; ++g) d += card({"CONM2", std::to_string(100 + g), std::to_string(g), "", "10."});
+  d += card({"PROD", "10", "20", "1.-4"});
+  d += card({"MAT1", "20", "2.1+11", "", ".3", "0."});
+  d += card({"DESVAR", "1", "AREA", "1.-4", "1.-5", "1.-3"});
+  d += card({"DVPREL1", "1", "PROD", "10", "A", "", "", "0.", "", "+"});
+  d += card({"+", "1", "1."});
+  d += "ENDDATA\n";
+  return d;
+}
+
+/// Chain frequency j [Hz] at rod area A (E = 2.1e11 Pa, L = 1 m, m = 10 kg).
+double chain_hz(int j, double area) {
+  const double k = 2.1e11 * area / 1.0, m = 10.0;
+  const double s = std::sin((2 * j - 1) * M_PI / 18.0);
+  return std::sqrt(4 * k / m * s * s) / (2 * M_PI);
+}
+
+}  // namespace
+
+TEST_CASE("ssid estimate from frequencies only, with a pair the analyst fixes", "[cli][estimate][pairs]") {
+  const fs::path dir = scratch() / "chain";
+  fs::create_directories(dir);
+  std::ofstream(dir / "chain.bdf") << chain_deck();
+  // The true area is 8 × the deck's: mode 1 measured at √8 × its deck value,
+  // 1.8 % from the deck's mode 2 (and 65 % from its mode 1, outside the
+  // ±50 % window): by frequency it pairs with mode 2; the analyst says mode 1.
+  const double f1 = chain_hz(1, 8e-4);
+  {
+    std::ofstream csv(dir / "f.csv");
+    csv << "# the chain's first mode\nmode, frequency_hz\n1, " << std::setprecision(17) << f1 << "\n";
+  }
+  std::ofstream(dir / "free.json") << R"({"measurement": {"frequency_std_pct": 1e-4}, "convergence": {"max_iterations": 60}})";
+  // Converged to 1e-10 prior σ: the estimate is then the MAP point, not where the iteration stopped.
+  std::ofstream(dir / "fixed.json")
+      << R"({"measurement": {"frequency_std_pct": 1e-4}, "convergence": {"max_iterations": 60, "tolerance": 1e-10},
+            "pairs": [{"test_mode": 1, "fe_mode": 1}]})";
+  const auto free = run_ssid("estimate " + (dir / "chain.bdf").string() + " " + (dir / "f.csv").string() + " --study " +
+                             (dir / "free.json").string() + " --json -");
+  CAPTURE(free.out, free.err);
+  REQUIRE(free.code == 0);
+  const json jf = json::parse(free.out);
+  REQUIRE(jf["pairs"].size() == 1);
+  CHECK(jf["pairs"][0]["fe_mode"] == 2);
+  const auto fixed = run_ssid("estimate " + (dir / "chain.bdf").string() + " " + (dir / "f.csv").string() + " --study " +
+                              (dir / "fixed.json").string() + " --json -");
+  CAPTURE(fixed.out, fixed.err);
+  REQUIRE(fixed.code == 0);
+  const json j = json::parse(fixed.out);
+  REQUIRE(j["pairs"].size() == 1);
+  CHECK(j["pairs"][0]["fe_mode"] == 1);
+  // ω² ∝ A: the one frequency gives the area exactly; the prior's pull moves
+  // it by 2 (σ_f/f)² A (A − A₀)/σ_A² ≈ 6e-10 relative at σ_f = 1e-4 %.
+  CHECK(j["parameters"][0]["estimate"].get<double>() == Approx(8e-4).epsilon(1e-7));
+  CHECK(j["pairs"][0]["error_pct"].get<double>() == Approx(0.0).margin(1e-6));  // % (1e-8 relative)
+  // The same through `ssid diagnose`: its "parameter" hypothesis is the same estimate.
+  const auto d = run_ssid("diagnose " + (dir / "chain.bdf").string() + " " + (dir / "f.csv").string() + " --study " +
+                          (dir / "fixed.json").string() + " --kinds missing_mass --shortlist 1 --noise given --json -");
+  CAPTURE(d.out, d.err);
+  REQUIRE((d.code == 0 || d.code == 3));
+  const json jd = json::parse(d.out);
+  bool found = false;
+  for (const auto& h : jd["ranking"])
+    if (h["kind"] == "parameter") {
+      found = true;
+      CHECK(h["all_parameters"][0]["estimate"].get<double>() == Approx(j["parameters"][0]["estimate"].get<double>()).epsilon(1e-12));
+    }
+  CHECK(found);
+  fs::remove_all(dir);
+}
+
+TEST_CASE("frequency lists: CSV and JSON read, errors by line or key", "[cli][estimate][frequencies]") {
+  const fs::path dir = scratch() / "lists";
+  fs::create_directories(dir);
+  std::ofstream(dir / "chain.bdf") << chain_deck();
+  std::ofstream(dir / "f.json") << "[{\"mode\": 1, \"hz\": " << chain_hz(1, 1e-4) << "}, " << chain_hz(2, 1e-4) << "]";
+  const auto ok = run_ssid("estimate " + (dir / "chain.bdf").string() + " " + (dir / "f.json").string() + " --json -");
+  CAPTURE(ok.out, ok.err);
+  REQUIRE(ok.code == 0);
+  const json j = json::parse(ok.out);
+  CHECK(j["pairs"].size() == 2);
+  CHECK(j["parameters"][0]["estimate"].get<double>() == Approx(1e-4).epsilon(1e-6));
+  std::ofstream(dir / "bad.csv") << "mode, hz\n1, 10.\n2, ten\n";
+  const auto bad = run_ssid("estimate " + (dir / "chain.bdf").string() + " " + (dir / "bad.csv").string());
+  CHECK(bad.code == 2);
+  CHECK_THAT(bad.err, Catch::Contains((dir / "bad.csv").string() + ":3: expected a frequency [Hz], got \"ten\""));
+  std::ofstream(dir / "bad.json") << "[{\"mode\": 1, \"f\": 3}]";
+  const auto badj = run_ssid("estimate " + (dir / "chain.bdf").string() + " " + (dir / "bad.json").string());
+  CHECK(badj.code == 2);
+  CHECK_THAT(badj.err, Catch::Contains((dir / "bad.json").string() + ": [0].f: unknown key (allowed here: comment, hz, mode)"));
+  fs::remove_all(dir);
 }

@@ -90,7 +90,16 @@ TEST_CASE("diagnosis finds suspension springs with mass (surge modes)", "[estima
   TestSpec spec;
   spec.seed = 13;
   const auto measured = synthetic_test(truth.fe, spec);
-  const dx::Diagnosis d = run(nominal, measured);
+  // The analyst's prior: 30 % of XINIT on every DESVAR. With the default prior
+  // from the DESVAR bounds (half the room to the nearer bound: 45 % here), the
+  // same cause is named at the same place, but the third surge mode (56.85 Hz,
+  // spring 7303) stays unpaired: the suspension stiffness KSUSP, weakly held,
+  // rises 13 % in the joint estimate and carries the spring's new mode to
+  // 60.2 Hz, where test mode 14 already claims it, and an unpaired mode exerts
+  // no pull (docs/diagnosis.md, "Limits").
+  dx::DiagnosisOptions opt;
+  opt.study.prior_std_pct = 30.0;
+  const dx::Diagnosis d = run(nominal, measured, opt);
   CAPTURE(ranking(d));
   CHECK(!d.evidence.unpaired_test.empty());
   REQUIRE(d.cause_kind == "support_dynamics");
@@ -133,8 +142,8 @@ TEST_CASE("a wrongly assumed noise level raises no false alarm and the implied n
   const auto measured = synthetic_test(truth.fe, spec);
   for (const double factor : {0.3, 3.0}) {
     dx::DiagnosisOptions opt;
-    opt.problem.frequency_std_pct = factor * spec.freq_noise_pct;
-    opt.problem.shape_std_pct = factor * spec.shape_noise_pct;
+    opt.study.frequency_std_pct = factor * spec.freq_noise_pct;
+    opt.study.shape_std_pct = factor * spec.shape_noise_pct;
     const dx::Diagnosis d = run(nominal, measured, opt);
     CAPTURE(factor, ranking(d), d.residual.text, d.noise.frequency_pct, d.noise.shape_pct);
     CHECK(d.cause_kind == "parameter");

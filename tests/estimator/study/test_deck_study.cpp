@@ -603,13 +603,14 @@ TEST_CASE("mode selection and measurement weights reach the measured modes", "[e
   syn.sensors = ball_sensors();
   syn.modes = 12;
   const auto exact = write_measured(nm, nm.fe->initial_parameters(), syn, uff);
-  // Defaults: every mode, 1 % frequency σ, shape σ 0.05/√n_s, 2 n + 6 analysis modes.
+  // Defaults: every mode, 1 % frequency σ, shape σ 0.05/√n_s, 2 n + 12 analysis modes
+  // (the diagnosis's count since issue 26: one default for both commands).
   auto d = estimator::prepare_problem(estimator::Study{}, nominal.string(), uff.string());
   const auto& dc = d.configurations[0];
   REQUIRE(dc.test.size() == 12);
   CHECK(dc.test[7].frequency_std_hz == Approx(0.01 * exact[7]));
   CHECK(dc.test[7].shape_std == Approx(0.05 / std::sqrt(120.0)));
-  CHECK(dc.analysis_modes == 30);
+  CHECK(dc.analysis_modes == 36);
   CHECK(d.prior.names == std::vector<std::string>{"STRUTA", "BNUTA", "ECAPA", "JOINTM", "KSUSP"});
   // Default prior σ: half the distance to the nearer bound (XINIT/10 .. 10 XINIT: 0.45 XINIT).
   CHECK(std::sqrt(d.prior.cov(0, 0)) == Approx(0.45 * 2.015e-4));

@@ -389,3 +389,29 @@ TEST_CASE("a numerical failure after the first cycle returns the last accepted o
   FailingModel at_once(inner, 1);
   CHECK_THROWS_AS(update(at_once, test, prior), ssid::formats::NumericalError);
 }
+
+TEST_CASE("pair_for_update honours the analyst's pairs where MAC would pair differently", "[estimator][updating][pairs]") {
+  // Two analysis modes; the test shape is analysis mode 2's, so MAC pairs it there.
+  ModalSolution fem;
+  fem.eigenvalues = Eigen::Vector2d(100.0, 400.0);
+  fem.sensor_shapes.resize(3, 2);
+  fem.sensor_shapes << 1, 0, 0, 1, 1, 0;
+  MeasuredMode t;
+  t.id = 7;
+  t.frequency_hz = 3.0;  // analysis modes at 1.59 and 3.18 Hz
+  t.frequency_std_hz = 0.03;
+  t.shape = Eigen::Vector3d(0, 1, 0);
+  t.shape_std = 0.01;
+  UpdateOptions o;
+  const auto by_mac = pair_for_update({t}, fem, o);
+  REQUIRE(by_mac.size() == 1);
+  CHECK(by_mac[0].fem == 1);
+  t.fixed_partner = 0;  // the analyst says: analysis mode 1
+  const auto fixed = pair_for_update({t}, fem, o);
+  REQUIRE(fixed.size() == 1);
+  CHECK(fixed[0].fem == 0);
+  CHECK(fixed[0].mac == Approx(0.0).margin(1e-12));  // kept although MAC says no
+  t.fixed_partner = 2;  // beyond the solved modes
+  CHECK_THROWS_WITH(pair_for_update({t}, fem, o),
+                    "test mode 7 is paired with analysis mode 3, but only 2 were solved");
+}

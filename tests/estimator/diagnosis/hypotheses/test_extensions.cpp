@@ -7,7 +7,7 @@
 #include <catch2/catch.hpp>
 
 #include "formats/bulk_model.hpp"
-#include "estimator/diagnosis/deck_problem.hpp"
+#include "estimator/study/deck_study.hpp"
 #include "estimator/eigen/eigen_solver.hpp"
 #include "tests/estimator/diagnosis/truss_cases.hpp"
 #include "estimator/diagnosis/hypotheses/model_extension.hpp"
