@@ -22,7 +22,8 @@ scripts/, bench/ and the build under test (as build/); `ssid` on PATH is the
 build's. Its commands run in that folder one after the other, each in its own
 `sh -c` (files persist between the commands of one document, shell variables and
 `cd` do not). Steps that build the tree (./scripts/install-deps, cmake -S . -B
-build, cmake --build build, ctest --test-dir build) are stood in for by the build
+build, cmake --build build, ctest --test-dir build; the test command's
+./scripts/sanitize-tests and ./scripts/fuzz-smoke N) are stood in for by the build
 under test and counted, not run: the test command builds it and .ci/run runs that.
 
 Exit status 0 when every command ran with status 0 and every block could be read;
@@ -47,9 +48,12 @@ ALIASES = ("bash", "shell", "shell-session", "zsh")
 PLACEHOLDER = re.compile(r"\[-|\[[A-Z]|\.\.\.|<[A-Za-z]")
 # An indented (unfenced) code line that reads as a command.
 INDENTED_COMMAND = re.compile(r"^ {4,}(\$ |ssid |build/|\./|cmake |ctest )")
-# Steps that build the tree: the build under test stands for them.
+# Steps that build the tree: the build under test stands for them. The sanitizer
+# suite and the fuzz smoke of README's test command build trees of their own and
+# are CI's own steps (.ci/run runs them), not commands a document shows.
 BUILD_STEP = re.compile(
-    r"^(\./scripts/install-deps|cmake -S \. -B build\b|cmake --build build\b|ctest --test-dir build\b)")
+    r"^(\./scripts/install-deps|cmake -S \. -B build\b|cmake --build build\b|ctest --test-dir build\b"
+    r"|\./scripts/sanitize-tests$|\./scripts/fuzz-smoke \d+$)")
 
 
 class Command:
