@@ -19,8 +19,14 @@
 ///     exceeds J at the last accepted one (same test modes paired), or the new
 ///     point loses pairs, the step from the accepted point is recomputed with
 ///     Levenberg–Marquardt damping, (H + μ diag H) Δ = g, μ = 0.1, 1, 10, …
-///     (at most 12 times); each accepted point divides μ by 10 (0 below 0.1),
-///     so near the answer the step is Eq. (7) again.
+///     (at most 12 times); each point accepted at once divides μ by 10 (0
+///     below 0.1), so near the answer the step is Eq. (7) again; a point
+///     accepted after rejected trials keeps μ (lowering it at once had the
+///     next trial rejected again). After two rejected trials, a third that
+///     raises J by less than 1e-6 of it ends the iteration at the accepted
+///     point, converged (approximate sensitivities point near, not at, J's
+///     minimum; the iteration would otherwise trade rejected trials for
+///     gains of 1e-7 of J until the cycle limit).
 /// Stops when no parameter moves by more than `tolerance` prior standard
 /// deviations. The result carries the posterior, the Laplace evidence, the
 /// identifiability analysis and the history of every cycle.
