@@ -152,6 +152,29 @@ TEST_CASE("pLSCF recovers the exact poles and participation factors (noise-free,
   CHECK(worst10 > worst);
 }
 
+TEST_CASE("pLSCF with one reference (the scalar-denominator LSCF) recovers the exact poles", "[identification][plscf]") {
+  ModalModel m = model();
+  const Eigen::MatrixXcd first = m.l.topRows(1);
+  m.l = first;
+  m.lr = Eigen::MatrixXd::Zero(6, 1);
+  m.ur = Eigen::MatrixXd::Zero(6, 1);
+  const double df = 0.05;
+  const Eigen::Index count = 1601;
+  const auto lines = synthesise(m, df, count);
+  const auto result = plscf_orders(frequencies(df, count), lines, {}, {40});
+  double worst = 0;
+  for (std::size_t r = 0; r < m.lambda.size(); ++r) {
+    double d = 0;
+    const IdentifiedPole* p = nearest(result[0].poles, m.lambda[r], &d);
+    REQUIRE(p);
+    worst = std::max(worst, d);
+    CHECK(p->participation.size() == 1);
+    CHECK(complex_mac(p->shape, m.psi.col(static_cast<Eigen::Index>(r))) > 0.999999);
+  }
+  INFO("order 40, one reference: worst relative pole error " << worst);
+  CHECK(worst < 1e-6);
+}
+
 TEST_CASE("pLSCF over orders 1…40, stabilisation, LSFD: exact modes, residues and shapes (noise-free)",
           "[identification][plscf]") {
   const ModalModel m = model();
