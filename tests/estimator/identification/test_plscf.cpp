@@ -306,4 +306,22 @@ TEST_CASE("pLSCF and LSFD: bad input is refused with the cause", "[identificatio
   CHECK_THROWS_WITH(lsfd(hz, lines, {p}, {}),
                     "LSFD: pole 1 has 3 participation factors (expected 2, one per reference)");
   CHECK_THROWS_AS(lsfd(hz, lines, {}, {}), InputError);
+  // Two lines (1 and 1.05 Hz) for five modes: 8 equations, 14 unknowns.
+  std::vector<IdentifiedPole> five(5, p);
+  for (auto& q : five) q.participation = Eigen::Vector2cd(1, 0);
+  PlscfOptions narrow;
+  narrow.hz_min = 0.99;
+  narrow.hz_max = 1.07;
+  CHECK_THROWS_WITH(lsfd(hz, lines, five, narrow),
+                    "LSFD: 2 lines × 2 references give 8 equations for 14 unknowns per response");
+  // A stabilisation result that does not belong to the orders given with it.
+  StabilisationResult foreign;
+  foreign.modes.emplace_back();
+  CHECK_THROWS_WITH(mode_poles(foreign, {}), "pLSCF: mode 1 has no pole in the diagram");
+  DiagramPole d;
+  d.order = 5;
+  d.index = 0;
+  d.mode = 0;
+  foreign.diagram.push_back(d);
+  CHECK_THROWS_WITH(mode_poles(foreign, {}), "pLSCF: mode 1 refers to order 5, pole 1, which the orders do not have");
 }
