@@ -6,12 +6,15 @@
 /// participation factors; fixed seed) with 2 % complex Gaussian noise per FRF's RMS, so the
 /// run also says how well the modes come back. Prints wall and CPU time per phase.
 ///
-/// usage: bench_plscf [--max-order P] [--min-fraction F] [--export DIR]
+/// usage: bench_plscf [--max-order P] [--min-fraction F] [--era] [--export DIR]
+///   --era: also ERA on the same FRFs (as `ssid identify modes --method era`), state
+///   dimensions 2 … 2P, and the same stabilisation.
 ///   --min-fraction F: the stabilisation's recurrence rule (StabilisationOptions::min_fraction,
 ///   default 0.5: a mode must be stable at half the orders).
 ///   --export DIR: writes DIR/frf.bin (the data, for bench/plscf_reference.py) and
 ///   DIR/poles_ssid.txt (the poles of the largest order: Re λ, Im λ per line, rad/s).
 #include <Eigen/Dense>
+#include <algorithm>
 #include <chrono>
 #include <cmath>
 #include <cstdio>
@@ -21,6 +24,7 @@
 #include <string>
 #include <vector>
 
+#include "estimator/identification/era.hpp"
 #include "estimator/identification/modal_indicators.hpp"
 #include "estimator/identification/plscf.hpp"
 #include "estimator/identification/stabilisation.hpp"
@@ -86,11 +90,37 @@ struct Clock {
   }
 };
 
+/// How many exact modes the identified ones match within 0.5 % in frequency, and how well.
+void report_modes(const Case& c, const std::vector<id::IdentifiedPole>& modes) {
+  std::size_t found = 0;
+  double worst_f = 0, worst_z = 0, worst_mac = 1;
+  for (std::size_t r = 0; r < c.lambda.size(); ++r) {
+    const double f = std::abs(c.lambda[r]) / (2 * M_PI), z = -c.lambda[r].real() / std::abs(c.lambda[r]);
+    const id::IdentifiedPole* best = nullptr;
+    for (const auto& p : modes)
+      if (!best || std::abs(p.hz - f) < std::abs(best->hz - f)) best = &p;
+    if (!best || std::abs(best->hz - f) > 0.005 * f) {
+      std::printf("  exact mode %zu (%.3f Hz, zeta %.4f) not found\n", r + 1, f, z);
+      continue;
+    }
+    ++found;
+    const double mac = id::complex_mac(best->shape, c.psi.col(static_cast<Eigen::Index>(r)));
+    if (mac < 0.99) std::printf("  exact mode %zu (%.3f Hz): MAC %.4f\n", r + 1, f, mac);
+    worst_f = std::max(worst_f, std::abs(best->hz - f) / f);
+    worst_z = std::max(worst_z, std::abs(best->zeta - z) / z);
+    worst_mac = std::min(worst_mac, mac);
+  }
+  std::printf("%zu modes chosen, %zu of %zu exact modes found within 0.5 %%: worst frequency error %.2e, damping %.2e, "
+              "lowest MAC %.5f\n",
+              modes.size(), found, c.lambda.size(), worst_f, worst_z, worst_mac);
+}
+
 }  // namespace
 
 int main(int argc, char** argv) {
   Eigen::Index max_order = 100;
   std::string export_dir;
+  bool era = false;
   id::StabilisationOptions so;
   for (int a = 1; a < argc; ++a) {
     const std::string arg = argv[a];
@@ -98,10 +128,12 @@ int main(int argc, char** argv) {
       max_order = std::stol(argv[++a]);
     } else if (arg == "--min-fraction" && a + 1 < argc) {
       so.min_fraction = std::stod(argv[++a]);
+    } else if (arg == "--era") {
+      era = true;
     } else if (arg == "--export" && a + 1 < argc) {
       export_dir = argv[++a];
     } else {
-      std::fprintf(stderr, "usage: bench_plscf [--max-order P] [--min-fraction F] [--export DIR]\n");
+      std::fprintf(stderr, "usage: bench_plscf [--max-order P] [--min-fraction F] [--era] [--export DIR]\n");
       return 2;
     }
   }
@@ -138,27 +170,33 @@ int main(int argc, char** argv) {
   t.print("LSFD");
   all.print("total");
 
-  std::size_t found = 0;
-  double worst_f = 0, worst_z = 0, worst_mac = 1;
-  for (std::size_t r = 0; r < c.lambda.size(); ++r) {
-    const double f = std::abs(c.lambda[r]) / (2 * M_PI), z = -c.lambda[r].real() / std::abs(c.lambda[r]);
-    const id::IdentifiedPole* best = nullptr;
-    for (const auto& p : fit.modes)
-      if (!best || std::abs(p.hz - f) < std::abs(best->hz - f)) best = &p;
-    if (!best || std::abs(best->hz - f) > 0.005 * f) {
-      std::printf("  exact mode %zu (%.3f Hz, zeta %.4f) not found\n", r + 1, f, z);
-      continue;
+  report_modes(c, fit.modes);
+  std::printf("LSFD fit error %.3e\n", fit.fit_error);
+
+  if (era) {
+    // ERA on the same FRFs as `ssid identify modes --method era` runs it: the impulse response
+    // by inverse FFT (its first half), ERA at the state dimensions 2, 4, …, 2P (as many poles
+    // as pLSCF's order P), the same stabilisation.
+    const Clock e;
+    const auto Y = id::markov_from_frf(c.frf, c.hz(1) - c.hz(0));
+    const double dt = 1.0 / (static_cast<double>(Y.size()) * (c.hz(1) - c.hz(0)));
+    const std::vector<Eigen::MatrixXd> head(Y.begin(), Y.begin() + static_cast<std::ptrdiff_t>(Y.size() / 2));
+    id::EraOptions eo;
+    eo.dt = dt;
+    std::vector<Eigen::Index> era_orders;
+    for (Eigen::Index n = 2; n <= 2 * max_order; n += 2) era_orders.push_back(n);
+    const id::StabilisationResult est = id::stabilise(id::order_poles(id::era_orders(head, eo, era_orders)), so);
+    e.print("ERA, orders 2..2P, and stabilisation");
+    std::vector<id::IdentifiedPole> modes;
+    for (const auto& m : est.modes) {
+      id::IdentifiedPole p;
+      p.hz = m.hz;
+      p.zeta = m.zeta;
+      p.shape = m.shape;
+      modes.push_back(p);
     }
-    ++found;
-    const double mac = id::complex_mac(best->shape, c.psi.col(static_cast<Eigen::Index>(r)));
-    if (mac < 0.99) std::printf("  exact mode %zu (%.3f Hz): MAC %.4f\n", r + 1, f, mac);
-    worst_f = std::max(worst_f, std::abs(best->hz - f) / f);
-    worst_z = std::max(worst_z, std::abs(best->zeta - z) / z);
-    worst_mac = std::max(0.0, std::min(worst_mac, id::complex_mac(best->shape, c.psi.col(static_cast<Eigen::Index>(r)))));
+    report_modes(c, modes);
   }
-  std::printf("%zu modes chosen, %zu of %zu exact modes found within 0.5 %%: worst frequency error %.2e, damping %.2e, "
-              "lowest MAC %.5f; LSFD fit error %.3e\n",
-              fit.modes.size(), found, c.lambda.size(), worst_f, worst_z, worst_mac, fit.fit_error);
   if (!export_dir.empty()) {
     std::ofstream f(export_dir + "/poles_ssid.txt");
     f.precision(17);
