@@ -261,22 +261,26 @@ int identify_modes(const Args& args) {
   po::options_description desc("ssid identify modes options");
   desc.add_options()("file", po::value<std::string>()->required(),
                      "universal file with FRFs (dataset 58, type 4) or time histories (type 1)")(
-      "method", po::value<std::string>()->default_value("era"), "identification method: armax (time histories), era or plscf")(
+      "method", po::value<std::string>()->default_value("era"),
+      "identification method: armax (time histories), era or plscf")(
       "json", po::value<std::string>(), "write the modes as JSON to this file ('-' for stdout)")(
       "uff", po::value<std::string>(), "write the modes as real normal modes, UFF dataset 55")(
-      "max-order", po::value<int>()->default_value(40), "largest model order: era: state dimension, even; plscf: polynomial order")(
+      "max-order", po::value<int>()->default_value(40),
+      "largest model order: era: state dimension, even; plscf: polynomial order")(
       "segment", po::value<int>()->default_value(1024), "era, plscf on time histories: Welch segment, samples")(
       "ar-order", po::value<int>(), "armax: AR order s with all p responses (default ⌈12/p⌉)")(
       "arx-order", po::value<int>(), "armax: prior ARX order m with all p responses (default ⌈90/p⌉)")(
-      "min-hz", po::value<double>()->default_value(0.0, "0"), "keep modes from this frequency, Hz (plscf: also the fitted band's start)")(
-      "max-hz", po::value<double>(), "keep modes up to this frequency, Hz (default: all; plscf: also the fitted band's end)");
+      "min-hz", po::value<double>()->default_value(0.0, "0"),
+      "keep modes from this frequency, Hz (plscf: also the fitted band's start)")(
+      "max-hz", po::value<double>(),
+      "keep modes up to this frequency, Hz (default: all; plscf: also the fitted band's end)");
   po::positional_options_description pos;
   pos.add("file", 1);
   po::variables_map vm;
   int rc = 0;
   if (!parse_options(args,
-                     "ssid identify modes FILE.unv [--method armax|era|plscf] [--json OUT] [--uff OUT] [--max-order N] "
-                     "[--segment N] [--ar-order S] [--arx-order M] [--min-hz F] [--max-hz F]",
+                     "ssid identify modes FILE.unv [--method armax|era|plscf] [--json OUT] [--uff OUT] "
+                     "[--max-order N] [--segment N] [--ar-order S] [--arx-order M] [--min-hz F] [--max-hz F]",
                      desc, pos, vm, rc))
     return rc;
   const std::string method = vm["method"].as<std::string>();
@@ -286,8 +290,8 @@ int identify_modes(const Args& args) {
   }
   const int max_order = vm["max-order"].as<int>();
   if (method == "plscf" ? max_order < 1 : (max_order < 2 || max_order % 2)) {
-    print_error(fmt::format("--max-order: expected {}, got {}", method == "plscf" ? "an order ≥ 1" : "an even number ≥ 2",
-                            max_order));
+    print_error(fmt::format("--max-order: expected {}, got {}",
+                            method == "plscf" ? "an order ≥ 1" : "an even number ≥ 2", max_order));
     return 2;
   }
   const int segment = vm["segment"].as<int>();

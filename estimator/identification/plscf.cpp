@@ -212,7 +212,8 @@ std::vector<OrderPoles> plscf_orders(const Eigen::Ref<const Eigen::VectorXd>& fr
   out.reserve(orders.size());
   for (std::size_t i = 0; i < orders.size(); ++i) {
     const Eigen::Index p = orders[i], n = (p + 1) * ni;
-    report(progress, "pLSCF orders", static_cast<long>(i), static_cast<long>(orders.size()), fmt::format("order {}", p));
+    report(progress, "pLSCF orders", static_cast<long>(i), static_cast<long>(orders.size()),
+           fmt::format("order {}", p));
     for (; rows_added <= p; ++rows_added)
       C.selfadjointView<Eigen::Lower>().rankUpdate(red.z_rows[static_cast<std::size_t>(rows_added)].transpose());
     // The reduced normal matrix M = Σ_o (T_o − S_oᵀR⁻¹S_o), lower triangle only (C's valid part).
@@ -246,7 +247,8 @@ std::vector<IdentifiedPole> mode_poles(const StabilisationResult& chosen, const 
     for (const DiagramPole& d : chosen.diagram)
       if (d.mode == static_cast<int>(m) && (!last || d.order > last->order)) last = &d;
     if (!last) throw InputError(fmt::format("pLSCF: mode {} has no pole in the diagram", m + 1));
-    const auto op = std::find_if(orders.begin(), orders.end(), [&](const OrderPoles& o) { return o.order == last->order; });
+    const auto op =
+        std::find_if(orders.begin(), orders.end(), [&](const OrderPoles& o) { return o.order == last->order; });
     if (op == orders.end() || last->index >= op->poles.size())
       throw InputError(fmt::format("pLSCF: mode {} refers to order {}, pole {}, which the orders do not have", m + 1,
                                    last->order, last->index + 1));
@@ -284,7 +286,8 @@ LsfdResult lsfd(const Eigen::Ref<const Eigen::VectorXd>& frequency_hz, const std
       const Eigen::Index re = k * ni + j, im = re + nf * ni;
       for (Eigen::Index r = 0; r < nm; ++r) {
         const IdentifiedPole& p = poles[static_cast<std::size_t>(r)];
-        const cd a = p.participation(j) / (iw - p.lambda), c = std::conj(p.participation(j)) / (iw - std::conj(p.lambda));
+        const cd a = p.participation(j) / (iw - p.lambda);
+        const cd c = std::conj(p.participation(j)) / (iw - std::conj(p.lambda));
         const cd on_re = a + c, on_im = cd(0, 1) * (a - c);  // ψ = x + iy: x·(a + c) + y·i(a − c)
         D(re, 2 * r) = on_re.real();
         D(im, 2 * r) = on_re.imag();
