@@ -1,23 +1,26 @@
 /// \file cmd_identify.cpp
-/// `ssid identify modes FILE.unv --method armax|era`: modes from the records of a universal
-/// file (dataset 58) as a table, JSON and UFF 55. FRFs (function type 4) go to ERA (Markov
-/// parameters by inverse FFT, ERA over model orders, the stabilisation diagram's physical
-/// modes); time histories (function type 1, the forces told by their ordinate type) go to
-/// the multistage ARMAX with its subset order rule, or to ERA through H1 FRFs (Welch).
-/// docs/identification.md describes the methods and the rule for force records. pLSCF is
-/// not here yet (issue 22).
+/// `ssid identify modes FILE.unv --method armax|era|plscf`: modes from the records of a
+/// universal file (dataset 58) as a table, JSON and UFF 55. FRFs (function type 4) go to ERA
+/// (Markov parameters by inverse FFT, ERA over model orders, the stabilisation diagram's
+/// physical modes) or to pLSCF (poles over model orders, the stabilisation diagram, LSFD for
+/// the shapes); time histories (function type 1, the forces told by their ordinate type) go
+/// to the multistage ARMAX with its subset order rule, or to ERA or pLSCF through H1 FRFs
+/// (Welch). docs/identification.md describes the methods and the rule for force records.
 #include <algorithm>
 #include <cmath>
 #include <fmt/format.h>
 #include <iostream>
 #include <map>
+#include <sstream>
 #include <utility>
 
 #include "cli/cli_util.hpp"
+#include "cli/progress_lines.hpp"
 #include "estimator/identification/armax_order.hpp"
 #include "estimator/identification/era.hpp"
 #include "estimator/identification/frf.hpp"
 #include "estimator/identification/modal_indicators.hpp"
+#include "estimator/identification/plscf.hpp"
 #include "estimator/identification/stabilisation.hpp"
 #include "formats/parse_error.hpp"
 #include "formats/uff.hpp"
@@ -171,6 +174,8 @@ struct Identified {
   std::string columns_header;  ///< heads `Mode::columns`
   std::vector<Mode> modes;
   std::map<std::string, int> rejected;  ///< poles not kept, per reason
+  nlohmann::json summary = nlohmann::json::object();  ///< the method's own top-level JSON fields
+  std::vector<std::string> notes;                     ///< for stderr
 };
 
 Identified era_modes(const FrfSet& s, int max_order, const id::StabilisationOptions& so) {
@@ -190,6 +195,38 @@ Identified era_modes(const FrfSet& s, int max_order, const id::StabilisationOpti
   for (const id::ClusteredMode& md : st.modes)
     r.modes.push_back({md.hz, md.zeta, md.hz_std, md.zeta_std, id::rotate_to_real(md.shape),
                        fmt::format(" {:7.4f} {:7d}", md.mpc, md.poles), {{"mpc", md.mpc}, {"orders", md.poles}}});
+  return r;
+}
+
+/// pLSCF at the polynomial orders 1 … max_order over the band, the stabilisation diagram's
+/// modes, and their shapes by LSFD (with lower and upper residuals) over the same band. A
+/// mode's frequency and damping are its pole at the highest order of its cluster (mode_poles),
+/// the ± its cluster's spread over the orders.
+Identified plscf_modes(const FrfSet& s, int max_order, const id::PlscfOptions& band,
+                       const id::StabilisationOptions& so, const estimator::Progress& progress) {
+  Eigen::VectorXd hz(static_cast<Eigen::Index>(s.lines.size()));
+  for (Eigen::Index k = 0; k < hz.size(); ++k) hz(k) = static_cast<double>(k) * s.df;
+  std::vector<Eigen::Index> orders;
+  for (int p = 1; p <= max_order; ++p) orders.push_back(p);
+  const std::vector<id::OrderPoles> poles = id::plscf_orders(hz, s.lines, band, orders, progress);
+  const id::StabilisationResult st = id::stabilise(poles, so);
+  Identified r;
+  r.columns_header = "     MPC     MPD  orders";
+  for (const auto& d : st.diagram)
+    if (d.reason != id::RejectReason::None) ++r.rejected[id::reject_reason_text(d.reason)];
+  if (st.modes.empty()) return r;
+  const id::LsfdResult fit = id::lsfd(hz, s.lines, id::mode_poles(st, poles), band);
+  for (std::size_t m = 0; m < st.modes.size(); ++m) {
+    const id::ClusteredMode& md = st.modes[m];
+    const id::IdentifiedPole& p = fit.modes[m];
+    r.modes.push_back({p.hz, p.zeta, md.hz_std, md.zeta_std, id::rotate_to_real(p.shape.normalized()),
+                       fmt::format(" {:7.4f} {:7.2f} {:7d}", p.mpc, p.mpd, md.poles),
+                       {{"mpc", p.mpc}, {"mpd", p.mpd}, {"orders", md.poles}}});
+  }
+  r.summary["lsfd_fit_error"] = fit.fit_error;
+  r.notes.push_back(fmt::format("LSFD (lower and upper residuals) leaves {:.3g} of the FRFs in the band unexplained "
+                                "(relative Frobenius norm)",
+                                fit.fit_error));
   return r;
 }
 
@@ -224,32 +261,37 @@ int identify_modes(const Args& args) {
   po::options_description desc("ssid identify modes options");
   desc.add_options()("file", po::value<std::string>()->required(),
                      "universal file with FRFs (dataset 58, type 4) or time histories (type 1)")(
-      "method", po::value<std::string>()->default_value("era"), "identification method: armax (time histories) or era")(
+      "method", po::value<std::string>()->default_value("era"),
+      "identification method: armax (time histories), era or plscf")(
       "json", po::value<std::string>(), "write the modes as JSON to this file ('-' for stdout)")(
       "uff", po::value<std::string>(), "write the modes as real normal modes, UFF dataset 55")(
-      "max-order", po::value<int>()->default_value(40), "era: largest model order (state dimension), even")(
-      "segment", po::value<int>()->default_value(1024), "era on time histories: Welch segment, samples")(
+      "max-order", po::value<int>()->default_value(40),
+      "largest model order: era: state dimension, even; plscf: polynomial order")(
+      "segment", po::value<int>()->default_value(1024), "era, plscf on time histories: Welch segment, samples")(
       "ar-order", po::value<int>(), "armax: AR order s with all p responses (default ⌈12/p⌉)")(
       "arx-order", po::value<int>(), "armax: prior ARX order m with all p responses (default ⌈90/p⌉)")(
-      "min-hz", po::value<double>()->default_value(0.0, "0"), "keep modes from this frequency, Hz")(
-      "max-hz", po::value<double>(), "keep modes up to this frequency, Hz (default: all)");
+      "min-hz", po::value<double>()->default_value(0.0, "0"),
+      "keep modes from this frequency, Hz (plscf: also the fitted band's start)")(
+      "max-hz", po::value<double>(),
+      "keep modes up to this frequency, Hz (default: all; plscf: also the fitted band's end)");
   po::positional_options_description pos;
   pos.add("file", 1);
   po::variables_map vm;
   int rc = 0;
   if (!parse_options(args,
-                     "ssid identify modes FILE.unv [--method armax|era] [--json OUT] [--uff OUT] [--max-order N] "
-                     "[--segment N] [--ar-order S] [--arx-order M] [--min-hz F] [--max-hz F]",
+                     "ssid identify modes FILE.unv [--method armax|era|plscf] [--json OUT] [--uff OUT] "
+                     "[--max-order N] [--segment N] [--ar-order S] [--arx-order M] [--min-hz F] [--max-hz F]",
                      desc, pos, vm, rc))
     return rc;
   const std::string method = vm["method"].as<std::string>();
-  if (method != "era" && method != "armax") {
-    print_error("--method: expected armax or era, got \"" + method + "\" (plscf is not available yet)");
+  if (method != "era" && method != "armax" && method != "plscf") {
+    print_error("--method: expected armax, era or plscf, got \"" + method + "\"");
     return 2;
   }
   const int max_order = vm["max-order"].as<int>();
-  if (max_order < 2 || max_order % 2) {
-    print_error(fmt::format("--max-order: expected an even number ≥ 2, got {}", max_order));
+  if (method == "plscf" ? max_order < 1 : (max_order < 2 || max_order % 2)) {
+    print_error(fmt::format("--max-order: expected {}, got {}",
+                            method == "plscf" ? "an order ≥ 1" : "an even number ≥ 2", max_order));
     return 2;
   }
   const int segment = vm["segment"].as<int>();
@@ -265,6 +307,22 @@ int identify_modes(const Args& args) {
   id::StabilisationOptions so;
   so.hz_min = vm["min-hz"].as<double>();
   if (vm.count("max-hz")) so.hz_max = vm["max-hz"].as<double>();
+  id::PlscfOptions band;
+  band.hz_min = so.hz_min;
+  if (vm.count("max-hz")) band.hz_max = so.hz_max;
+  // With --json -, stdout carries the JSON alone (as every command's --json -): no table.
+  std::ostringstream discarded;
+  std::ostream& text = vm.count("json") && vm["json"].as<std::string>() == "-" ? discarded : std::cout;
+  ProgressLines progress_lines("ssid identify", false, 2.0, 2.0);
+  // ERA or pLSCF on FRFs, with the text that ends the input's description line.
+  const auto frf_method = [&](const FrfSet& s) {
+    if (method == "plscf") {
+      text << fmt::format("pLSCF orders 1…{}\n", max_order);
+      return plscf_modes(s, max_order, band, so, progress_lines.callback());
+    }
+    text << fmt::format("ERA orders 2…{}\n", max_order);
+    return era_modes(s, max_order, so);
+  };
 
   const uff::UffFile file = uff::read_uff(vm["file"].as<std::string>());
   std::vector<const uff::Function58*> frf_records, time_records;
@@ -288,29 +346,29 @@ int identify_modes(const Args& args) {
   std::vector<std::string> warnings;
   if (time_records.empty()) {
     const FrfSet s = read_frfs(file, frf_records);
-    std::cout << fmt::format("{} FRF(s): {} response(s) × {} reference(s), {} lines every {} Hz; ERA orders 2…{}\n",
+    text << fmt::format("{} FRF(s): {} response(s) × {} reference(s), {} lines every {} Hz; ",
                              s.responses.size() * s.references.size(), s.responses.size(), s.references.size(),
-                             s.lines.size(), s.df, max_order);
-    r = era_modes(s, max_order, so);
+                             s.lines.size(), s.df);
+    r = frf_method(s);
     responses = s.responses;
   } else {
     const TimeSet t = read_time_histories(file, time_records);
     responses = t.responses;
     const auto p = static_cast<int>(t.responses.size());
-    std::cout << fmt::format("{} time histories: {} response(s), {} force(s), {} samples every {} s; ",
+    text << fmt::format("{} time histories: {} response(s), {} force(s), {} samples every {} s; ",
                              time_records.size(), p, t.forces.size(), t.y.rows(), t.dt);
-    if (method == "era") {
+    if (method != "armax") {
       const FrfSet s = h1_frfs(file, t, segment);
-      std::cout << fmt::format("H1 by Welch ({} samples, Hann, half overlap): {} lines every {} Hz; ERA orders 2…{}\n",
-                               segment, s.lines.size(), s.df, max_order);
-      r = era_modes(s, max_order, so);
+      text << fmt::format("H1 by Welch ({} samples, Hann, half overlap): {} lines every {} Hz; ", segment,
+                               s.lines.size(), s.df);
+      r = frf_method(s);
     } else {
       if (p < 2)
         throw formats::InputError(file.path + ": --method armax needs at least two response records (the order rule "
                                               "compares the identification from all of them with each one's)");
       const int s = vm.count("ar-order") ? vm["ar-order"].as<int>() : (12 + p - 1) / p;
       const int m = vm.count("arx-order") ? vm["arx-order"].as<int>() : (90 + p - 1) / p;
-      std::cout << fmt::format("ARMAX orders s = {}, m = {} on all responses, then {}, {} on each\n", s, m, p * s,
+      text << fmt::format("ARMAX orders s = {}, m = {} on all responses, then {}, {} on each\n", s, m, p * s,
                                p * m);
       try {
         r = armax_modes(t, s, m, so, warnings);
@@ -321,7 +379,7 @@ int identify_modes(const Args& args) {
     }
   }
 
-  std::cout << "mode   frequency (Hz)      ± (Hz)   damping (%)     ± (%)" << r.columns_header << "\n";
+  text << "mode   frequency (Hz)      ± (Hz)   damping (%)     ± (%)" << r.columns_header << "\n";
   std::vector<std::int64_t> nodes;
   for (const auto& d : responses)
     if (std::find(nodes.begin(), nodes.end(), d.first) == nodes.end()) nodes.push_back(d.first);
@@ -330,7 +388,7 @@ int identify_modes(const Args& args) {
   bool rotations_dropped = false;
   for (std::size_t m = 0; m < r.modes.size(); ++m) {
     const Identified::Mode& md = r.modes[m];
-    std::cout << fmt::format("{:4d} {:16.6f} {:11.3e} {:13.4f} {:9.3e}{}\n", m + 1, md.hz, md.hz_std, 100 * md.zeta,
+    text << fmt::format("{:4d} {:16.6f} {:11.3e} {:13.4f} {:9.3e}{}\n", m + 1, md.hz, md.hz_std, 100 * md.zeta,
                              100 * md.zeta_std, md.columns);
     nlohmann::json shape = nlohmann::json::array();
     Eigen::MatrixXd values = Eigen::MatrixXd::Zero(static_cast<Eigen::Index>(nodes.size()), 3);
@@ -354,10 +412,11 @@ int identify_modes(const Args& args) {
                                                             0.0, md.zeta));
   }
   if (r.modes.empty())
-    std::cout << (method == "era" ? "(no mode stable across the orders)\n" : "(no mode found in every run)\n");
+    text << (method == "armax" ? "(no mode found in every run)\n" : "(no mode stable across the orders)\n");
   std::cerr << "note: poles not kept:";
   for (const auto& [reason, count] : r.rejected) std::cerr << " " << reason << " " << count << ";";
   std::cerr << "\n";
+  for (const auto& n : r.notes) std::cerr << "note: " << n << "\n";
   for (const auto& w : warnings) std::cerr << "warning: " << w << "\n";
   if (rotations_dropped) std::cerr << "warning: rotational responses are in the JSON only (UFF 55 gets X, Y, Z)\n";
 
@@ -366,6 +425,7 @@ int identify_modes(const Args& args) {
     j["modes"] = modes;
     j["method"] = method;
     j["rejected"] = r.rejected;
+    j.update(r.summary);
     write_json(vm["json"].as<std::string>(), j);
   }
   if (vm.count("uff")) {
@@ -380,8 +440,8 @@ int identify_modes(const Args& args) {
 int cmd_identify(const Args& args) {
   const std::string usage =
       "usage: ssid identify <modes> ...\n"
-      "  modes FILE.unv [--method armax|era] [--json OUT] [--uff OUT]   modes from the FRFs or time histories\n"
-      "                                                               (UFF 58) of a modal test\n";
+      "  modes FILE.unv [--method armax|era|plscf] [--json OUT] [--uff OUT]   modes from the FRFs or time\n"
+      "                                                                     histories (UFF 58) of a modal test\n";
   if (args.empty() || args[0] == "--help" || args[0] == "-h") {
     (args.empty() ? std::cerr : std::cout) << usage;
     return args.empty() ? 2 : 0;
