@@ -709,6 +709,69 @@ std::string verdict(double v, double pass, double warn, bool larger_better = fal
 
 int rank(const std::string& v) { return v == "fail" ? 3 : v == "warn" ? 2 : v == "pass" ? 1 : 0; }
 
+/// `ssid identify check` on free decays: the dominant frequency of overlapping segments.
+int check_decays(const uff::UffFile& file, const std::vector<const uff::Function58*>& records, int segment,
+                 double overlap, const std::string& json_path) {
+  const auto* first = records.front();
+  for (const auto* f : records) {
+    const std::string at = f->where.str() + ": dataset 58";
+    if (!f->even) throw formats::InputError(at + ": uneven abscissa (expected evenly spaced time samples)");
+    if (f->is_complex()) throw formats::InputError(at + ": complex ordinate (expected a real time history)");
+    if (f->y.size() != first->y.size() || f->abscissa_increment != first->abscissa_increment)
+      throw formats::InputError(fmt::format("{}: {} samples every {} s (expected {} every {} s as at {})", at,
+                                            f->y.size(), f->abscissa_increment, first->y.size(),
+                                            first->abscissa_increment, first->where.str()));
+  }
+  const double dt = first->abscissa_increment;
+  const auto n = static_cast<Eigen::Index>(first->y.size());
+  Eigen::MatrixXd y(n, static_cast<Eigen::Index>(records.size()));
+  for (std::size_t c = 0; c < records.size(); ++c)
+    for (Eigen::Index k = 0; k < n; ++k) y(k, static_cast<Eigen::Index>(c)) = records[c]->y[static_cast<std::size_t>(k)].real();
+  const Eigen::Index seg = segment > 0 ? segment : n / 4;
+  if (seg < 16 || seg > n)
+    throw formats::InputError(fmt::format("{}: decay segments of {} samples in records of {} (expected 16 … {}; "
+                                          "--decay-segment)",
+                                          file.path, seg, n, n));
+  const Eigen::Index step = std::max<Eigen::Index>(1, static_cast<Eigen::Index>(std::lround((1 - overlap) * seg)));
+  const auto segs = id::decay_segments(y, dt, seg, step);
+  std::cout << fmt::format("{} free decay(s) (no force record) of {}: {} samples every {} s; ERA (order ≤ 8) on {} "
+                           "segments of {} samples every {} samples\n",
+                           records.size(), file.path, n, dt, segs.size(), seg, step);
+  std::cout << "segment  start (s)   RMS (record unit)   dominant (Hz)   damping (%)\n";
+  nlohmann::json items = nlohmann::json::array();
+  std::vector<double> hz;
+  for (std::size_t k = 0; k < segs.size(); ++k) {
+    const auto& d = segs[k];
+    std::cout << fmt::format("{:7d} {:10.4f} {:19.6e} {:15.6f} {:13.4f}\n", k + 1, d.start_s, d.rms, d.hz,
+                             100 * d.zeta);
+    items.push_back({{"start_s", d.start_s}, {"rms", d.rms}, {"hz", std::isnan(d.hz) ? nlohmann::json() : nlohmann::json(d.hz)},
+                     {"zeta", std::isnan(d.zeta) ? nlohmann::json() : nlohmann::json(d.zeta)}});
+    if (!std::isnan(d.hz)) hz.push_back(d.hz);
+  }
+  std::string v = "n/a", figure = "fewer than two segments with a dominant mode";
+  if (hz.size() >= 2) {
+    std::vector<double> sorted = hz;
+    std::sort(sorted.begin(), sorted.end());
+    const double median = sorted[sorted.size() / 2];
+    const double spread = (sorted.back() - sorted.front()) / median;
+    v = verdict(spread, 0.005, 0.01);
+    figure = fmt::format("dominant frequency {:.6f} Hz in the first segment, {:.6f} Hz in the last: spread {:.3f} % over {} "
+                         "segments (pass ≤ 0.5 %, warn ≤ 1 %)",
+                         hz.front(), hz.back(), 100 * spread, hz.size());
+  }
+  nlohmann::json checks = nlohmann::json::array();
+  std::cout << "\ncheck        verdict\n";
+  std::cout << fmt::format("{:<12} {:<5} {}\n", "linearity", v, figure);
+  checks.push_back({{"check", "linearity"}, {"verdict", v}, {"figure", figure}, {"items", items}});
+  for (const char* name : {"reciprocity", "coherence", "resolution"}) {
+    std::cout << fmt::format("{:<12} {:<5} {}\n", name, "n/a", "free decays: no FRF");
+    checks.push_back({{"check", name}, {"verdict", "n/a"}, {"figure", "free decays: no FRF"}, {"items", nlohmann::json::array()}});
+  }
+  std::cout << "\noverall: " << v << "\n";
+  if (!json_path.empty()) write_json(json_path, {{"checks", checks}, {"overall", v}});
+  return 0;
+}
+
 /// `ssid identify check`: reciprocity, linearity, coherence, resolution against damping.
 int identify_check(const Args& args) {
   po::options_description desc("ssid identify check options");
@@ -721,14 +784,18 @@ int identify_check(const Args& args) {
       "band", po::value<std::string>(), "check the lines in F1:F2 only, Hz (default: all above 0 Hz)")(
       "modes-from", po::value<std::string>(),
       "the JSON of ssid identify modes: the peaks' damping from the identified modes (else from the FRFs' "
-      "half-power bandwidth)")("json", po::value<std::string>(), "write the verdicts and figures as JSON ('-' for stdout)");
+      "half-power bandwidth)")(
+      "decay-segment", po::value<int>(), "free decays: ERA segment, samples (default a quarter of the record)")(
+      "decay-overlap", po::value<double>()->default_value(0.5, "0.5"), "free decays: overlap of the segments, [0, 1)")(
+      "json", po::value<std::string>(), "write the verdicts and figures as JSON ('-' for stdout)");
   po::positional_options_description pos;
   pos.add("file", 1);
   po::variables_map vm;
   int rc = 0;
   if (!parse_options(args,
                      "ssid identify check FILE.unv [--second FILE2.unv] [--segment N] [--coherence-min C] "
-                     "[--band F1:F2] [--modes-from IDENTIFIED.json] [--json OUT]",
+                     "[--band F1:F2] [--modes-from IDENTIFIED.json] [--decay-segment N] [--decay-overlap F] "
+                     "[--json OUT]",
                      desc, pos, vm, rc))
     return rc;
   const int segment = vm["segment"].as<int>();
@@ -780,6 +847,31 @@ int identify_check(const Args& args) {
     }
   }
 
+  const double decay_overlap = vm["decay-overlap"].as<double>();
+  if (!(decay_overlap >= 0 && decay_overlap < 1)) {
+    print_error(fmt::format("--decay-overlap: expected a fraction 0 ≤ F < 1, got {}", decay_overlap));
+    return 2;
+  }
+  {
+    // Free decays (time histories, none of them a force): linearity from the dominant
+    // frequency of overlapping segments; the FRF checks do not apply.
+    const uff::UffFile file = uff::read_uff(vm["file"].as<std::string>());
+    std::vector<const uff::Function58*> time_records;
+    bool other = false;
+    for (const auto* f : file.functions()) {
+      if (f->function_type == 1) time_records.push_back(f);
+      if (f->function_type == 4) other = true;
+    }
+    if (!time_records.empty() && !other &&
+        std::none_of(time_records.begin(), time_records.end(),
+                     [&](const uff::Function58* f) { return is_force_record(time_records, *f); })) {
+      if (vm.count("second"))
+        throw formats::InputError(file.path + ": free decays (no force record): --second compares FRFs at two force "
+                                              "levels, which free decays do not have");
+      return check_decays(file, time_records, vm.count("decay-segment") ? vm["decay-segment"].as<int>() : 0,
+                          decay_overlap, vm.count("json") ? vm["json"].as<std::string>() : "");
+    }
+  }
   const CheckSet a = check_set(vm["file"].as<std::string>(), segment);
   std::optional<CheckSet> b;
   if (vm.count("second")) b = check_set(vm["second"].as<std::string>(), segment);

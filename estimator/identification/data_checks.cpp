@@ -4,6 +4,7 @@
 #include <fmt/format.h>
 #include <limits>
 
+#include "estimator/identification/era.hpp"
 #include "estimator/identification/frf_synthesis.hpp"
 #include "formats/parse_error.hpp"
 
@@ -94,6 +95,46 @@ std::vector<PeakResolution> peak_resolution(const Eigen::Ref<const Eigen::Vector
     r.zeta = r.half_power_hz / (2 * r.hz);
     r.lines = r.half_power_hz / df;
     out.push_back(r);
+  }
+  return out;
+}
+
+std::vector<DecaySegment> decay_segments(const Eigen::Ref<const Eigen::MatrixXd>& records, double dt,
+                                         Eigen::Index segment, Eigen::Index step, Eigen::Index order) {
+  if (!(dt > 0)) throw InputError(fmt::format("decay segments: sample interval {} s (expected > 0)", dt));
+  if (step < 1 || segment < 4 || records.rows() < segment || records.cols() < 1)
+    throw InputError(fmt::format("decay segments: {} samples of {} channel(s), segments of {} every {} (expected at "
+                                 "least one segment of 4 or more samples and a step ≥ 1)",
+                                 records.rows(), records.cols(), segment, step));
+  std::vector<DecaySegment> out;
+  EraOptions eo;
+  eo.order = order;
+  eo.dt = dt;
+  for (Eigen::Index start = 0; start + segment <= records.rows(); start += step) {
+    const auto block = records.middleRows(start, segment);
+    DecaySegment d;
+    d.start_s = static_cast<double>(start) * dt;
+    d.rms = std::sqrt(block.squaredNorm() / static_cast<double>(block.size()));
+    d.hz = d.zeta = std::numeric_limits<double>::quiet_NaN();
+    // Orders 2, 4, … up to `order`, and the highest the data carry: beyond the numerical
+    // rank (noise-free data of few modes) the realization is round-off.
+    std::vector<Eigen::Index> orders;
+    for (Eigen::Index o = 2; o <= order; o += 2) orders.push_back(o);
+    const std::vector<EraResult> rs = era_orders(markov_from_records(block), eo, orders);
+    std::size_t use = 0;
+    for (std::size_t i = 0; i < rs.size(); ++i) {
+      const Eigen::VectorXd& sv = rs[i].singular_values;
+      if (sv.size() >= rs[i].order && sv(rs[i].order - 1) > 1e-9 * sv(0)) use = i;
+    }
+    const EraResult& r = rs[use];
+    double best = -1;
+    for (const IdentifiedPole& p : r.poles)
+      if (p.lambda.imag() > 0 && p.zeta > 0 && p.zeta < 0.2 && p.msv > best) {
+        best = p.msv;
+        d.hz = p.hz;
+        d.zeta = p.zeta;
+      }
+    out.push_back(d);
   }
   return out;
 }

@@ -59,4 +59,25 @@ std::vector<PeakResolution> peak_resolution(const Eigen::Ref<const Eigen::Vector
                                             const std::vector<std::pair<double, double>>& identified = {},
                                             double tol = 0.05, double min_fraction = 0.05);
 
+/// The dominant mode of one segment of a free decay.
+struct DecaySegment {
+  double start_s = 0;  ///< the segment's first sample, s from the record's start
+  double rms = 0;      ///< RMS of the segment over its samples and channels (the records' unit)
+  double hz = 0;       ///< dominant pole's frequency |λ|/2π, Hz (NaN when ERA found none)
+  double zeta = 0;     ///< its damping ratio
+};
+
+/// The seed's linearity check on free decays ("analyzed in overlapping segments using
+/// ERA to calculate the dominant modal frequency as a function of time"): ERA of order
+/// `order` (or the highest even order below it whose singular value exceeds 1e-9 of the
+/// largest: noise-free data of few modes have no more) on each segment of `segment` samples, starting every `step` samples, the
+/// records (samples × channels, every dt s) taken as one free decay (Markov parameters
+/// Y[k] = records.row(k)ᵀ); the dominant pole is the one of largest modal singular value
+/// among the poles with Im λ > 0 and 0 < ζ < 0.2. A linear structure's frequency does not
+/// move as the amplitude decays; a hardening (softening) one's falls (rises).
+/// Throws formats::InputError when the records are shorter than one segment, step < 1,
+/// or dt ≤ 0.
+std::vector<DecaySegment> decay_segments(const Eigen::Ref<const Eigen::MatrixXd>& records, double dt,
+                                         Eigen::Index segment, Eigen::Index step, Eigen::Index order = 8);
+
 }  // namespace ssid::estimator::identification

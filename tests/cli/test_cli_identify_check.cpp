@@ -225,6 +225,75 @@ TEST_CASE("ssid identify check: linearity fails for a cubic stiffness at the hig
   CHECK(verdict_of(j, "reciprocity") == "n/a");
 }
 
+namespace {
+
+/// A free decay of the oscillator of duffing_file at 0.5 % damping from x(0) = 0.01 m
+/// (dt = 0.005 s, 4000 samples, RK4 with 4 steps per sample), with 0.5 % noise of the
+/// initial amplitude; `k3` its cubic stiffness. Reference fields 0: no record is a force.
+fs::path decay_file(const std::string& name, double k3) {
+  const double m = 1, k = std::pow(2 * M_PI * 5, 2), c = 2 * 0.005 * std::sqrt(k * m), dt = 0.005;
+  const int n = 4000, sub = 4;
+  ssid::translators::NormalDeviates z(11);
+  const auto acc = [&](double xx, double vv) { return (-c * vv - k * xx - k3 * xx * xx * xx) / m; };
+  double x = 0.01, v = 0;
+  uff::Function58 fn;
+  fn.function_type = 1;
+  fn.response_node = 1;
+  fn.response_direction = 1;
+  fn.ordinate_type = 4;
+  fn.abscissa_increment = dt;
+  fn.axes[1].specific_data_type = 8;
+  for (int i = 0; i < n; ++i) {
+    fn.x.push_back(i * dt);
+    fn.y.emplace_back(x + 0.005 * 0.01 * z());
+    const double h = dt / sub;
+    for (int s = 0; s < sub; ++s) {
+      const double k1x = v, k1v = acc(x, v);
+      const double k2x = v + 0.5 * h * k1v, k2v = acc(x + 0.5 * h * k1x, v + 0.5 * h * k1v);
+      const double k3x = v + 0.5 * h * k2v, k3v = acc(x + 0.5 * h * k2x, v + 0.5 * h * k2v);
+      const double k4x = v + h * k3v, k4v = acc(x + h * k3x, v + h * k3v);
+      x += h / 6 * (k1x + 2 * k2x + 2 * k3x + k4x);
+      v += h / 6 * (k1v + 2 * k2v + 2 * k3v + k4v);
+    }
+  }
+  uff::UffFile f;
+  f.datasets.emplace_back(fn);
+  const fs::path p = scratch(name);
+  uff::write_uff(f, p.string(), uff::Precision::Extended);
+  return p;
+}
+
+}  // namespace
+
+TEST_CASE("ssid identify check: linearity of free decays from ERA on overlapping segments", "[cli][identify][check]") {
+  CliResult r;
+  // Linear: the dominant frequency stays at the oscillator's damped 5 Hz.
+  nlohmann::json j = run_check(decay_file("decay_lin.unv", 0.0).string(), r);
+  INFO(r.out << r.err);
+  REQUIRE(r.code == 0);
+  CHECK(r.out.find("1 free decay(s) (no force record)") != std::string::npos);
+  CHECK(verdict_of(j, "linearity") == "pass");
+  CHECK(verdict_of(j, "reciprocity") == "n/a");
+  const auto& segs = j["checks"][0]["items"];
+  REQUIRE(segs.size() == 7);  // quarter-record segments every half segment
+  for (const auto& sgm : segs) CHECK(sgm["hz"].get<double>() == Approx(5.0).epsilon(2e-4));
+  // Hardening cubic spring, k3 x0² = 0.3 k: about 11 % stiffer-in-frequency at the start,
+  // falling towards 5 Hz as the decay dies out.
+  const double k3 = 0.3 * std::pow(2 * M_PI * 5, 2) / (0.01 * 0.01);
+  j = run_check(decay_file("decay_nl.unv", k3).string(), r);
+  REQUIRE(r.code == 0);
+  CHECK(verdict_of(j, "linearity") == "fail");
+  const auto& nl = j["checks"][0]["items"];
+  CHECK(nl[0]["hz"].get<double>() > 1.03 * nl[6]["hz"].get<double>());
+  CHECK(nl[0]["rms"].get<double>() > nl[6]["rms"].get<double>());
+  const CliResult second = run_ssid("identify check " + scratch("decay_nl.unv").string() + " --second " +
+                                    scratch("decay_lin.unv").string());
+  CHECK(second.code == 2);
+  CHECK(second.err == "ssid: error: " + scratch("decay_nl.unv").string() +
+                          ": free decays (no force record): --second compares FRFs at two force levels, which free "
+                          "decays do not have\n");
+}
+
 TEST_CASE("ssid identify check: bad input exits 2 with the reason", "[cli][identify][check]") {
   const fs::path clean = chain_file("clean2.unv", {});
   CHECK(run_ssid("identify check --help").code == 0);

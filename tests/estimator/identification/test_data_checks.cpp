@@ -82,3 +82,30 @@ TEST_CASE("low-coherence bands and FRF differences", "[identification][data_chec
   CHECK_THROWS_WITH(compare_frfs(g, a, a.head(5)),
                     "FRF comparison: 2001 lines, FRFs of 2001 and 5 values (expected one per line)");
 }
+
+TEST_CASE("decay segments: ERA finds the dominant mode of each segment of a two-mode decay",
+          "[identification][data_checks]") {
+  // x(t) = e^{−ζ₁ω₁t} cos(ω_d1 t) + 0.1 e^{−ζ₂ω₂t} cos(ω_d2 t): 8 Hz at 1 %, 23 Hz at 2 %.
+  const double dt = 0.004;
+  const Eigen::Index n = 2000;
+  Eigen::MatrixXd x(n, 2);
+  for (Eigen::Index k = 0; k < n; ++k) {
+    const double t = static_cast<double>(k) * dt;
+    const auto mode = [t](double hz, double zeta) {
+      const double w = 2 * M_PI * hz;
+      return std::exp(-zeta * w * t) * std::cos(w * std::sqrt(1 - zeta * zeta) * t);
+    };
+    x(k, 0) = mode(8, 0.01) + 0.1 * mode(23, 0.02);
+    x(k, 1) = -0.5 * mode(8, 0.01) + 0.3 * mode(23, 0.02);
+  }
+  const auto segs = decay_segments(x, dt, 500, 250);
+  REQUIRE(segs.size() == 7);
+  for (const auto& s : segs) {
+    CHECK(s.hz == Approx(8.0).epsilon(1e-8));
+    CHECK(s.zeta == Approx(0.01).epsilon(1e-6));
+  }
+  CHECK(segs[1].start_s == Approx(1.0));
+  CHECK(segs[0].rms > segs[6].rms);
+  CHECK_THROWS_AS(decay_segments(x, dt, 3000, 250), ssid::formats::InputError);
+  CHECK_THROWS_AS(decay_segments(x, 0.0, 500, 250), ssid::formats::InputError);
+}
