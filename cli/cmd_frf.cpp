@@ -234,6 +234,9 @@ int cmd_frf(const Args& args) {
                      "[--measured FILE.unv] [--uff OUT.unv] [--json OUT] [--svg OUT.svg]",
                      desc, pos, vm, rc))
     return rc;
+  // With --json - the JSON is stdout: the table goes nowhere.
+  std::ostringstream discard;
+  std::ostream& text = vm.count("json") && vm["json"].as<std::string>() == "-" ? static_cast<std::ostream&>(discard) : std::cout;
   if (!vm.count("damping") && !vm.count("modes-from")) {
     print_error("give the modal damping: --damping Z (a ratio, 0.01 = 1 %) or --modes-from IDENTIFIED.json");
     return kExitBadInput;
@@ -411,16 +414,16 @@ int cmd_frf(const Args& args) {
   const Eigen::MatrixXcd H = id::synthesize_frf(fv, mm, q);
 
   // stdout: the modes and the FRFs' peaks.
-  std::cout << fmt::format("{}: {} mode(s) ({}), mass-normalised; {} FRF(s) of {} per force from drive {},{}, {} "
+  text << fmt::format("{}: {} mode(s) ({}), mass-normalised; {} FRF(s) of {} per force from drive {},{}, {} "
                            "line(s) {}…{} Hz\n",
                            lm.path, er.size(), source, responses.size(), quantity_name(q), drive.point, drive.component,
                            f.size(), estimator::significant(f.front(), 6), estimator::significant(f.back(), 6));
-  std::cout << "mode   frequency (Hz)   damping (%)  damping from\n";
+  text << "mode   frequency (Hz)   damping (%)  damping from\n";
   for (int r = 0; r < er.size(); ++r)
-    std::cout << fmt::format("{:4d} {:16.6f} {:13.4f}  {}\n", r + 1, fe_hz(r), 100 * mm.zeta(r),
+    text << fmt::format("{:4d} {:16.6f} {:13.4f}  {}\n", r + 1, fe_hz(r), 100 * mm.zeta(r),
                              zeta_source[static_cast<std::size_t>(r)]);
   const std::string unit = quantity_unit(q);
-  std::cout << fmt::format("\nresponse    peak |H| ({})   at (Hz){}\n", unit, measured ? "   measured peak   at (Hz)     FRAC" : "");
+  text << fmt::format("\nresponse    peak |H| ({})   at (Hz){}\n", unit, measured ? "   measured peak   at (Hz)     FRAC" : "");
 
   nlohmann::json j;
   j["deck"] = lm.path;
@@ -467,7 +470,7 @@ int cmd_frf(const Args& args) {
       curves.push_back({"measured", "#c0392b", "measured (" + m->where.str() + ")", f, {}});
       for (Eigen::Index k = 0; k < hm.size(); ++k) curves.back().h.push_back(hm(k));
     }
-    std::cout << line << "\n";
+    text << line << "\n";
     j["responses"].push_back(jr);
     if (vm.count("svg"))
       svg_body += overlay_charts(curves,

@@ -17,6 +17,7 @@
 #include <limits>
 #include <map>
 #include <optional>
+#include <sstream>
 #include <utility>
 
 #include "cli/cli_util.hpp"
@@ -420,6 +421,9 @@ int identify_frf(const Args& args) {
                      "[--segment N] [--overlap F] [--force-fraction F] [--exp-decay P] [--uff OUT.unv] [--json OUT]",
                      desc, pos, vm, rc))
     return rc;
+  // With --json - the JSON is stdout: the table goes nowhere.
+  std::ostringstream discard;
+  std::ostream& text = vm.count("json") && vm["json"].as<std::string>() == "-" ? static_cast<std::ostream&>(discard) : std::cout;
   const std::string est = vm["estimator"].as<std::string>(), win = vm["window"].as<std::string>();
   id::FrfEstimator estimator = id::FrfEstimator::H1;
   if (est == "h2") estimator = id::FrfEstimator::H2;
@@ -499,9 +503,9 @@ int identify_frf(const Args& args) {
   }
   const std::string unit = fmt::format("({})/({})", uy.empty() ? "response unit" : uy, ux.empty() ? "force unit" : ux);
 
-  std::cout << fmt::format("{} time histories: {} response(s), {} force(s), {} samples every {} s\n",
+  text << fmt::format("{} time histories: {} response(s), {} force(s), {} samples every {} s\n",
                            time_records.size(), no, ni, t.y.rows(), t.dt);
-  std::cout << fmt::format("{} by Welch: {} averages of {} samples ({} s), overlap {} samples, window {}{}; {} lines "
+  text << fmt::format("{} by Welch: {} averages of {} samples ({} s), overlap {} samples, window {}{}; {} lines "
                            "every {} Hz (0 … {} Hz)\n",
                            est == "h1" ? "H1" : est == "h2" ? "H2" : "Hv", e.segments, segment,
                            static_cast<double>(segment) * t.dt, wo.overlap, win,
@@ -526,7 +530,7 @@ int identify_frf(const Args& args) {
     return std::isfinite(v.real()) && std::isfinite(v.imag()) ? v : std::complex<double>(0, 0);
   };
 
-  std::cout << fmt::format("response  reference   peak |H| {}   at (Hz)   coherence: mean    min   lines < 0.9\n", unit);
+  text << fmt::format("response  reference   peak |H| {}   at (Hz)   coherence: mean    min   lines < 0.9\n", unit);
   nlohmann::json j;
   j["estimator"] = est;
   j["window"] = win;
@@ -574,7 +578,7 @@ int identify_frf(const Args& args) {
       h.tail(lines - 1).cwiseAbs().maxCoeff(&peak);  // above 0 Hz
       ++peak;
       const Eigen::VectorXd c = coh.tail(lines - 1);
-      std::cout << fmt::format("{:>8} {:>10} {:>18.6e} {:9.3f} {:18.4f} {:6.4f} {:13d}\n",
+      text << fmt::format("{:>8} {:>10} {:>18.6e} {:9.3f} {:18.4f} {:6.4f} {:13d}\n",
                                fmt::format("{}:{}", resp.first, resp.second), fmt::format("{}:{}", ref.first, ref.second),
                                std::abs(h(peak)), e.frequency_hz(peak), c.mean(), c.minCoeff(),
                                (c.array() < 0.9).count());
@@ -712,6 +716,8 @@ int rank(const std::string& v) { return v == "fail" ? 3 : v == "warn" ? 2 : v ==
 /// `ssid identify check` on free decays: the dominant frequency of overlapping segments.
 int check_decays(const uff::UffFile& file, const std::vector<const uff::Function58*>& records, int segment,
                  double overlap, const std::string& json_path) {
+  std::ostringstream discard;  // with --json - the JSON is stdout: the table goes nowhere
+  std::ostream& text = json_path == "-" ? static_cast<std::ostream&>(discard) : std::cout;
   const auto* first = records.front();
   for (const auto* f : records) {
     const std::string at = f->where.str() + ": dataset 58";
@@ -734,15 +740,15 @@ int check_decays(const uff::UffFile& file, const std::vector<const uff::Function
                                           file.path, seg, n, n));
   const Eigen::Index step = std::max<Eigen::Index>(1, static_cast<Eigen::Index>(std::lround((1 - overlap) * seg)));
   const auto segs = id::decay_segments(y, dt, seg, step);
-  std::cout << fmt::format("{} free decay(s) (no force record) of {}: {} samples every {} s; ERA (order ≤ 8) on {} "
+  text << fmt::format("{} free decay(s) (no force record) of {}: {} samples every {} s; ERA (order ≤ 8) on {} "
                            "segments of {} samples every {} samples\n",
                            records.size(), file.path, n, dt, segs.size(), seg, step);
-  std::cout << "segment  start (s)   RMS (record unit)   dominant (Hz)   damping (%)\n";
+  text << "segment  start (s)   RMS (record unit)   dominant (Hz)   damping (%)\n";
   nlohmann::json items = nlohmann::json::array();
   std::vector<double> hz;
   for (std::size_t k = 0; k < segs.size(); ++k) {
     const auto& d = segs[k];
-    std::cout << fmt::format("{:7d} {:10.4f} {:19.6e} {:15.6f} {:13.4f}\n", k + 1, d.start_s, d.rms, d.hz,
+    text << fmt::format("{:7d} {:10.4f} {:19.6e} {:15.6f} {:13.4f}\n", k + 1, d.start_s, d.rms, d.hz,
                              100 * d.zeta);
     items.push_back({{"start_s", d.start_s}, {"rms", d.rms}, {"hz", std::isnan(d.hz) ? nlohmann::json() : nlohmann::json(d.hz)},
                      {"zeta", std::isnan(d.zeta) ? nlohmann::json() : nlohmann::json(d.zeta)}});
@@ -760,14 +766,14 @@ int check_decays(const uff::UffFile& file, const std::vector<const uff::Function
                          hz.front(), hz.back(), 100 * spread, hz.size());
   }
   nlohmann::json checks = nlohmann::json::array();
-  std::cout << "\ncheck        verdict\n";
-  std::cout << fmt::format("{:<12} {:<5} {}\n", "linearity", v, figure);
+  text << "\ncheck        verdict\n";
+  text << fmt::format("{:<12} {:<5} {}\n", "linearity", v, figure);
   checks.push_back({{"check", "linearity"}, {"verdict", v}, {"figure", figure}, {"items", items}});
   for (const char* name : {"reciprocity", "coherence", "resolution"}) {
-    std::cout << fmt::format("{:<12} {:<5} {}\n", name, "n/a", "free decays: no FRF");
+    text << fmt::format("{:<12} {:<5} {}\n", name, "n/a", "free decays: no FRF");
     checks.push_back({{"check", name}, {"verdict", "n/a"}, {"figure", "free decays: no FRF"}, {"items", nlohmann::json::array()}});
   }
-  std::cout << "\noverall: " << v << "\n";
+  text << "\noverall: " << v << "\n";
   if (!json_path.empty()) write_json(json_path, {{"checks", checks}, {"overall", v}});
   return 0;
 }
@@ -798,6 +804,9 @@ int identify_check(const Args& args) {
                      "[--json OUT]",
                      desc, pos, vm, rc))
     return rc;
+  // With --json - the JSON is stdout: the table goes nowhere.
+  std::ostringstream discard;
+  std::ostream& text = vm.count("json") && vm["json"].as<std::string>() == "-" ? static_cast<std::ostream&>(discard) : std::cout;
   const int segment = vm["segment"].as<int>();
   if (segment < 8) {
     print_error(fmt::format("--segment: expected at least 8 samples, got {}", segment));
@@ -893,17 +902,17 @@ int identify_check(const Args& args) {
     return o;
   };
   const Eigen::VectorXd f = pick_real(a.f);
-  std::cout << a.what << ": " << a.frf.responses.size() << " response(s) × " << a.frf.references.size()
+  text << a.what << ": " << a.frf.responses.size() << " response(s) × " << a.frf.references.size()
             << " reference(s), " << keep.size() << fmt::format(" lines {}…{} Hz every {} Hz\n", f(0), f(f.size() - 1), a.frf.df);
-  if (b) std::cout << "second level: " << b->what << "\n";
+  if (b) text << "second level: " << b->what << "\n";
 
   nlohmann::json checks = nlohmann::json::array();
   const auto report = [&](const std::string& name, const std::string& v, const std::string& figure, nlohmann::json items) {
-    std::cout << fmt::format("{:<12} {:<5} {}\n", name, v, figure);
+    text << fmt::format("{:<12} {:<5} {}\n", name, v, figure);
     checks.push_back({{"check", name}, {"verdict", v}, {"figure", figure}, {"items", std::move(items)}});
   };
   const auto pct = [](double v) { return fmt::format("{:.2f} %", 100 * v); };
-  std::cout << "\ncheck        verdict\n";
+  text << "\ncheck        verdict\n";
 
   // Reciprocity: H(b / a) against H(a / b) for two references each measured at the other's DOF.
   {
@@ -1028,7 +1037,7 @@ int identify_check(const Args& args) {
   std::string overall = "n/a";
   for (const auto& c : checks)
     if (rank(c["verdict"].get<std::string>()) > rank(overall)) overall = c["verdict"].get<std::string>();
-  std::cout << "\noverall: " << overall << "\n";
+  text << "\noverall: " << overall << "\n";
   if (vm.count("json")) write_json(vm["json"].as<std::string>(), {{"checks", checks}, {"overall", overall}});
   return 0;
 }

@@ -255,6 +255,10 @@ TEST_CASE("ssid frf --modes-from takes each mode's damping from the identified m
 TEST_CASE("ssid frf: bad input is refused with exit 2 and a located message", "[cli][frf]") {
   const std::string deck = spring_deck().string();
   CHECK(run_ssid("frf --help").code == 0);
+  // --json -: the JSON alone on stdout.
+  const CliResult js = run_ssid("frf " + deck + " --drive 1,1 --response 2,1 --damping 0.01 --band 1:5 --lines 5 --json -");
+  CHECK(js.code == 0);
+  CHECK(nlohmann::json::parse(js.out)["responses"][0]["re"].size() == 5);
   const auto err = [](const CliResult& r) {
     CHECK(r.code == 2);
     return r.err;

@@ -297,6 +297,9 @@ TEST_CASE("ssid identify check: linearity of free decays from ERA on overlapping
 TEST_CASE("ssid identify check: bad input exits 2 with the reason", "[cli][identify][check]") {
   const fs::path clean = chain_file("clean2.unv", {});
   CHECK(run_ssid("identify check --help").code == 0);
+  const CliResult js = run_ssid("identify check " + clean.string() + " --json -");  // the JSON alone on stdout
+  CHECK(js.code == 0);
+  CHECK(nlohmann::json::parse(js.out)["overall"] == "pass");
   CliResult r = run_ssid("identify check " + clean.string() + " --coherence-min 1.5");
   CHECK(r.code == 2);
   CHECK(r.err == "ssid: error: --coherence-min: expected 0 < C < 1, got 1.5\n");
