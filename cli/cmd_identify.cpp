@@ -5,18 +5,25 @@
 /// physical modes) or to pLSCF (poles over model orders, the stabilisation diagram, LSFD for
 /// the shapes); time histories (function type 1, the forces told by their ordinate type) go
 /// to the multistage ARMAX with its subset order rule, or to ERA or pLSCF through H1 FRFs
-/// (Welch). docs/identification.md describes the methods and the rule for force records.
+/// (Welch). `ssid identify frf` turns time histories into FRFs, coherences and multiple
+/// coherences (UFF 58 types 4, 6, 26); `ssid identify check` judges a test's data
+/// (reciprocity, linearity, coherence, resolution against damping) with a verdict per check.
+/// docs/identification.md describes the methods and the rule for force records.
 #include <algorithm>
 #include <cmath>
 #include <fmt/format.h>
 #include <iostream>
+#include <fstream>
+#include <limits>
 #include <map>
+#include <optional>
 #include <sstream>
 #include <utility>
 
 #include "cli/cli_util.hpp"
 #include "cli/progress_lines.hpp"
 #include "estimator/identification/armax_order.hpp"
+#include "estimator/identification/data_checks.hpp"
 #include "estimator/identification/era.hpp"
 #include "estimator/identification/frf.hpp"
 #include "estimator/identification/modal_indicators.hpp"
@@ -95,11 +102,16 @@ struct TimeSet {
 /// force channel; in a file that marks none so, those whose response DOF is their reference
 /// DOF (a channel that is its own reference). The reference fields alone cannot decide: a
 /// driving-point accelerometer has the force's DOF as both. The others are responses.
-TimeSet read_time_histories(const uff::UffFile& file, const std::vector<const uff::Function58*>& records) {
+bool is_force_record(const std::vector<const uff::Function58*>& records, const uff::Function58& f) {
   constexpr int kExcitationForce = 13;
-  const bool typed = std::any_of(records.begin(), records.end(), [](const uff::Function58* f) {
-    return f->axes[1].specific_data_type == kExcitationForce;
+  const bool typed = std::any_of(records.begin(), records.end(), [](const uff::Function58* r) {
+    return r->axes[1].specific_data_type == kExcitationForce;
   });
+  return typed ? f.axes[1].specific_data_type == kExcitationForce
+               : f.response_node == f.reference_node && f.response_direction == f.reference_direction;
+}
+
+TimeSet read_time_histories(const uff::UffFile& file, const std::vector<const uff::Function58*>& records) {
   TimeSet s;
   std::vector<const uff::Function58*> in, out;
   const auto* first = records.front();
@@ -111,8 +123,7 @@ TimeSet read_time_histories(const uff::UffFile& file, const std::vector<const uf
       throw formats::InputError(fmt::format("{}: {} samples every {} s (expected {} every {} s as at {})", at,
                                             f->y.size(), f->abscissa_increment, first->y.size(),
                                             first->abscissa_increment, first->where.str()));
-    const bool force = typed ? f->axes[1].specific_data_type == kExcitationForce
-                             : f->response_node == f->reference_node && f->response_direction == f->reference_direction;
+    const bool force = is_force_record(records, *f);
     const Dof d{f->response_node, f->response_direction};
     auto& dofs = force ? s.forces : s.responses;
     if (std::find(dofs.begin(), dofs.end(), d) != dofs.end())
@@ -435,19 +446,680 @@ int identify_modes(const Args& args) {
   return 0;
 }
 
+/// A record's ordinate unit as its axis labels it ("" when it does not).
+std::string record_unit(const uff::Function58& f) {
+  const std::string& u = f.axes[1].units;
+  return u.empty() || u == "NONE" ? "" : u;
+}
+
+/// `ssid identify frf`: FRFs, coherence and multiple coherence from time histories.
+int identify_frf(const Args& args) {
+  po::options_description desc("ssid identify frf options");
+  desc.add_options()("file", po::value<std::string>()->required(),
+                     "universal file with time histories (dataset 58, function type 1), forces marked as for "
+                     "ssid identify modes")(
+      "estimator", po::value<std::string>()->default_value("h1"),
+      "h1 (noise on the responses; several references), h2 (noise on the force; one reference) or hv (both)")(
+      "window", po::value<std::string>()->default_value("hann"),
+      "hann, flattop, rect, or force-exp (impact: force window on the forces, exponential on the responses)")(
+      "segment", po::value<int>()->default_value(1024), "Welch segment length, samples")(
+      "overlap", po::value<double>(), "overlap of the segments, a fraction in [0, 1) (default 0.5; force-exp: 0)")(
+      "force-fraction", po::value<double>()->default_value(0.1, "0.1"),
+      "force-exp: the share of each segment the force window keeps, (0, 1]")(
+      "exp-decay", po::value<double>()->default_value(1.0, "1"),
+      "force-exp: the exponential window's value at the segment's end, % (0 < P < 100)")(
+      "uff", po::value<std::string>(),
+      "write the FRFs (function type 4), coherences (6) and multiple coherences (26) as UFF 58")(
+      "json", po::value<std::string>(), "write the FRFs and coherences as JSON ('-' for stdout)");
+  po::positional_options_description pos;
+  pos.add("file", 1);
+  po::variables_map vm;
+  int rc = 0;
+  if (!parse_options(args,
+                     "ssid identify frf FILE.unv [--estimator h1|h2|hv] [--window hann|flattop|force-exp|rect] "
+                     "[--segment N] [--overlap F] [--force-fraction F] [--exp-decay P] [--uff OUT.unv] [--json OUT]",
+                     desc, pos, vm, rc))
+    return rc;
+  // With --json - the JSON is stdout: the table goes nowhere.
+  std::ostringstream discard;
+  std::ostream& text = vm.count("json") && vm["json"].as<std::string>() == "-" ? static_cast<std::ostream&>(discard) : std::cout;
+  const std::string est = vm["estimator"].as<std::string>(), win = vm["window"].as<std::string>();
+  id::FrfEstimator estimator = id::FrfEstimator::H1;
+  if (est == "h2") estimator = id::FrfEstimator::H2;
+  else if (est == "hv") estimator = id::FrfEstimator::Hv;
+  else if (est != "h1") {
+    print_error("--estimator: expected h1, h2 or hv, got \"" + est + "\"");
+    return 2;
+  }
+  if (win != "hann" && win != "flattop" && win != "rect" && win != "force-exp") {
+    print_error("--window: expected hann, flattop, force-exp or rect, got \"" + win + "\"");
+    return 2;
+  }
+  const int segment = vm["segment"].as<int>();
+  if (segment < 8) {
+    print_error(fmt::format("--segment: expected at least 8 samples, got {}", segment));
+    return 2;
+  }
+  const double overlap = vm.count("overlap") ? vm["overlap"].as<double>() : (win == "force-exp" ? 0.0 : 0.5);
+  if (!(overlap >= 0 && overlap < 1)) {
+    print_error(fmt::format("--overlap: expected a fraction 0 ≤ F < 1, got {}", overlap));
+    return 2;
+  }
+  const double force_fraction = vm["force-fraction"].as<double>(), decay = vm["exp-decay"].as<double>();
+  if (win != "force-exp" && (!vm["force-fraction"].defaulted() || !vm["exp-decay"].defaulted())) {
+    print_error("--force-fraction and --exp-decay shape the impact windows: give --window force-exp too");
+    return 2;
+  }
+  if (!(force_fraction > 0 && force_fraction <= 1)) {
+    print_error(fmt::format("--force-fraction: expected 0 < F ≤ 1, got {}", force_fraction));
+    return 2;
+  }
+  if (!(decay > 0 && decay < 100)) {
+    print_error(fmt::format("--exp-decay: expected a percentage 0 < P < 100, got {}", decay));
+    return 2;
+  }
+
+  const uff::UffFile file = uff::read_uff(vm["file"].as<std::string>());
+  std::vector<const uff::Function58*> time_records;
+  for (const auto* f : file.functions())
+    if (f->function_type == 1) time_records.push_back(f);
+  if (time_records.empty())
+    throw formats::InputError(file.path + ": no time histories (dataset 58, function type 1)");
+  const TimeSet t = read_time_histories(file, time_records);
+  if (t.y.rows() < segment)
+    throw formats::InputError(fmt::format("{}: {} samples per record, fewer than one Welch segment of {} (--segment)",
+                                          file.path, t.y.rows(), segment));
+  if (estimator == id::FrfEstimator::H2 && t.forces.size() != 1)
+    throw formats::InputError(fmt::format("{}: --estimator h2 with {} force records (expected 1; use h1 or hv with "
+                                          "several references)",
+                                          file.path, t.forces.size()));
+
+  id::WelchOptions wo;
+  wo.segment_length = segment;
+  wo.overlap = static_cast<Eigen::Index>(std::floor(overlap * segment));
+  double tau = 0;
+  if (win == "force-exp") {
+    // The exponential window falls to P % at the segment's end: exp(−N Δt/τ) = P/100.
+    tau = -static_cast<double>(segment) * t.dt / std::log(decay / 100);
+    wo.reference_window = {id::WindowKind::Force, force_fraction, 1.0};
+    wo.response_window = {id::WindowKind::Exponential, 0.1, tau};
+  } else {
+    const id::WindowKind k = win == "hann" ? id::WindowKind::Hann
+                             : win == "flattop" ? id::WindowKind::FlatTop
+                                                : id::WindowKind::Rectangular;
+    wo.reference_window = wo.response_window = {k, 0.1, 1.0};
+  }
+  const id::FrfEstimate e = id::estimate_frf(t.x, t.y, t.dt, wo, estimator);
+  const auto lines = e.frequency_hz.size();
+  const double df = 1.0 / (static_cast<double>(segment) * t.dt);
+  const auto no = static_cast<Eigen::Index>(t.responses.size()), ni = static_cast<Eigen::Index>(t.forces.size());
+
+  // Units of H from the records' labels: response unit / force unit.
+  std::string uy, ux;
+  for (const auto* f : time_records) {
+    std::string& u = is_force_record(time_records, *f) ? ux : uy;
+    if (u.empty()) u = record_unit(*f);
+  }
+  const std::string unit = fmt::format("({})/({})", uy.empty() ? "response unit" : uy, ux.empty() ? "force unit" : ux);
+
+  text << fmt::format("{} time histories: {} response(s), {} force(s), {} samples every {} s\n",
+                           time_records.size(), no, ni, t.y.rows(), t.dt);
+  text << fmt::format("{} by Welch: {} averages of {} samples ({} s), overlap {} samples, window {}{}; {} lines "
+                           "every {} Hz (0 … {} Hz)\n",
+                           est == "h1" ? "H1" : est == "h2" ? "H2" : "Hv", e.segments, segment,
+                           static_cast<double>(segment) * t.dt, wo.overlap, win,
+                           win == "force-exp" ? fmt::format(" (force {} % of the segment, exponential τ = {} s)",
+                                                            100 * force_fraction, tau)
+                                              : "",
+                           lines, df, e.frequency_hz(lines - 1));
+  if (e.segments < 4)
+    std::cerr << fmt::format("warning: {} average(s) only: the coherence of fewer than about 4 is biased towards 1 "
+                             "(a longer record or a shorter --segment gives more)\n",
+                             e.segments);
+  // A line where G_xx is singular has no FRF: written as 0 (and its coherences 0), said here.
+  std::vector<double> undefined;
+  for (Eigen::Index k = 0; k < lines; ++k)
+    if (!e.h[static_cast<std::size_t>(k)].allFinite()) undefined.push_back(e.frequency_hz(k));
+  if (!undefined.empty())
+    std::cerr << fmt::format("warning: {} line(s) where the forces' spectral matrix is singular (first at {} Hz): FRF "
+                             "and coherences written as 0 there\n",
+                             undefined.size(), undefined.front());
+  const auto finite = [](double v) { return std::isfinite(v) ? v : 0.0; };
+  const auto finite_c = [](std::complex<double> v) {
+    return std::isfinite(v.real()) && std::isfinite(v.imag()) ? v : std::complex<double>(0, 0);
+  };
+
+  text << fmt::format("response  reference   peak |H| {}   at (Hz)   coherence: mean    min   lines < 0.9\n", unit);
+  nlohmann::json j;
+  j["estimator"] = est;
+  j["window"] = win;
+  j["segment"] = segment;
+  j["overlap_samples"] = wo.overlap;
+  j["averages"] = e.segments;
+  j["df_hz"] = df;
+  j["unit"] = unit;
+  if (win == "force-exp") j["exponential_tau_s"] = tau;
+  j["frequency_hz"] = std::vector<double>(e.frequency_hz.data(), e.frequency_hz.data() + lines);
+  j["frfs"] = nlohmann::json::array();
+  uff::UffFile out;
+  std::int64_t fid = 0;
+  const auto record = [&](int type, const Dof& resp, const Dof& ref, bool complex, const std::string& what) {
+    uff::Function58 fn;
+    fn.id_lines = {what, "ssid identify frf of " + file.path,
+                   fmt::format("{}, {} averages of {} samples, window {}", est, e.segments, segment, win), "NONE",
+                   "NONE"};
+    fn.function_type = type;
+    fn.function_id = ++fid;
+    fn.response_node = resp.first;
+    fn.response_direction = resp.second;
+    fn.reference_node = ref.first;
+    fn.reference_direction = ref.second;
+    fn.ordinate_type = complex ? 6 : 4;
+    fn.even = true;
+    fn.abscissa_min = 0;
+    fn.abscissa_increment = df;
+    fn.axes[0].specific_data_type = 18;  // frequency
+    fn.axes[0].label = "Frequency";
+    fn.axes[0].units = "Hz";
+    for (Eigen::Index k = 0; k < lines; ++k) fn.x.push_back(e.frequency_hz(k));
+    return fn;
+  };
+  for (Eigen::Index i = 0; i < ni; ++i)
+    for (Eigen::Index o = 0; o < no; ++o) {
+      const Dof resp = t.responses[static_cast<std::size_t>(o)], ref = t.forces[static_cast<std::size_t>(i)];
+      Eigen::VectorXcd h(lines);
+      Eigen::VectorXd coh(lines);
+      for (Eigen::Index k = 0; k < lines; ++k) {
+        h(k) = finite_c(e.h[static_cast<std::size_t>(k)](o, i));
+        coh(k) = finite(e.coherence(k, o + no * i));
+      }
+      Eigen::Index peak = 0;
+      h.tail(lines - 1).cwiseAbs().maxCoeff(&peak);  // above 0 Hz
+      ++peak;
+      const Eigen::VectorXd c = coh.tail(lines - 1);
+      text << fmt::format("{:>8} {:>10} {:>18.6e} {:9.3f} {:18.4f} {:6.4f} {:13d}\n",
+                               fmt::format("{}:{}", resp.first, resp.second), fmt::format("{}:{}", ref.first, ref.second),
+                               std::abs(h(peak)), e.frequency_hz(peak), c.mean(), c.minCoeff(),
+                               (c.array() < 0.9).count());
+      std::vector<double> re(static_cast<std::size_t>(lines)), im(re.size());
+      for (Eigen::Index k = 0; k < lines; ++k) re[static_cast<std::size_t>(k)] = h(k).real(), im[static_cast<std::size_t>(k)] = h(k).imag();
+      j["frfs"].push_back({{"response", {resp.first, resp.second}},
+                           {"reference", {ref.first, ref.second}},
+                           {"re", re},
+                           {"im", im},
+                           {"coherence", std::vector<double>(coh.data(), coh.data() + lines)}});
+      uff::Function58 fh = record(4, resp, ref, true, fmt::format("FRF {} {}:{} / {}:{}", est, resp.first, resp.second,
+                                                                 ref.first, ref.second));
+      for (const auto* f : time_records)  // the response record's ordinate axis (type, unit)
+        if (f->response_node == resp.first && f->response_direction == resp.second &&
+            !is_force_record(time_records, *f))
+          fh.axes[1] = f->axes[1];
+      fh.axes[2].specific_data_type = 13;  // excitation force
+      fh.axes[2].force_exponent = 1;
+      fh.axes[2].label = "force";
+      for (Eigen::Index k = 0; k < lines; ++k) fh.y.push_back(h(k));
+      out.datasets.emplace_back(fh);
+      uff::Function58 fc = record(6, resp, ref, false, fmt::format("coherence {}:{} / {}:{}", resp.first, resp.second,
+                                                                  ref.first, ref.second));
+      for (Eigen::Index k = 0; k < lines; ++k) fc.y.emplace_back(coh(k));
+      out.datasets.emplace_back(fc);
+    }
+  if (ni > 1) {
+    j["multiple_coherence"] = nlohmann::json::array();
+    for (Eigen::Index o = 0; o < no; ++o) {
+      const Dof resp = t.responses[static_cast<std::size_t>(o)];
+      std::vector<double> mc;
+      for (Eigen::Index k = 0; k < lines; ++k) mc.push_back(finite(e.multiple_coherence(k, o)));
+      j["multiple_coherence"].push_back({{"response", {resp.first, resp.second}}, {"values", mc}});
+      // Reference fields: the first force (a multiple coherence is with all of them).
+      uff::Function58 fm = record(26, resp, t.forces.front(), false,
+                                  fmt::format("multiple coherence {}:{} with {} forces", resp.first, resp.second, ni));
+      for (double v : mc) fm.y.emplace_back(v);
+      out.datasets.emplace_back(fm);
+    }
+  }
+  if (vm.count("json")) write_json(vm["json"].as<std::string>(), j);
+  if (vm.count("uff")) {
+    out.path = vm["uff"].as<std::string>();
+    uff::write_uff(out, out.path, uff::Precision::Standard);
+    std::cerr << fmt::format("wrote {}: {} FRF(s) (dataset 58 type 4), {} coherence(s) (type 6){}\n", out.path, no * ni,
+                             no * ni, ni > 1 ? fmt::format(", {} multiple coherence(s) (type 26)", no) : "");
+  }
+  return 0;
+}
+
+/// FRFs of one record set for the checks: measured (dataset 58 type 4, with their
+/// coherences of type 6 where the file has them) or H1 from time histories.
+struct CheckSet {
+  FrfSet frf;
+  Eigen::VectorXd f;                        ///< Hz, the lines
+  std::map<std::pair<Dof, Dof>, Eigen::VectorXd> coherence;  ///< (response, reference) → per line
+  std::string what;                         ///< how the FRFs were obtained, for the header
+};
+
+CheckSet check_set(const std::string& path, int segment) {
+  const uff::UffFile file = uff::read_uff(path);
+  std::vector<const uff::Function58*> frf_records, time_records, coh_records;
+  for (const auto* f : file.functions()) {
+    if (f->function_type == 4) frf_records.push_back(f);
+    if (f->function_type == 1) time_records.push_back(f);
+    if (f->function_type == 6) coh_records.push_back(f);
+  }
+  if (frf_records.empty() && time_records.empty())
+    throw formats::InputError(path + ": no frequency response functions or time histories (dataset 58, type 4 or 1)");
+  if (!frf_records.empty() && !time_records.empty())
+    throw formats::InputError(fmt::format("{}: both FRFs ({}) and time histories ({}); expected one kind", path,
+                                          frf_records.size(), time_records.size()));
+  CheckSet c;
+  if (!frf_records.empty()) {
+    c.frf = read_frfs(file, frf_records);
+    c.f.resize(static_cast<Eigen::Index>(c.frf.lines.size()));
+    for (Eigen::Index k = 0; k < c.f.size(); ++k) c.f(k) = static_cast<double>(k) * c.frf.df;
+    for (const auto* h : coh_records) {
+      if (h->y.size() != c.frf.lines.size())
+        throw formats::InputError(fmt::format("{}: dataset 58 (coherence): {} lines (expected {} as the FRFs)",
+                                              h->where.str(), h->y.size(), c.frf.lines.size()));
+      Eigen::VectorXd v(c.f.size());
+      for (Eigen::Index k = 0; k < v.size(); ++k) v(k) = h->y[static_cast<std::size_t>(k)].real();
+      c.coherence[{{h->response_node, h->response_direction}, {h->reference_node, h->reference_direction}}] = v;
+    }
+    c.what = fmt::format("{} FRF(s) and {} coherence(s) from {}", frf_records.size(), coh_records.size(), path);
+    return c;
+  }
+  const TimeSet t = read_time_histories(file, time_records);
+  if (t.y.rows() < segment)
+    throw formats::InputError(fmt::format("{}: {} samples per record, fewer than one Welch segment of {} (--segment)",
+                                          path, t.y.rows(), segment));
+  id::WelchOptions wo;
+  wo.segment_length = segment;
+  const id::FrfEstimate e = id::estimate_frf(t.x, t.y, t.dt, wo, id::FrfEstimator::H1);
+  c.frf.responses = t.responses;
+  c.frf.references = t.forces;
+  c.frf.df = 1.0 / (static_cast<double>(segment) * t.dt);
+  c.f = e.frequency_hz;
+  c.frf.lines = e.h;
+  const auto no = static_cast<Eigen::Index>(t.responses.size());
+  for (std::size_t i = 0; i < t.forces.size(); ++i)
+    for (std::size_t o = 0; o < t.responses.size(); ++o)
+      c.coherence[{t.responses[o], t.forces[i]}] =
+          e.coherence.col(static_cast<Eigen::Index>(o) + no * static_cast<Eigen::Index>(i));
+  c.what = fmt::format("H1 of {} time histories of {} (Welch, {} averages of {} samples, Hann)", time_records.size(),
+                       path, e.segments, segment);
+  return c;
+}
+
+/// The FRF of response r to reference q in `s` (directions' signs turned to +), if measured.
+std::optional<Eigen::VectorXcd> frf_of(const CheckSet& s, const Dof& r, const Dof& q) {
+  const auto same = [](const Dof& a, const Dof& b) { return a.first == b.first && std::abs(a.second) == std::abs(b.second); };
+  const auto o = std::find_if(s.frf.responses.begin(), s.frf.responses.end(), [&](const Dof& d) { return same(d, r); });
+  const auto i = std::find_if(s.frf.references.begin(), s.frf.references.end(), [&](const Dof& d) { return same(d, q); });
+  if (o == s.frf.responses.end() || i == s.frf.references.end()) return std::nullopt;
+  const double sign = (o->second < 0 ? -1.0 : 1.0) * (i->second < 0 ? -1.0 : 1.0);
+  Eigen::VectorXcd h(static_cast<Eigen::Index>(s.frf.lines.size()));
+  for (std::size_t k = 0; k < s.frf.lines.size(); ++k)
+    h(static_cast<Eigen::Index>(k)) = sign * s.frf.lines[k](o - s.frf.responses.begin(), i - s.frf.references.begin());
+  return h;
+}
+
+std::string dof_text(const Dof& d) { return fmt::format("{}:{}", d.first, d.second); }
+
+/// Verdict of a figure against its pass and warn limits (smaller is better, or larger when `larger_better`).
+std::string verdict(double v, double pass, double warn, bool larger_better = false) {
+  if (std::isnan(v)) return "fail";
+  if (larger_better) return v >= pass ? "pass" : v >= warn ? "warn" : "fail";
+  return v <= pass ? "pass" : v <= warn ? "warn" : "fail";
+}
+
+int rank(const std::string& v) { return v == "fail" ? 3 : v == "warn" ? 2 : v == "pass" ? 1 : 0; }
+
+/// `ssid identify check` on free decays: the dominant frequency of overlapping segments.
+int check_decays(const uff::UffFile& file, const std::vector<const uff::Function58*>& records, int segment,
+                 double overlap, const std::string& json_path) {
+  std::ostringstream discard;  // with --json - the JSON is stdout: the table goes nowhere
+  std::ostream& text = json_path == "-" ? static_cast<std::ostream&>(discard) : std::cout;
+  const auto* first = records.front();
+  for (const auto* f : records) {
+    const std::string at = f->where.str() + ": dataset 58";
+    if (!f->even) throw formats::InputError(at + ": uneven abscissa (expected evenly spaced time samples)");
+    if (f->is_complex()) throw formats::InputError(at + ": complex ordinate (expected a real time history)");
+    if (f->y.size() != first->y.size() || f->abscissa_increment != first->abscissa_increment)
+      throw formats::InputError(fmt::format("{}: {} samples every {} s (expected {} every {} s as at {})", at,
+                                            f->y.size(), f->abscissa_increment, first->y.size(),
+                                            first->abscissa_increment, first->where.str()));
+  }
+  const double dt = first->abscissa_increment;
+  const auto n = static_cast<Eigen::Index>(first->y.size());
+  Eigen::MatrixXd y(n, static_cast<Eigen::Index>(records.size()));
+  for (std::size_t c = 0; c < records.size(); ++c)
+    for (Eigen::Index k = 0; k < n; ++k) y(k, static_cast<Eigen::Index>(c)) = records[c]->y[static_cast<std::size_t>(k)].real();
+  const Eigen::Index seg = segment > 0 ? segment : n / 4;
+  if (seg < 16 || seg > n)
+    throw formats::InputError(fmt::format("{}: decay segments of {} samples in records of {} (expected 16 … {}; "
+                                          "--decay-segment)",
+                                          file.path, seg, n, n));
+  const Eigen::Index step = std::max<Eigen::Index>(1, static_cast<Eigen::Index>(std::lround((1 - overlap) * seg)));
+  const auto segs = id::decay_segments(y, dt, seg, step);
+  text << fmt::format("{} free decay(s) (no force record) of {}: {} samples every {} s; ERA (order ≤ 8) on {} "
+                           "segments of {} samples every {} samples\n",
+                           records.size(), file.path, n, dt, segs.size(), seg, step);
+  text << "segment  start (s)   RMS (record unit)   dominant (Hz)   damping (%)\n";
+  nlohmann::json items = nlohmann::json::array();
+  std::vector<double> hz;
+  for (std::size_t k = 0; k < segs.size(); ++k) {
+    const auto& d = segs[k];
+    text << fmt::format("{:7d} {:10.4f} {:19.6e} {:15.6f} {:13.4f}\n", k + 1, d.start_s, d.rms, d.hz,
+                             100 * d.zeta);
+    items.push_back({{"start_s", d.start_s}, {"rms", d.rms}, {"hz", std::isnan(d.hz) ? nlohmann::json() : nlohmann::json(d.hz)},
+                     {"zeta", std::isnan(d.zeta) ? nlohmann::json() : nlohmann::json(d.zeta)}});
+    if (!std::isnan(d.hz)) hz.push_back(d.hz);
+  }
+  std::string v = "n/a", figure = "fewer than two segments with a dominant mode";
+  if (hz.size() >= 2) {
+    std::vector<double> sorted = hz;
+    std::sort(sorted.begin(), sorted.end());
+    const double median = sorted[sorted.size() / 2];
+    const double spread = (sorted.back() - sorted.front()) / median;
+    v = verdict(spread, 0.005, 0.01);
+    figure = fmt::format("dominant frequency {:.6f} Hz in the first segment, {:.6f} Hz in the last: spread {:.3f} % over {} "
+                         "segments (pass ≤ 0.5 %, warn ≤ 1 %)",
+                         hz.front(), hz.back(), 100 * spread, hz.size());
+  }
+  nlohmann::json checks = nlohmann::json::array();
+  text << "\ncheck        verdict\n";
+  text << fmt::format("{:<12} {:<5} {}\n", "linearity", v, figure);
+  checks.push_back({{"check", "linearity"}, {"verdict", v}, {"figure", figure}, {"items", items}});
+  for (const char* name : {"reciprocity", "coherence", "resolution"}) {
+    text << fmt::format("{:<12} {:<5} {}\n", name, "n/a", "free decays: no FRF");
+    checks.push_back({{"check", name}, {"verdict", "n/a"}, {"figure", "free decays: no FRF"}, {"items", nlohmann::json::array()}});
+  }
+  text << "\noverall: " << v << "\n";
+  if (!json_path.empty()) write_json(json_path, {{"checks", checks}, {"overall", v}});
+  return 0;
+}
+
+/// `ssid identify check`: reciprocity, linearity, coherence, resolution against damping.
+int identify_check(const Args& args) {
+  po::options_description desc("ssid identify check options");
+  desc.add_options()("file", po::value<std::string>()->required(),
+                     "universal file with FRFs (dataset 58 type 4, coherences type 6) or time histories (type 1)")(
+      "second", po::value<std::string>(),
+      "the same measurement at another force level (linearity): FRFs or time histories")(
+      "segment", po::value<int>()->default_value(1024), "time histories: Welch segment for H1, samples")(
+      "coherence-min", po::value<double>()->default_value(0.9, "0.9"), "coherence below this is low")(
+      "band", po::value<std::string>(), "check the lines in F1:F2 only, Hz (default: all above 0 Hz)")(
+      "modes-from", po::value<std::string>(),
+      "the JSON of ssid identify modes: the peaks' damping from the identified modes (else from the FRFs' "
+      "half-power bandwidth)")(
+      "decay-segment", po::value<int>(), "free decays: ERA segment, samples (default a quarter of the record)")(
+      "decay-overlap", po::value<double>()->default_value(0.5, "0.5"), "free decays: overlap of the segments, [0, 1)")(
+      "json", po::value<std::string>(), "write the verdicts and figures as JSON ('-' for stdout)");
+  po::positional_options_description pos;
+  pos.add("file", 1);
+  po::variables_map vm;
+  int rc = 0;
+  if (!parse_options(args,
+                     "ssid identify check FILE.unv [--second FILE2.unv] [--segment N] [--coherence-min C] "
+                     "[--band F1:F2] [--modes-from IDENTIFIED.json] [--decay-segment N] [--decay-overlap F] "
+                     "[--json OUT]",
+                     desc, pos, vm, rc))
+    return rc;
+  // With --json - the JSON is stdout: the table goes nowhere.
+  std::ostringstream discard;
+  std::ostream& text = vm.count("json") && vm["json"].as<std::string>() == "-" ? static_cast<std::ostream&>(discard) : std::cout;
+  const int segment = vm["segment"].as<int>();
+  if (segment < 8) {
+    print_error(fmt::format("--segment: expected at least 8 samples, got {}", segment));
+    return 2;
+  }
+  const double cmin = vm["coherence-min"].as<double>();
+  if (!(cmin > 0 && cmin < 1)) {
+    print_error(fmt::format("--coherence-min: expected 0 < C < 1, got {}", cmin));
+    return 2;
+  }
+  double lo = 0, hi = std::numeric_limits<double>::infinity();
+  if (vm.count("band")) {
+    const std::string b = vm["band"].as<std::string>();
+    const auto colon = b.find(':');
+    std::size_t u1 = 0, u2 = 0;
+    try {
+      if (colon != std::string::npos) {
+        lo = std::stod(b.substr(0, colon), &u1);
+        hi = std::stod(b.substr(colon + 1), &u2);
+      }
+    } catch (const std::exception&) {
+      u1 = 0;
+    }
+    if (colon == std::string::npos || u1 != colon || u2 != b.size() - colon - 1 || !(lo >= 0) || !(hi > lo)) {
+      print_error("--band: expected F1:F2 in Hz with 0 ≤ F1 < F2, got \"" + b + "\"");
+      return 2;
+    }
+  }
+  std::vector<std::pair<double, double>> identified;
+  if (vm.count("modes-from")) {
+    const std::string path = vm["modes-from"].as<std::string>();
+    std::ifstream in(path);
+    if (!in) throw formats::InputError(path + ": cannot open the identified modes (--modes-from)");
+    nlohmann::json j;
+    try {
+      in >> j;
+    } catch (const nlohmann::json::exception& e) {
+      throw formats::InputError(fmt::format("{}: not JSON ({})", path, e.what()));
+    }
+    if (!j.contains("modes") || !j["modes"].is_array())
+      throw formats::InputError(path + ": no \"modes\" array (expected the JSON of ssid identify modes)");
+    for (std::size_t k = 0; k < j["modes"].size(); ++k) {
+      const auto& m = j["modes"][k];
+      if (!m.contains("hz") || !m.contains("zeta") || !m["hz"].is_number() || !m["zeta"].is_number())
+        throw formats::InputError(fmt::format("{}: modes[{}] has no numeric \"hz\" and \"zeta\"", path, k));
+      identified.emplace_back(m["hz"].get<double>(), m["zeta"].get<double>());
+    }
+  }
+
+  const double decay_overlap = vm["decay-overlap"].as<double>();
+  if (!(decay_overlap >= 0 && decay_overlap < 1)) {
+    print_error(fmt::format("--decay-overlap: expected a fraction 0 ≤ F < 1, got {}", decay_overlap));
+    return 2;
+  }
+  {
+    // Free decays (time histories, none of them a force): linearity from the dominant
+    // frequency of overlapping segments; the FRF checks do not apply.
+    const uff::UffFile file = uff::read_uff(vm["file"].as<std::string>());
+    std::vector<const uff::Function58*> time_records;
+    bool other = false;
+    for (const auto* f : file.functions()) {
+      if (f->function_type == 1) time_records.push_back(f);
+      if (f->function_type == 4) other = true;
+    }
+    if (!time_records.empty() && !other &&
+        std::none_of(time_records.begin(), time_records.end(),
+                     [&](const uff::Function58* f) { return is_force_record(time_records, *f); })) {
+      if (vm.count("second"))
+        throw formats::InputError(file.path + ": free decays (no force record): --second compares FRFs at two force "
+                                              "levels, which free decays do not have");
+      return check_decays(file, time_records, vm.count("decay-segment") ? vm["decay-segment"].as<int>() : 0,
+                          decay_overlap, vm.count("json") ? vm["json"].as<std::string>() : "");
+    }
+  }
+  const CheckSet a = check_set(vm["file"].as<std::string>(), segment);
+  std::optional<CheckSet> b;
+  if (vm.count("second")) b = check_set(vm["second"].as<std::string>(), segment);
+  // The lines checked: in the band, above 0 Hz (a force has no DC content to speak of).
+  std::vector<Eigen::Index> keep;
+  for (Eigen::Index k = 0; k < a.f.size(); ++k)
+    if (a.f(k) > 0 && a.f(k) >= lo && a.f(k) <= hi) keep.push_back(k);
+  if (keep.size() < 3)
+    throw formats::InputError(fmt::format("{}: {} line(s) in the band checked (expected at least 3)",
+                                          vm["file"].as<std::string>(), keep.size()));
+  const auto pick = [&](const Eigen::VectorXcd& v) {
+    Eigen::VectorXcd o(static_cast<Eigen::Index>(keep.size()));
+    for (std::size_t k = 0; k < keep.size(); ++k) o(static_cast<Eigen::Index>(k)) = v(keep[k]);
+    return o;
+  };
+  const auto pick_real = [&](const Eigen::VectorXd& v) {
+    Eigen::VectorXd o(static_cast<Eigen::Index>(keep.size()));
+    for (std::size_t k = 0; k < keep.size(); ++k) o(static_cast<Eigen::Index>(k)) = v(keep[k]);
+    return o;
+  };
+  const Eigen::VectorXd f = pick_real(a.f);
+  text << a.what << ": " << a.frf.responses.size() << " response(s) × " << a.frf.references.size()
+            << " reference(s), " << keep.size() << fmt::format(" lines {}…{} Hz every {} Hz\n", f(0), f(f.size() - 1), a.frf.df);
+  if (b) text << "second level: " << b->what << "\n";
+
+  nlohmann::json checks = nlohmann::json::array();
+  const auto report = [&](const std::string& name, const std::string& v, const std::string& figure, nlohmann::json items) {
+    text << fmt::format("{:<12} {:<5} {}\n", name, v, figure);
+    checks.push_back({{"check", name}, {"verdict", v}, {"figure", figure}, {"items", std::move(items)}});
+  };
+  const auto pct = [](double v) { return fmt::format("{:.2f} %", 100 * v); };
+  text << "\ncheck        verdict\n";
+
+  // Reciprocity: H(b / a) against H(a / b) for two references each measured at the other's DOF.
+  {
+    nlohmann::json items = nlohmann::json::array();
+    std::string worst = "n/a", figure = "no driving-point pair (two references, each measured at the other's DOF)";
+    double worst_e = -1;
+    const auto& refs = a.frf.references;
+    for (std::size_t p = 0; p < refs.size(); ++p)
+      for (std::size_t q = p + 1; q < refs.size(); ++q) {
+        const auto hqp = frf_of(a, refs[q], refs[p]), hpq = frf_of(a, refs[p], refs[q]);
+        if (!hqp || !hpq) continue;
+        const id::FrfDifference d = id::compare_frfs(f, pick(*hqp), pick(*hpq));
+        const std::string v = verdict(d.error, 0.10, 0.20);
+        items.push_back({{"ij", {dof_text(refs[q]), dof_text(refs[p])}}, {"error", d.error}, {"frac", d.frac},
+                         {"verdict", v}});
+        if (std::isnan(d.error) || d.error > worst_e) {
+          worst_e = std::isnan(d.error) ? std::numeric_limits<double>::infinity() : d.error;
+          worst = v;
+          figure = fmt::format("H({} / {}) against H({} / {}): difference {} (pass ≤ 10 %, warn ≤ 20 %), FRAC {:.4f}",
+                               dof_text(refs[q]), dof_text(refs[p]), dof_text(refs[p]), dof_text(refs[q]),
+                               pct(d.error), d.frac);
+        }
+      }
+    report("reciprocity", worst, figure, items);
+  }
+
+  // Linearity: each FRF of the first set against the same FRF at the second level.
+  {
+    nlohmann::json items = nlohmann::json::array();
+    std::string worst = "n/a", figure = "one force level only (give the other with --second)";
+    if (b) {
+      if (b->f.size() != a.f.size() || std::abs(b->frf.df - a.frf.df) > 1e-9 * a.frf.df)
+        throw formats::InputError(fmt::format("{}: {} lines every {} Hz (expected {} every {} Hz as the first set)",
+                                              vm["second"].as<std::string>(), b->f.size(), b->frf.df, a.f.size(),
+                                              a.frf.df));
+      double worst_e = -1;
+      for (const Dof& q : a.frf.references)
+        for (const Dof& r : a.frf.responses) {
+          const auto h1 = frf_of(a, r, q), h2 = frf_of(*b, r, q);
+          if (!h1 || !h2) continue;
+          const id::FrfDifference d = id::compare_frfs(f, pick(*h1), pick(*h2));
+          const std::string v = verdict(d.error, 0.10, 0.20);
+          items.push_back({{"response", dof_text(r)}, {"reference", dof_text(q)}, {"error", d.error}, {"frac", d.frac},
+                           {"peak_hz", {d.peak_hz_a, d.peak_hz_b}}, {"verdict", v}});
+          if (std::isnan(d.error) || d.error > worst_e) {
+            worst_e = std::isnan(d.error) ? std::numeric_limits<double>::infinity() : d.error;
+            worst = v;
+            figure = fmt::format("H({} / {}) at the two levels: difference {} (pass ≤ 10 %, warn ≤ 20 %), FRAC {:.4f}, "
+                                 "peak {} Hz against {} Hz ({:+.2f} %)",
+                                 dof_text(r), dof_text(q), pct(d.error), d.frac, d.peak_hz_a, d.peak_hz_b,
+                                 100 * (d.peak_hz_b - d.peak_hz_a) / d.peak_hz_a);
+          }
+        }
+      if (items.empty())
+        throw formats::InputError(vm["second"].as<std::string>() +
+                                  ": no FRF of the same response and reference as in the first set");
+    }
+    report("linearity", worst, figure, items);
+  }
+
+  // Coherence: the share of lines below the threshold, per FRF, and the bands.
+  {
+    nlohmann::json items = nlohmann::json::array();
+    std::string worst = "n/a", figure = "no coherence (dataset 58 type 6) in the file";
+    double worst_share = -1;
+    for (const auto& [key, coh] : a.coherence) {
+      const Eigen::VectorXd c = pick_real(coh);
+      const auto bands = id::low_coherence_bands(f, c, cmin);
+      Eigen::Index below = 0;
+      nlohmann::json jb = nlohmann::json::array();
+      for (const auto& bd : bands) {
+        below += bd.lines;
+        jb.push_back({{"from_hz", bd.lo_hz}, {"to_hz", bd.hi_hz}, {"min", bd.min}, {"lines", bd.lines}});
+      }
+      const double share = static_cast<double>(below) / static_cast<double>(c.size());
+      const std::string v = verdict(share, 0.05, 0.20);
+      items.push_back({{"response", dof_text(key.first)}, {"reference", dof_text(key.second)}, {"share_below", share},
+                       {"bands", jb}, {"verdict", v}});
+      if (share > worst_share) {
+        worst_share = share;
+        worst = v;
+        std::string where;
+        if (!bands.empty()) {
+          const auto w = *std::min_element(bands.begin(), bands.end(),
+                                           [](const auto& x, const auto& y) { return x.min < y.min; });
+          where = fmt::format(", lowest {:.3f} in {}…{} Hz", w.min, w.lo_hz, w.hi_hz);
+        }
+        figure = fmt::format("{} / {}: {} of the lines below {} in {} band(s){} (pass ≤ 5 %, warn ≤ 20 %)",
+                             dof_text(key.first), dof_text(key.second), pct(share), cmin, bands.size(), where);
+      }
+    }
+    report("coherence", worst, figure, items);
+  }
+
+  // Resolution: lines across the half-power band 2ζf of each peak of the summed magnitudes.
+  {
+    Eigen::VectorXd sum = Eigen::VectorXd::Zero(f.size());
+    for (const Dof& q : a.frf.references)
+      for (const Dof& r : a.frf.responses) {
+        const Eigen::VectorXd m = pick(*frf_of(a, r, q)).cwiseAbs();
+        if (m.allFinite() && m.maxCoeff() > 0) sum += m / m.maxCoeff();
+      }
+    nlohmann::json items = nlohmann::json::array();
+    std::string worst = "n/a", figure = "no isolated peak in the band";
+    double worst_lines = std::numeric_limits<double>::infinity();
+    for (const id::PeakResolution& p : id::peak_resolution(f, sum, identified)) {
+      const std::string v = verdict(p.lines, 3.0, 1.5, true);
+      items.push_back({{"hz", p.hz}, {"half_power_hz", p.half_power_hz}, {"zeta", p.zeta}, {"lines", p.lines},
+                       {"zeta_from", p.from_identified ? "identified" : "half-power band of the FRFs"}, {"verdict", v}});
+      if (p.lines < worst_lines) {
+        worst_lines = p.lines;
+        worst = v;
+        figure = fmt::format("Δf = {} Hz; peak at {} Hz: half-power band 2ζf = {:.4g} Hz (ζ {:.3f} %{}), {:.2f} lines "
+                             "(pass ≥ 3, warn ≥ 1.5)",
+                             a.frf.df, p.hz, p.half_power_hz, 100 * p.zeta, p.from_identified ? ", identified" : "",
+                             p.lines);
+      }
+    }
+    report("resolution", worst, figure, items);
+  }
+
+  std::string overall = "n/a";
+  for (const auto& c : checks)
+    if (rank(c["verdict"].get<std::string>()) > rank(overall)) overall = c["verdict"].get<std::string>();
+  text << "\noverall: " << overall << "\n";
+  if (vm.count("json")) write_json(vm["json"].as<std::string>(), {{"checks", checks}, {"overall", overall}});
+  return 0;
+}
+
 }  // namespace
 
 int cmd_identify(const Args& args) {
   const std::string usage =
-      "usage: ssid identify <modes> ...\n"
+      "usage: ssid identify <modes|frf|check> ...\n"
       "  modes FILE.unv [--method armax|era|plscf] [--json OUT] [--uff OUT]   modes from the FRFs or time\n"
-      "                                                                     histories (UFF 58) of a modal test\n";
+      "                                                                     histories (UFF 58) of a modal test\n"
+      "  frf FILE.unv [--estimator h1|h2|hv] [--window W] [--uff OUT]   FRFs, coherence and multiple coherence\n"
+      "                                                               from time histories (Welch)\n"
+      "  check FILE.unv [--second FILE2.unv] [--json OUT]             reciprocity, linearity, coherence and\n"
+      "                                                               resolution against damping: verdicts\n";
   if (args.empty() || args[0] == "--help" || args[0] == "-h") {
     (args.empty() ? std::cerr : std::cout) << usage;
     return args.empty() ? 2 : 0;
   }
   Args rest(args.begin() + 1, args.end());
   if (args[0] == "modes") return identify_modes(rest);
+  if (args[0] == "frf") return identify_frf(rest);
+  if (args[0] == "check") return identify_check(rest);
   std::cerr << "ssid identify: unknown subcommand '" << args[0] << "'\n" << usage;
   return 2;
 }

@@ -34,5 +34,6 @@ int cmd_update_deck(const Args& args);
 int cmd_diagnose(const Args& args);
 int cmd_identify(const Args& args);
 int cmd_pretest(const Args& args);
+int cmd_frf(const Args& args);
 
 }  // namespace ssid::cli

@@ -29,7 +29,8 @@ const std::vector<Command>& commands() {
       {"translate", "gather operators, priors and measured modes into a problem file", cmd_translate},
       {"update-deck", "write estimated parameters into a deck (DESVAR and designed fields)", cmd_update_deck},
       {"diagnose", "find what the model form gets wrong: test extensions, name the cause, measure the gain", cmd_diagnose},
-      {"identify", "modes from a modal test's FRFs or time histories (UFF 58): ERA or the seed's ARMAX, stabilisation, JSON and UFF 55", cmd_identify},
+      {"identify", "a modal test's records (UFF 58): modes by ERA or the seed's ARMAX (modes), FRFs and coherences from time histories (frf), data-quality checks (check)", cmd_identify},
+      {"frf", "FRFs synthesized from a deck's modes (modal superposition), UFF 58, overlay on measured FRFs (SVG)", cmd_frf},
       {"pretest", "plan a modal test: sensor placement (EI, KE, AKE, EVP), TAMs, exciters by MIF and a GA", cmd_pretest},
   };
   return list;

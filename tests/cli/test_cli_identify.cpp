@@ -337,7 +337,7 @@ TEST_CASE("ssid identify: bad input exits 2 with the cause", "[cli][identify]") 
   CHECK_THAT(u.err, Catch::StartsWith("ssid identify: unknown subcommand 'frobnicate'\n"));
   const auto h = run_ssid("identify --help");
   CHECK(h.code == 0);
-  CHECK_THAT(h.out, Catch::StartsWith("usage: ssid identify <modes> ...\n"));
+  CHECK_THAT(h.out, Catch::StartsWith("usage: ssid identify <modes|frf|check> ...\n"));
 }
 
 TEST_CASE("ssid identify: time histories it cannot use exit 2 with the cause", "[cli][identify]") {
