@@ -139,27 +139,39 @@ std::string run_section(const json& j) {
 
 // ---------------------------------------------------------------- correlation
 
+/// Any matrix of the JSON (rows × columns) as a heat map with its labels, the
+/// cells of `marked` (row, column) outlined; colour scale 0 … 1.
+std::string matrix_figure(const json& rows, const std::vector<std::string>& row_labels, const std::vector<std::string>& col_labels,
+                          const std::string& row_title, const std::string& col_title, const std::string& value_label,
+                          const std::set<std::pair<std::size_t, std::size_t>>& marked, const std::string& id,
+                          const std::string& caption) {
+  HeatMap h;
+  for (const auto& r : rows) h.values.push_back(r.get<std::vector<double>>());
+  h.row_labels = row_labels, h.col_labels = col_labels;
+  h.row_title = row_title, h.col_title = col_title, h.value_label = value_label;
+  h.marked = marked;
+  return figure(id, heat_map_svg(h, id + "-svg", value_label), caption);
+}
+
 /// The MAC matrix as a heat map. `rows_are_fe`: rows analysis modes (correlate)
 /// or test modes (estimate).
 std::string mac_figure(const json& mac, const std::vector<int>& row_modes, const std::vector<int>& col_modes,
                        bool rows_are_fe, const json& pairs, const std::string& id, const std::string& caption,
                        const std::string& form) {
-  HeatMap h;
-  for (const auto& row : mac) h.values.push_back(row.get<std::vector<double>>());
-  for (int m : row_modes) h.row_labels.push_back(std::to_string(m));
-  for (int m : col_modes) h.col_labels.push_back(std::to_string(m));
-  h.row_title = rows_are_fe ? "analysis mode" : "test mode";
-  h.col_title = rows_are_fe ? "test mode" : "analysis mode";
-  h.value_label = "MAC" + form;
+  std::vector<std::string> rows, cols;
+  for (int m : row_modes) rows.push_back(std::to_string(m));
+  for (int m : col_modes) cols.push_back(std::to_string(m));
   auto index = [](const std::vector<int>& v, int m) {
     return static_cast<std::size_t>(std::find(v.begin(), v.end(), m) - v.begin());
   };
+  std::set<std::pair<std::size_t, std::size_t>> marked;
   for (const auto& p : pairs) {
     const int fe = p["fe_mode"], test = p["test_mode"];
     const std::size_t i = index(row_modes, rows_are_fe ? fe : test), k = index(col_modes, rows_are_fe ? test : fe);
-    if (i < row_modes.size() && k < col_modes.size()) h.marked.insert({i, k});
+    if (i < row_modes.size() && k < col_modes.size()) marked.insert({i, k});
   }
-  return figure(id, heat_map_svg(h, id + "-svg", "MAC matrix"), caption);
+  return matrix_figure(mac, rows, cols, rows_are_fe ? "analysis mode" : "test mode", rows_are_fe ? "test mode" : "analysis mode",
+                       "MAC" + form, marked, id, caption);
 }
 
 // ---------------------------------------------------------------- frequencies
@@ -683,19 +695,6 @@ std::string diagnosis_sections(const json& j) {
 
 // ---------------------------------------------------------------- pretest
 
-/// A heat map of a matrix of the JSON (rows × columns) with mode labels.
-std::string matrix_figure(const json& rows, const std::vector<std::string>& row_labels, const std::vector<std::string>& col_labels,
-                          const std::string& row_title, const std::string& col_title, const std::string& value_label,
-                          bool mark_diagonal, const std::string& id, const std::string& caption) {
-  HeatMap h;
-  for (const auto& r : rows) h.values.push_back(r.get<std::vector<double>>());
-  h.row_labels = row_labels, h.col_labels = col_labels;
-  h.row_title = row_title, h.col_title = col_title, h.value_label = value_label;
-  if (mark_diagonal)
-    for (std::size_t i = 0; i < std::min(row_labels.size(), col_labels.size()); ++i) h.marked.insert({i, i});
-  return figure(id, heat_map_svg(h, id + "-svg", value_label), caption);
-}
-
 /// One bar per method of j["methods"] for `key` (log10 of the value when `log10`),
 /// the run's method in red.
 std::string method_bars(const json& j, const char* key, bool log10, const std::string& label, const std::string& id) {
@@ -758,7 +757,7 @@ std::string evaluation_part(const json& e, const std::string& id, const std::str
     std::vector<std::string> rows, cols;
     for (const auto& r : e["xor_rows"]) rows.push_back(std::to_string(r.get<int>()));
     for (std::size_t k = 0; k < e["xor"][0].size(); ++k) cols.push_back(std::to_string(k + 1));
-    s += matrix_figure(e["xor"], rows, cols, "FE target mode", "identified mode", "cross-orthogonality", false, "fig-" + id + "-xor",
+    s += matrix_figure(e["xor"], rows, cols, "FE target mode", "identified mode", "cross-orthogonality", {}, "fig-" + id + "-xor",
                        "Cross-orthogonality of the identified modes (columns, in the order matched) with the FE target modes "
                        "(rows), SEREP mass on the sensors.");
   }
@@ -836,7 +835,9 @@ std::string pretest_sections(const json& j) {
     }
     const std::string verdict =
         t.value("accepted_primary", false) ? "accepted (primary)" : t.value("accepted", false) ? "accepted (secondary)" : "NOT accepted";
-    s += matrix_figure(t["xor"], targets, targets, "target mode", "target mode", "cross-orthogonality", true,
+    std::set<std::pair<std::size_t, std::size_t>> diagonal;
+    for (std::size_t i = 0; i < targets.size(); ++i) diagonal.insert({i, i});
+    s += matrix_figure(t["xor"], targets, targets, "target mode", "target mode", "cross-orthogonality", diagonal,
                        std::string("fig-tam-") + name,
                        fmt::format("{} TAM: min diagonal {}, max off-diagonal {}, max frequency error {} %: {}.", name,
                                    fixed(t["min_diagonal_xor"], 4), fixed(t["max_offdiagonal_xor"], 4),
@@ -851,7 +852,7 @@ std::string pretest_sections(const json& j) {
       std::string t = fmt::format("<h3>{}: objective {}</h3>\n", esc(who), significant(objective, 6)) + exciter_table(ex);
       std::vector<std::string> cols;
       for (std::size_t k = 0; k < ex.size(); ++k) cols.push_back(std::to_string(k + 1) + " (grid " + std::to_string(ex[k]["grid"].get<std::int64_t>()) + ")");
-      t += matrix_figure(D, targets, cols, "target mode", "exciter", "MIF drop-off", false, id,
+      t += matrix_figure(D, targets, cols, "target mode", "exciter", "MIF drop-off", {}, id,
                          "The multivariate MIF's drop-off at each target mode for each exciter (smaller is better; the objective "
                          "takes each mode's best exciter, no penalty at or below 0.1).");
       return t;
