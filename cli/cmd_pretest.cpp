@@ -507,7 +507,13 @@ int cmd_pretest(const Args& args) {
     for (auto m : {pt::PlacementMethod::EffectiveIndependence, pt::PlacementMethod::KineticEnergy,
                    pt::PlacementMethod::AverageKineticEnergy, pt::PlacementMethod::EigenvectorProduct,
                    pt::PlacementMethod::EigenvectorSum}) {
-      const pt::Placement pm = m == method ? placement : place(op.K, op.M, Phi, m);
+      pt::Placement pm;
+      try {
+        pm = m == method ? placement : place(op.K, op.M, Phi, m);
+      } catch (const formats::InputError& e) {  // e.g. EI with fewer sensors than targets: that method has no set
+        j["methods"].push_back({{"method", pt::method_name(m)}, {"error", e.what()}});
+        continue;
+      }
       nlohmann::json x{{"method", pt::method_name(m)},
                        {"fisher_determinant", pm.fisher.determinant},
                        {"log10_fisher_determinant", finite_or_null(pm.fisher.log10_determinant)},

@@ -701,16 +701,23 @@ std::string method_bars(const json& j, const char* key, bool log10, const std::s
   const json& ms = j["methods"];
   const double n = static_cast<double>(ms.size());
   std::vector<double> v{0.0};
+  auto drawn = [&](const json& m) -> double {  // the bar's height, NaN where there is none (no set, singular, det F = 0)
+    if (!m.contains(key) || !m[key].is_number()) return NAN;
+    const double x = log10 ? std::log10(m[key].get<double>()) : m[key].get<double>();
+    return std::isfinite(x) ? x : NAN;
+  };
   for (const auto& m : ms)
-    if (m[key].is_number()) v.push_back(log10 ? std::log10(m[key].get<double>()) : m[key].get<double>());
+    if (std::isfinite(drawn(m))) v.push_back(drawn(m));
+  if (v.size() == 1) return "";  // no method has a value to draw
   Chart c(std::max(360.0, 110 + 60 * n), 280, {-0.5, n - 0.5, "method"}, axis_around(v, label, 0.08, true));
   std::vector<std::pair<double, std::string>> cats;
   const double w = (c.x(1) - c.x(0)) * 0.6;
   for (std::size_t k = 0; k < ms.size(); ++k) {
     const std::string name = ms[k]["method"];
     cats.push_back({double(k), name});
-    if (!ms[k][key].is_number()) continue;  // singular: no finite value to draw
-    const double raw = ms[k][key], x = log10 ? std::log10(raw) : raw;
+    const double x = drawn(ms[k]);
+    if (!std::isfinite(x)) continue;
+    const double raw = ms[k][key];
     const double y0 = c.y(std::max(x, 0.0)), y1 = c.y(std::min(x, 0.0));
     c.add(fmt::format("<rect class=\"{}\" data-method=\"{}\" data-v=\"{}\" x=\"{}\" y=\"{}\" width=\"{}\" height=\"{}\" fill=\"{}\">"
                       "<title>{}: {}</title></rect>\n",
@@ -802,18 +809,28 @@ std::string pretest_sections(const json& j) {
   s += "<table class=\"fisher\">\n<tr><th>method</th><th>det F</th><th>log10 det F</th><th>condition number</th><th>rank</th></tr>\n";
   const json rows = j.contains("methods") ? j["methods"] : json::array({j});
   auto opt = [](const json& v, int d) { return v.is_number() ? significant(v, d) : std::string("—"); };
-  for (const auto& m : rows)
+  for (const auto& m : rows) {
+    if (m.contains("error")) {
+      s += fmt::format("<tr class=\"method\" data-method=\"{0}\"><td>{0}</td><td colspan=\"4\">no set: {1}</td></tr>\n",
+                       esc(m.value("method", "")), esc(m.value("error", "")));
+      continue;
+    }
     s += fmt::format("<tr class=\"method\" data-method=\"{}\"><td>{}</td><td class=\"n\" data-v=\"{}\">{}</td><td class=\"n\">{}</td>"
                      "<td class=\"n\">{}</td><td class=\"n\">{}</td></tr>\n",
                      esc(m.value("method", "")), esc(m.value("method", "")) + (m.value("method", "") == j.value("method", "") ? " (this run)" : ""),
                      exact(m["fisher_determinant"]), significant(m["fisher_determinant"], 5), opt(m["log10_fisher_determinant"], 5),
                      opt(m["condition_number"], 5), m.value("fisher_rank", 0));
+  }
   s += "</table>\n";
   if (j.contains("methods")) {
-    s += figure("fig-fisher-det", method_bars(j, "fisher_determinant", true, "log10 det F", "fisher-det"),
+    const std::string det = method_bars(j, "fisher_determinant", true, "log10 det F", "fisher-det");
+    const std::string cond = method_bars(j, "condition_number", true, "log10 condition number", "fisher-cond");
+    if (!det.empty())
+      s += figure("fig-fisher-det", det,
                 "The determinant of the Fisher information Φ_sᵀΦ_s of the target modes on each method's sensor set "
                 "(mass-normalised modes, unit noise; log scale); red: this run's method. Larger is better.");
-    s += figure("fig-fisher-cond", method_bars(j, "condition_number", true, "log10 condition number", "fisher-cond"),
+    if (!cond.empty())
+      s += figure("fig-fisher-cond", cond,
                 "The condition number of the Fisher information for each method's set; red: this run's. Smaller is better: "
                 "the target modes are told apart.");
   }

@@ -353,3 +353,33 @@ TEST_CASE("ssid pretest --uff: the trace lines (82) join sensor grids along the 
   CHECK(l.code == 0);
   CHECK_THAT(l.out, Catch::Contains("trace lines (82): 1"));
 }
+
+TEST_CASE("ssid pretest --report: a method that cannot place the sensors is reported, not fatal", "[cli][pretest][report]") {
+  const fs::path dir = scratch();
+  const fs::path pj = dir / "ke10.json", html = dir / "ke10.html";
+  // 10 sensors for 12 targets: KE ranks them, EI refuses (its Fisher information would be singular).
+  auto r = run_ssid("pretest " + rod() + " --target-modes 12 --min-hz 1 --sensors 10 --method ke --json " + pj.string() +
+                    " --report " + html.string());
+  INFO(r.err);
+  REQUIRE(r.code == 0);
+  const auto j = read_json(pj);
+  REQUIRE(j["methods"].size() == 5);
+  CHECK(j["methods"][0]["method"] == "ei");
+  CHECK(j["methods"][0]["error"] ==
+        "effective independence: 10 sensors cannot resolve 12 target modes (the Fisher information would be singular)");
+  // The others place 10 sensors: a singular Fisher information (rank 10 of 12), no log10 det, no condition number.
+  for (std::size_t k = 1; k < 5; ++k) {
+    CHECK(j["methods"][k]["fisher_determinant"] == 0.0);
+    CHECK(j["methods"][k]["fisher_rank"] == 10);
+    CHECK(j["methods"][k]["log10_fisher_determinant"].is_null());
+  }
+  CHECK(j["methods"][1]["method"] == "ke");
+  CHECK(j["methods"][1]["sensors"].size() == 10);
+  const std::string page = read_text(html);
+  CHECK(page.find("<tr class=\"method\" data-method=\"ei\"><td>ei</td><td colspan=\"4\">no set: effective independence: 10 "
+                  "sensors cannot resolve 12 target modes") != std::string::npos);
+  CHECK(page.find("<tr class=\"method\" data-method=\"ke\">") != std::string::npos);
+  // Nothing finite to draw: no bar chart (an empty figure would fail the browser check).
+  CHECK(page.find("id=\"fig-fisher-det\"") == std::string::npos);
+  CHECK(page.find("id=\"fig-fisher-cond\"") == std::string::npos);
+}
