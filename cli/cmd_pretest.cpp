@@ -3,7 +3,9 @@
 /// placement (EI, KE, AKE, EVP), test-analysis models on the sensor set
 /// (Guyan, SEREP, IRS) with the cross-orthogonality check, and exciter placement
 /// (MIF drop-offs and the genetic algorithm), and with --evaluate the simulated
-/// impulse test of the placement (ERA, issue 23 item 5).
+/// impulse test of the placement (ERA, issue 23 item 5); the picture (--svg),
+/// the sensors and the test wire frame as UFF 15 + 82 (--uff) and the report
+/// (--report, issue 24).
 #include <Eigen/SparseCore>
 #include <cmath>
 #include <fstream>
@@ -19,6 +21,8 @@
 #include "cli/cli_util.hpp"
 #include "cli/exit_codes.hpp"
 #include "cli/model_load.hpp"
+#include "cli/report/pretest_picture.hpp"
+#include "cli/report/report_data.hpp"
 #include "estimator/correlation/measures.hpp"
 #include "estimator/pretest/evaluation.hpp"
 #include "estimator/pretest/exciter_placement.hpp"
@@ -197,14 +201,25 @@ int cmd_pretest(const Args& args) {
       "SEED: rerun the placement on the model with a third of the struts' areas -20 % and a third +20 % (chosen by "
       "SEED) and report the sensors that change")(
       "json", po::value<std::string>(), "write every figure as JSON to this file ('-' for stdout)")(
-      "uff", po::value<std::string>(), "write the sensor grids (and exciter grids) as UFF dataset 15 to this file");
+      "uff", po::value<std::string>(),
+      "write the sensor grids (and exciter grids) as UFF dataset 15 and the test wire frame joining the sensor grids "
+      "as dataset 82 to this file")(
+      "svg", po::value<std::string>(), "draw the structure with the sensors and exciters as SVG to this file")(
+      "view", po::value<std::string>()->default_value("iso"), "--svg: view direction, iso, x, y or z (looking along it)")(
+      "compare-methods", po::bool_switch(),
+      "also place the sensors by every method (ei, ke, ake, evp, evp-sum) and report each one's Fisher figures")(
+      "report", po::value<std::string>(),
+      "write an HTML report (sensors and exciters, Fisher figures per method, cross-orthogonality, MIF/GA, the "
+      "simulated test) to this file; the JSON then also holds the run, geometry and every method's placement "
+      "(docs/report.md)");
   po::positional_options_description pos;
   pos.add("deck", 1);
   po::variables_map vm;
   int rc = 0;
   if (!parse_options(args,
                      "ssid pretest DECK --target-modes N [--min-hz F] --sensors S --method ei|ke|ake|evp|evp-sum "
-                     "[--triax] [--exciters E] [--evaluate] [--perturb-areas SEED] [--json OUT] [--uff OUT.unv]",
+                     "[--triax] [--exciters E] [--evaluate] [--perturb-areas SEED] [--json OUT] [--uff OUT.unv] [--svg OUT.svg] "
+                     "[--view iso|x|y|z] [--report OUT.html]",
                      desc, pos, vm, rc))
     return rc;
   const int n_targets = vm["target-modes"].as<int>();
@@ -227,6 +242,8 @@ int cmd_pretest(const Args& args) {
   if (!(noise_pct >= 0)) throw formats::InputError("--noise: expected a percentage ≥ 0, got " + fmt(noise_pct));
   if (evaluate && n_exciters == 0 && !vm.count("exciter-at"))
     throw formats::InputError("--evaluate: needs exciters (--exciters E for the GA's, or --exciter-at GRID:X,Y,Z)");
+  const report::View view = report::view_named(vm["view"].as<std::string>(), "--view");
+  const bool compare = vm["compare-methods"].as<bool>() || vm.count("report") > 0;  // the report shows every method
 
   // --- the model and its modes
   LoadedModel lm = load_model(vm["deck"].as<std::string>());
@@ -265,7 +282,7 @@ int cmd_pretest(const Args& args) {
   const auto& place_groups = triax ? groups : no_groups;
   // One placement of the targets `Phi_t` of a model (K, M): the run's, and the perturbed model's.
   auto place = [&](const Eigen::SparseMatrix<double>& K_, const Eigen::SparseMatrix<double>& M_,
-                   const Eigen::MatrixXd& Phi_t) {
+                   const Eigen::MatrixXd& Phi_t, pt::PlacementMethod method) {
     const Eigen::MatrixXd Phi_c = pt::take_rows(Phi_t, cand_rows);
     pt::Placement placement;
     if (method == pt::PlacementMethod::EffectiveIndependence) {
@@ -288,7 +305,7 @@ int cmd_pretest(const Args& args) {
     }
     return placement;
   };
-  const pt::Placement placement = place(op.K, op.M, Phi);
+  const pt::Placement placement = place(op.K, op.M, Phi, method);
   std::vector<Eigen::Index> sensor_rows;
   for (auto s : placement.selected) sensor_rows.push_back(cand[static_cast<std::size_t>(s)].row);
 
@@ -313,7 +330,7 @@ int cmd_pretest(const Args& args) {
       Phi_p.col(t) = per.modes.col(ptargets[static_cast<std::size_t>(t)]);
       me.hz(t) = per.cycles(static_cast<int>(ptargets[static_cast<std::size_t>(t)]));
     }
-    me.placement = place(pop.K, pop.M, Phi_p);
+    me.placement = place(pop.K, pop.M, Phi_p, method);
     model_error = std::move(me);
   }
 
@@ -379,10 +396,21 @@ int cmd_pretest(const Args& args) {
   j["target_modes"] = nlohmann::json::array();
   for (int t = 0; t < n_targets; ++t)
     j["target_modes"].push_back({{"mode", target_cols[static_cast<std::size_t>(t)] + 1}, {"hz", hz(t)}});
+  // Directions in basic for the picture: a sensor measures along its grid's
+  // displacement-frame axis; an exciter's cosines are in that frame too.
+  std::map<std::int64_t, Eigen::Matrix3d> frame_of;
+  for (const auto& g : grids) frame_of[g.id] = g.frame;
+  auto basic = [&](std::int64_t grid, const Eigen::Vector3d& d) {
+    const Eigen::Vector3d b = frame_of.at(grid) * d;
+    return nlohmann::json{b.x(), b.y(), b.z()};
+  };
   j["sensors"] = nlohmann::json::array();
   for (std::size_t i = 0; i < placement.selected.size(); ++i) {
     const auto& c = cand[static_cast<std::size_t>(placement.selected[i])];
-    j["sensors"].push_back({{"grid", c.dof.point}, {"component", c.dof.component}, {"score", placement.score(static_cast<Eigen::Index>(i))}});
+    j["sensors"].push_back({{"grid", c.dof.point},
+                            {"component", c.dof.component},
+                            {"score", placement.score(static_cast<Eigen::Index>(i))},
+                            {"direction_basic", basic(c.dof.point, Eigen::Vector3d::Unit(c.dof.component - 1))}});
   }
   auto finite_or_null = [](double v) { return std::isfinite(v) ? nlohmann::json(v) : nlohmann::json(nullptr); };
   j["fisher_determinant"] = placement.fisher.determinant;
@@ -408,7 +436,9 @@ int cmd_pretest(const Args& args) {
   j["exciters"] = nlohmann::json::array();
   if (xp) {
     for (const auto& e : xp->exciters)
-      j["exciters"].push_back({{"grid", grid_of_group(e.group)}, {"direction", {e.direction(0), e.direction(1), e.direction(2)}}});
+      j["exciters"].push_back({{"grid", grid_of_group(e.group)},
+                               {"direction", {e.direction(0), e.direction(1), e.direction(2)}},
+                               {"direction_basic", basic(grid_of_group(e.group), e.direction)}});
     j["exciter_objective"] = xp->objective;
     j["mif_dropoff"] = matrix_rows(xp->dropoffs);
     j["ga"] = {{"population", vm["population"].as<int>()}, {"generations", vm["generations"].as<int>()},
@@ -419,7 +449,9 @@ int cmd_pretest(const Args& args) {
     nlohmann::json g;
     g["exciters"] = nlohmann::json::array();
     for (const auto& e : given)
-      g["exciters"].push_back({{"grid", grid_of_group(e.group)}, {"direction", {e.direction(0), e.direction(1), e.direction(2)}}});
+      g["exciters"].push_back({{"grid", grid_of_group(e.group)},
+                               {"direction", {e.direction(0), e.direction(1), e.direction(2)}},
+                               {"direction_basic", basic(grid_of_group(e.group), e.direction)}});
     g["objective"] = pt::exciter_objective(*given_drop);
     g["mif_dropoff"] = matrix_rows(*given_drop);
     j["given_exciters"] = g;
@@ -469,6 +501,40 @@ int cmd_pretest(const Args& args) {
     j["model_error"] = m;
   }
   if (given_evaluation) j["given_exciters"]["evaluation"] = evaluation_json(*given_evaluation, target_cols, hz, so);
+  if (compare) {
+    // Every method on the same targets and candidates (the run's own placement reused).
+    j["methods"] = nlohmann::json::array();
+    for (auto m : {pt::PlacementMethod::EffectiveIndependence, pt::PlacementMethod::KineticEnergy,
+                   pt::PlacementMethod::AverageKineticEnergy, pt::PlacementMethod::EigenvectorProduct,
+                   pt::PlacementMethod::EigenvectorSum}) {
+      pt::Placement pm;
+      try {
+        pm = m == method ? placement : place(op.K, op.M, Phi, m);
+      } catch (const formats::InputError& e) {  // e.g. EI with fewer sensors than targets: that method has no set
+        j["methods"].push_back({{"method", pt::method_name(m)}, {"error", e.what()}});
+        continue;
+      }
+      nlohmann::json x{{"method", pt::method_name(m)},
+                       {"fisher_determinant", pm.fisher.determinant},
+                       {"log10_fisher_determinant", finite_or_null(pm.fisher.log10_determinant)},
+                       {"condition_number", finite_or_null(pm.fisher.condition_number)},
+                       {"fisher_rank", pm.fisher.rank},
+                       {"sensors", nlohmann::json::array()}};
+      for (auto sel : pm.selected) {
+        const auto& c = cand[static_cast<std::size_t>(sel)];
+        x["sensors"].push_back({{"grid", c.dof.point}, {"component", c.dof.component}});
+      }
+      j["methods"].push_back(x);
+    }
+  }
+  // The sensor grids and the test wire frame joining them (report_data.hpp test_wire_frame).
+  std::vector<std::int64_t> sensor_grids;
+  for (auto sel : placement.selected) {
+    const auto g = cand[static_cast<std::size_t>(sel)].dof.point;
+    if (std::find(sensor_grids.begin(), sensor_grids.end(), g) == sensor_grids.end()) sensor_grids.push_back(g);
+  }
+  if (vm.count("svg") || vm.count("report")) j["geometry"] = report::geometry_json(model, grids, sensor_grids);
+  if (vm.count("report")) j["run"] = report::run_json("pretest", args, {lm.path});
 
   // --- report
   const std::string json_path = vm.count("json") ? vm["json"].as<std::string>() : "";
@@ -559,9 +625,38 @@ int cmd_pretest(const Args& args) {
       }
     formats::uff::UffFile f;
     f.datasets.push_back(ns);
+    // The test wire frame as one trace line, its segments separated by pen lifts (0).
+    const report::Lines wire = j.contains("geometry") ? report::read_lines(j["geometry"]["test_lines"])
+                                                      : report::read_lines(report::geometry_json(model, grids, sensor_grids)["test_lines"]);
+    if (!wire.empty()) {
+      formats::uff::TraceLine82 t;
+      t.id = 1;
+      t.color = 8;
+      t.label = "ssid pretest: sensor wire frame";
+      for (const auto& [a, b] : wire) {
+        if (!t.nodes.empty()) t.nodes.push_back(0);
+        t.nodes.push_back(a);
+        t.nodes.push_back(b);
+      }
+      f.datasets.push_back(t);
+    }
     const std::string out = vm["uff"].as<std::string>();
     formats::uff::write_uff(f, out, formats::uff::Precision::Standard);
-    std::cerr << "wrote " << out << ": " << ns.nodes.size() << " node(s) (dataset 15, positions in the basic system)\n";
+    std::cerr << "wrote " << out << ": " << ns.nodes.size() << " node(s) (dataset 15, positions in the basic system), "
+              << wire.size() << " trace segment(s) between sensor grids (dataset 82)\n";
+  }
+  if (vm.count("svg")) {
+    const std::string out = vm["svg"].as<std::string>();
+    std::ofstream o(out, std::ios::binary);
+    o << report::pretest_picture_file(j, view);
+    if (!o) throw formats::InputError("cannot write " + out);
+    std::cerr << "wrote " << out << ": the structure with " << j["sensors"].size() << " sensor DOF(s) and "
+              << j["exciters"].size() + (j.contains("given_exciters") ? j["given_exciters"]["exciters"].size() : 0)
+              << " exciter(s), " << view.label << " view\n";
+  }
+  if (vm.count("report")) {
+    report::write_report(vm["report"].as<std::string>(), j);
+    std::cerr << "wrote " << vm["report"].as<std::string>() << "\n";
   }
   return kExitSuccess;
 }

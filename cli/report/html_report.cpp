@@ -15,6 +15,8 @@
 #include <map>
 #include <set>
 
+#include "cli/report/pretest_picture.hpp"
+#include "cli/report/projection.hpp"
 #include "cli/report/svg.hpp"
 #include "estimator/reporting/number_text.hpp"
 
@@ -137,27 +139,39 @@ std::string run_section(const json& j) {
 
 // ---------------------------------------------------------------- correlation
 
+/// Any matrix of the JSON (rows × columns) as a heat map with its labels, the
+/// cells of `marked` (row, column) outlined; colour scale 0 … 1.
+std::string matrix_figure(const json& rows, const std::vector<std::string>& row_labels, const std::vector<std::string>& col_labels,
+                          const std::string& row_title, const std::string& col_title, const std::string& value_label,
+                          const std::set<std::pair<std::size_t, std::size_t>>& marked, const std::string& id,
+                          const std::string& caption) {
+  HeatMap h;
+  for (const auto& r : rows) h.values.push_back(r.get<std::vector<double>>());
+  h.row_labels = row_labels, h.col_labels = col_labels;
+  h.row_title = row_title, h.col_title = col_title, h.value_label = value_label;
+  h.marked = marked;
+  return figure(id, heat_map_svg(h, id + "-svg", value_label), caption);
+}
+
 /// The MAC matrix as a heat map. `rows_are_fe`: rows analysis modes (correlate)
 /// or test modes (estimate).
 std::string mac_figure(const json& mac, const std::vector<int>& row_modes, const std::vector<int>& col_modes,
                        bool rows_are_fe, const json& pairs, const std::string& id, const std::string& caption,
                        const std::string& form) {
-  HeatMap h;
-  for (const auto& row : mac) h.values.push_back(row.get<std::vector<double>>());
-  for (int m : row_modes) h.row_labels.push_back(std::to_string(m));
-  for (int m : col_modes) h.col_labels.push_back(std::to_string(m));
-  h.row_title = rows_are_fe ? "analysis mode" : "test mode";
-  h.col_title = rows_are_fe ? "test mode" : "analysis mode";
-  h.value_label = "MAC" + form;
+  std::vector<std::string> rows, cols;
+  for (int m : row_modes) rows.push_back(std::to_string(m));
+  for (int m : col_modes) cols.push_back(std::to_string(m));
   auto index = [](const std::vector<int>& v, int m) {
     return static_cast<std::size_t>(std::find(v.begin(), v.end(), m) - v.begin());
   };
+  std::set<std::pair<std::size_t, std::size_t>> marked;
   for (const auto& p : pairs) {
     const int fe = p["fe_mode"], test = p["test_mode"];
     const std::size_t i = index(row_modes, rows_are_fe ? fe : test), k = index(col_modes, rows_are_fe ? test : fe);
-    if (i < row_modes.size() && k < col_modes.size()) h.marked.insert({i, k});
+    if (i < row_modes.size() && k < col_modes.size()) marked.insert({i, k});
   }
-  return figure(id, heat_map_svg(h, id + "-svg", "MAC matrix"), caption);
+  return matrix_figure(mac, rows, cols, rows_are_fe ? "analysis mode" : "test mode", rows_are_fe ? "test mode" : "analysis mode",
+                       "MAC" + form, marked, id, caption);
 }
 
 // ---------------------------------------------------------------- frequencies
@@ -403,82 +417,6 @@ std::string convergence_figures(const json& j) {
 }
 
 // ---------------------------------------------------------------- mode shapes
-
-using Points = std::map<std::int64_t, Eigen::Vector3d>;
-
-Points read_points(const json& rows) {
-  Points p;
-  for (const auto& r : rows) p[r[0].get<std::int64_t>()] = {r[1].get<double>(), r[2].get<double>(), r[3].get<double>()};
-  return p;
-}
-
-struct View {
-  const char* name;
-  const char* label;
-  Eigen::Vector3d toward;  ///< from the structure towards the viewer
-  Eigen::Vector3d right = Eigen::Vector3d::Zero(), up = Eigen::Vector3d::Zero();
-};
-
-std::vector<View> views() {
-  std::vector<View> v = {{"iso", "isometric", {1, -1, 1}},
-                         {"front", "front (from −Y)", {0, -1, 0}},
-                         {"side", "side (from +X)", {1, 0, 0}},
-                         {"top", "top (from +Z)", {0, 0, 1}}};
-  for (auto& w : v) {
-    w.toward.normalize();
-    const Eigen::Vector3d z = Eigen::Vector3d::UnitZ();
-    w.right = z.cross(w.toward).norm() > 1e-9 ? z.cross(w.toward).normalized() : Eigen::Vector3d::UnitX();
-    w.up = w.toward.cross(w.right);
-  }
-  return v;
-}
-
-/// Screen placement of one view in a panel of `w` × `h` pixels.
-struct Placement {
-  Eigen::Vector3d right, up;
-  double scale = 1, ox = 0, oy = 0;
-  Eigen::Vector2d operator()(const Eigen::Vector3d& x) const { return {ox + scale * x.dot(right), oy - scale * x.dot(up)}; }
-};
-
-Placement place(const View& v, const Points& grids, double w, double h) {
-  double x0 = INFINITY, x1 = -INFINITY, y0 = INFINITY, y1 = -INFINITY;
-  for (const auto& [id, p] : grids) {
-    x0 = std::min(x0, p.dot(v.right)), x1 = std::max(x1, p.dot(v.right));
-    y0 = std::min(y0, p.dot(v.up)), y1 = std::max(y1, p.dot(v.up));
-  }
-  Placement pl{v.right, v.up};
-  const double m = 0.14, dx = std::max(x1 - x0, 1e-12), dy = std::max(y1 - y0, 1e-12);
-  pl.scale = std::min(w * (1 - 2 * m) / dx, (h - 24) * (1 - 2 * m) / dy);
-  pl.ox = w / 2 - pl.scale * (x0 + x1) / 2;
-  pl.oy = 24 + (h - 24) / 2 + pl.scale * (y0 + y1) / 2;
-  return pl;
-}
-
-/// Path data of `lines` with the grids moved by `amp` × shape (absent grids stay).
-std::string lines_d(const std::vector<std::pair<std::int64_t, std::int64_t>>& lines, const Points& grids, const Points* shape,
-                    double amp, const Placement& pl) {
-  std::string d;
-  auto at = [&](std::int64_t id) {
-    Eigen::Vector3d x = grids.at(id);
-    if (shape) {
-      auto it = shape->find(id);
-      if (it != shape->end()) x += amp * it->second;
-    }
-    return pl(x);
-  };
-  for (const auto& [a, b] : lines) {
-    if (!grids.count(a) || !grids.count(b)) continue;
-    const auto p = at(a), q = at(b);
-    d += fmt::format("M{:.0f} {:.0f}L{:.0f} {:.0f}", p.x(), p.y(), q.x(), q.y());
-  }
-  return d;
-}
-
-std::vector<std::pair<std::int64_t, std::int64_t>> read_lines(const json& rows) {
-  std::vector<std::pair<std::int64_t, std::int64_t>> l;
-  for (const auto& r : rows) l.push_back({r[0].get<std::int64_t>(), r[1].get<std::int64_t>()});
-  return l;
-}
 
 double largest(const Points& s) {
   double m = 0;
@@ -755,6 +693,244 @@ std::string diagnosis_sections(const json& j) {
   return s;
 }
 
+// ---------------------------------------------------------------- pretest
+
+/// One bar per method of j["methods"] for `key` (log10 of the value when `log10`),
+/// the run's method in red.
+std::string method_bars(const json& j, const char* key, bool log10, const std::string& label, const std::string& id) {
+  const json& ms = j["methods"];
+  const double n = static_cast<double>(ms.size());
+  std::vector<double> v{0.0};
+  auto drawn = [&](const json& m) -> double {  // the bar's height, NaN where there is none (no set, singular, det F = 0)
+    if (!m.contains(key) || !m[key].is_number()) return NAN;
+    const double x = log10 ? std::log10(m[key].get<double>()) : m[key].get<double>();
+    return std::isfinite(x) ? x : NAN;
+  };
+  for (const auto& m : ms)
+    if (std::isfinite(drawn(m))) v.push_back(drawn(m));
+  if (v.size() == 1) return "";  // no method has a value to draw
+  Chart c(std::max(360.0, 110 + 60 * n), 280, {-0.5, n - 0.5, "method"}, axis_around(v, label, 0.08, true));
+  std::vector<std::pair<double, std::string>> cats;
+  const double w = (c.x(1) - c.x(0)) * 0.6;
+  for (std::size_t k = 0; k < ms.size(); ++k) {
+    const std::string name = ms[k]["method"];
+    cats.push_back({double(k), name});
+    const double x = drawn(ms[k]);
+    if (!std::isfinite(x)) continue;
+    const double raw = ms[k][key];
+    const double y0 = c.y(std::max(x, 0.0)), y1 = c.y(std::min(x, 0.0));
+    c.add(fmt::format("<rect class=\"{}\" data-method=\"{}\" data-v=\"{}\" x=\"{}\" y=\"{}\" width=\"{}\" height=\"{}\" fill=\"{}\">"
+                      "<title>{}: {}</title></rect>\n",
+                      id, esc(name), exact(raw), px(c.x(double(k)) - w / 2), px(y0), px(w), px(std::max(y1 - y0, 0.5)),
+                      name == j.value("method", "") ? "#e15759" : "#4e79a7", esc(name), significant(raw, 5)));
+  }
+  c.set_x_categories(cats);
+  return c.svg(id + "-svg", label);
+}
+
+std::string exciter_table(const json& ex) {
+  std::string s = "<table class=\"exciters\">\n<tr><th>exciter</th><th>grid</th><th>direction cosines (grid's frame)</th></tr>\n";
+  for (std::size_t k = 0; k < ex.size(); ++k) {
+    const auto& d = ex[k]["direction"];
+    s += fmt::format("<tr><td class=\"n\">{}</td><td class=\"n\">{}</td><td class=\"n\">({}, {}, {})</td></tr>\n", k + 1,
+                     ex[k]["grid"].get<std::int64_t>(), fixed(d[0], 4), fixed(d[1], 4), fixed(d[2], 4));
+  }
+  return s + "</table>\n";
+}
+
+/// The simulated test's table (and its cross-orthogonality) of an "evaluation" object.
+std::string evaluation_part(const json& e, const std::string& id, const std::string& title) {
+  std::string s = fmt::format("<h3>{}</h3>\n<p>Identified {} of {} target mode(s); max frequency error {} %, ", esc(title),
+                              e.value("identified", 0), e["targets"].size(),
+                              e["max_frequency_error_pct"].is_number() ? fixed(e["max_frequency_error_pct"], 3) : "—");
+  s += fmt::format("cross-orthogonality (SEREP mass): min diagonal {}, max off-diagonal {}.</p>\n",
+                   e["min_diagonal_xor"].is_number() ? fixed(e["min_diagonal_xor"], 3) : "—",
+                   e["max_offdiagonal_xor"].is_number() ? fixed(e["max_offdiagonal_xor"], 3) : "—");
+  s += fmt::format("<table class=\"evaluation\" id=\"{}-table\">\n<tr><th>mode</th><th>FE [Hz]</th><th>identified [Hz]</th>"
+                   "<th>error [%]</th><th>damping ratio</th><th>MAC</th></tr>\n",
+                   esc(id));
+  for (const auto& t : e["targets"]) {
+    s += fmt::format("<tr class=\"target\" data-mode=\"{}\"><td class=\"n\">{}</td><td class=\"n\">{}</td>", t["mode"].get<int>(),
+                     t["mode"].get<int>(), significant(t["fe_hz"], 6));
+    if (t.value("identified", false))
+      s += fmt::format("<td class=\"n\" data-v=\"{}\">{}</td><td class=\"n\">{}</td><td class=\"n\">{}</td><td class=\"n\">{}</td></tr>\n",
+                       exact(t["hz"]), significant(t["hz"], 6), fixed(t["frequency_error_pct"], 3), fixed(t["damping_ratio"], 4),
+                       fixed(t["mac"], 3));
+    else
+      s += "<td colspan=\"4\">not identified</td></tr>\n";
+  }
+  s += "</table>\n";
+  if (e.contains("xor")) {
+    std::vector<std::string> rows, cols;
+    for (const auto& r : e["xor_rows"]) rows.push_back(std::to_string(r.get<int>()));
+    for (std::size_t k = 0; k < e["xor"][0].size(); ++k) cols.push_back(std::to_string(k + 1));
+    s += matrix_figure(e["xor"], rows, cols, "FE target mode", "identified mode", "cross-orthogonality", {}, "fig-" + id + "-xor",
+                       "Cross-orthogonality of the identified modes (columns, in the order matched) with the FE target modes "
+                       "(rows), SEREP mass on the sensors.");
+  }
+  return s;
+}
+
+std::string pretest_sections(const json& j) {
+  std::string s;
+  const bool triax = j.value("triax", false);
+  const json& sensors = j["sensors"];
+  std::vector<std::string> targets;
+  for (const auto& t : j["target_modes"]) targets.push_back(std::to_string(t["mode"].get<int>()));
+
+  // 1. The picture, in four views.
+  s += "<section id=\"placement\">\n<h2>Sensors and exciters</h2>\n";
+  s += fmt::format("<p>{} target mode(s), {} {} by {} from {} candidate DOF(s) of a {}-DOF model.</p>\n", targets.size(),
+                   triax ? sensors.size() / 3 : sensors.size(), triax ? "triaxes" : "sensor DOF(s)", esc(j.value("method", "")),
+                   j.value("candidates", 0), j.value("dof", 0));
+  if (j.contains("geometry") && !j["geometry"]["grids"].empty()) {
+    const auto vs = views();
+    s += "<div class=\"controls\">view <select id=\"view\">";
+    for (const auto& v : vs) s += fmt::format("<option value=\"{}\">{}</option>", v.name, esc(v.label));
+    s += "</select></div>\n";
+    s += figure("fig-placement", pretest_picture_svg(j, vs, "placement-svg"),
+                "The structure (grey) with each sensor as an arrow along its measured direction (triaxes: squares), the "
+                "exciters as red arrows along their force directions (given exciters orange), and the sensors' wire frame "
+                "(dashed; the trace lines of the UFF output).");
+  }
+  s += "<table class=\"sensors\">\n<tr><th>#</th><th>grid</th><th>component</th><th>score</th><th>direction (basic)</th></tr>\n";
+  for (std::size_t k = 0; k < sensors.size(); ++k) {
+    const auto& x = sensors[k];
+    const auto& d = x["direction_basic"];
+    s += fmt::format("<tr class=\"sensor\" data-grid=\"{}\" data-component=\"{}\"><td class=\"n\">{}</td><td class=\"n\">{}</td>"
+                     "<td>T{}</td><td class=\"n\">{}</td><td class=\"n\">({}, {}, {})</td></tr>\n",
+                     x["grid"].get<std::int64_t>(), x["component"].get<int>(), k + 1, x["grid"].get<std::int64_t>(),
+                     x["component"].get<int>(), significant(x["score"], 4), fixed(d[0], 3), fixed(d[1], 3), fixed(d[2], 3));
+  }
+  s += "</table>\n</section>\n";
+
+  // 2. Fisher information per method.
+  s += "<section id=\"fisher\">\n<h2>Fisher information</h2>\n";
+  s += "<table class=\"fisher\">\n<tr><th>method</th><th>det F</th><th>log10 det F</th><th>condition number</th><th>rank</th></tr>\n";
+  const json rows = j.contains("methods") ? j["methods"] : json::array({j});
+  auto opt = [](const json& v, int d) { return v.is_number() ? significant(v, d) : std::string("—"); };
+  for (const auto& m : rows) {
+    if (m.contains("error")) {
+      s += fmt::format("<tr class=\"method\" data-method=\"{0}\"><td>{0}</td><td colspan=\"4\">no set: {1}</td></tr>\n",
+                       esc(m.value("method", "")), esc(m.value("error", "")));
+      continue;
+    }
+    s += fmt::format("<tr class=\"method\" data-method=\"{}\"><td>{}</td><td class=\"n\" data-v=\"{}\">{}</td><td class=\"n\">{}</td>"
+                     "<td class=\"n\">{}</td><td class=\"n\">{}</td></tr>\n",
+                     esc(m.value("method", "")), esc(m.value("method", "")) + (m.value("method", "") == j.value("method", "") ? " (this run)" : ""),
+                     exact(m["fisher_determinant"]), significant(m["fisher_determinant"], 5), opt(m["log10_fisher_determinant"], 5),
+                     opt(m["condition_number"], 5), m.value("fisher_rank", 0));
+  }
+  s += "</table>\n";
+  if (j.contains("methods")) {
+    const std::string det = method_bars(j, "fisher_determinant", true, "log10 det F", "fisher-det");
+    const std::string cond = method_bars(j, "condition_number", true, "log10 condition number", "fisher-cond");
+    if (!det.empty())
+      s += figure("fig-fisher-det", det,
+                "The determinant of the Fisher information Φ_sᵀΦ_s of the target modes on each method's sensor set "
+                "(mass-normalised modes, unit noise; log scale); red: this run's method. Larger is better.");
+    if (!cond.empty())
+      s += figure("fig-fisher-cond", cond,
+                "The condition number of the Fisher information for each method's set; red: this run's. Smaller is better: "
+                "the target modes are told apart.");
+  }
+  s += "</section>\n";
+
+  // 3. Test-analysis models: cross-orthogonality of the targets.
+  s += "<section id=\"tam\">\n<h2>Test-analysis models on the sensors</h2>\n";
+  const json& acc = j["acceptance"];
+  s += fmt::format("<p>Cross-orthogonality Φᵀ M_TAM Φ of the target modes on the sensor set; accepted: diagonal &gt; {}, "
+                   "off-diagonal &lt; {} (primary modes &lt; {}).</p>\n",
+                   significant(acc["min_diagonal"], 3), significant(acc["max_offdiagonal"], 3),
+                   significant(acc["max_offdiagonal_primary"], 3));
+  for (const char* name : {"guyan", "irs", "serep"}) {
+    if (!j["tam"].contains(name)) continue;
+    const json& t = j["tam"][name];
+    if (t.value("status", "") != "ok") {
+      s += fmt::format("<p class=\"partial\">{}: failed: {}</p>\n", name, esc(t.value("message", "")));
+      continue;
+    }
+    const std::string verdict =
+        t.value("accepted_primary", false) ? "accepted (primary)" : t.value("accepted", false) ? "accepted (secondary)" : "NOT accepted";
+    std::set<std::pair<std::size_t, std::size_t>> diagonal;
+    for (std::size_t i = 0; i < targets.size(); ++i) diagonal.insert({i, i});
+    s += matrix_figure(t["xor"], targets, targets, "target mode", "target mode", "cross-orthogonality", diagonal,
+                       std::string("fig-tam-") + name,
+                       fmt::format("{} TAM: min diagonal {}, max off-diagonal {}, max frequency error {} %: {}.", name,
+                                   fixed(t["min_diagonal_xor"], 4), fixed(t["max_offdiagonal_xor"], 4),
+                                   fixed(t["max_frequency_error_pct"], 3), verdict));
+  }
+  s += "</section>\n";
+
+  // 4. Exciters.
+  if (!j["exciters"].empty() || j.contains("given_exciters")) {
+    s += "<section id=\"exciters\">\n<h2>Exciters</h2>\n";
+    auto dropoff = [&](const json& ex, const json& D, double objective, const std::string& id, const std::string& who) {
+      std::string t = fmt::format("<h3>{}: objective {}</h3>\n", esc(who), significant(objective, 6)) + exciter_table(ex);
+      std::vector<std::string> cols;
+      for (std::size_t k = 0; k < ex.size(); ++k) cols.push_back(std::to_string(k + 1) + " (grid " + std::to_string(ex[k]["grid"].get<std::int64_t>()) + ")");
+      t += matrix_figure(D, targets, cols, "target mode", "exciter", "MIF drop-off", {}, id,
+                         "The multivariate MIF's drop-off at each target mode for each exciter (smaller is better; the objective "
+                         "takes each mode's best exciter, no penalty at or below 0.1).");
+      return t;
+    };
+    if (!j["exciters"].empty()) {
+      s += dropoff(j["exciters"], j["mif_dropoff"], j["exciter_objective"], "fig-mif", "placed by the genetic algorithm");
+      const auto best = j["ga"]["best_per_generation"].get<std::vector<double>>();
+      if (!best.empty()) {
+        std::vector<double> gen;
+        for (std::size_t g = 0; g < best.size(); ++g) gen.push_back(double(g));
+        Chart c(520, 280, axis_around(gen, "generation", 0.03), axis_around(best, "objective (best member)", 0.08));
+        std::string pl;
+        for (std::size_t g = 0; g < best.size(); ++g) {
+          pl += (g ? " " : "") + px(c.x(double(g))) + "," + px(c.y(best[g]));
+          c.add(fmt::format("<circle class=\"ga\" data-generation=\"{}\" data-v=\"{}\" cx=\"{}\" cy=\"{}\" r=\"2.4\" fill=\"#59a14f\">"
+                            "<title>generation {}: {}</title></circle>\n",
+                            g, exact(best[g]), px(c.x(double(g))), px(c.y(best[g])), g, significant(best[g], 6)));
+        }
+        c.add(fmt::format("<polyline points=\"{}\" fill=\"none\" stroke=\"#59a14f\"/>\n", pl));
+        const json& ga = j["ga"];
+        s += figure("fig-ga", c.svg("ga-svg", "GA objective per generation"),
+                    fmt::format("The best member's objective per generation (population {}, {} generations, seed {}, {} "
+                                "evaluations).",
+                                ga.value("population", 0), ga.value("generations", 0), ga["seed"].dump(), ga.value("evaluations", 0)));
+      }
+    }
+    if (j.contains("given_exciters")) {
+      const json& g = j["given_exciters"];
+      s += dropoff(g["exciters"], g["mif_dropoff"], g["objective"], "fig-mif-given", "given (--exciter-at)");
+    }
+    s += "</section>\n";
+  }
+
+  // 5. The simulated test.
+  if (j.contains("evaluation") || (j.contains("given_exciters") && j["given_exciters"].contains("evaluation"))) {
+    s += "<section id=\"evaluation\">\n<h2>Simulated test (--evaluate)</h2>\n";
+    if (j.contains("evaluation"))
+      s += evaluation_part(j["evaluation"], "evaluation", j["exciters"].empty() ? "with the given exciters" : "with the GA's exciters");
+    if (j.contains("given_exciters") && j["given_exciters"].contains("evaluation"))
+      s += evaluation_part(j["given_exciters"]["evaluation"], "evaluation-given", "with the given exciters");
+    s += "</section>\n";
+  }
+
+  // 6. Model error.
+  if (j.contains("model_error")) {
+    const json& m = j["model_error"];
+    s += "<section id=\"model-error\">\n<h2>Model error</h2>\n";
+    auto list = [&](const json& l) {
+      std::string t;
+      for (const auto& x : l)
+        t += " " + std::to_string(x["grid"].get<std::int64_t>()) + (x.contains("component") ? " T" + std::to_string(x["component"].get<int>()) : "");
+      return t.empty() ? std::string(" —") : t;
+    };
+    s += fmt::format("<p>Seed {}: of {} strut(s), {} area(s) −20 % and {} +20 %. {} of {} {} changed; dropped:{}; added:{}.</p>\n",
+                     m["seed"].dump(), m.value("struts", 0), m.value("areas_decreased", 0), m.value("areas_increased", 0),
+                     m.value("changed", 0), m.value("of", 0), esc(m.value("unit", "")), list(m["removed"]), list(m["added"]));
+    s += "</section>\n";
+  }
+  return s;
+}
+
 std::string notes_section(const json& j) {
   if (!j.contains("notes") || j["notes"].empty()) return "";
   std::string s = "<section id=\"notes\">\n<h2>Notes</h2>\n<ul>\n";
@@ -821,6 +997,8 @@ std::string html_report(const json& j) {
     s += parameter_figures(j) + convergence_figures(j);
   } else if (cmd == "diagnose") {
     s += diagnosis_sections(j);
+  } else if (cmd == "pretest") {
+    s += pretest_sections(j);
   }
   s += shapes_section(j) + notes_section(j);
   s += "<p class=\"note\">Every number in this report is in the JSON result of the same run (";

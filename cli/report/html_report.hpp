@@ -13,6 +13,10 @@
 ///     "iterations" (convergence per cycle);
 ///   - diagnose: "evidence" (residuals by mode and by grid), "ranking",
 ///     "cause" (and where it sits on "geometry"), "gain";
+///   - pretest: the sensors and exciters on "geometry" (pretest_picture.hpp),
+///     "methods" (Fisher determinant and condition per method), "tam" (the
+///     target modes' cross-orthogonality per TAM), "exciters"/"given_exciters"
+///     (MIF drop-offs, the GA per generation), "evaluation", "model_error";
 ///   - "geometry" and "shapes": mode shapes of each pair, analysis and test side
 ///     by side, in four view directions, animated by the inline script, static in print.
 /// Marks carry the JSON's values in data attributes (svg.hpp), so a test can

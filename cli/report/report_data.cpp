@@ -62,6 +62,41 @@ std::vector<std::pair<std::int64_t, std::int64_t>> element_lines(const formats::
 
 }  // namespace
 
+Lines test_wire_frame(const Lines& lines, const Points& grids, const std::vector<std::int64_t>& test_grids) {
+  std::map<std::int64_t, std::vector<std::int64_t>> adjacent;
+  for (const auto& [a, b] : lines) {
+    adjacent[a].push_back(b);
+    adjacent[b].push_back(a);
+  }
+  // From each test grid, a breadth-first walk that stops at test grids finds
+  // those the deck joins it to; the three nearest of them are kept (on a truss
+  // measured at every other joint, all of them would be a web).
+  const std::set<std::int64_t> tested(test_grids.begin(), test_grids.end());
+  std::set<std::pair<std::int64_t, std::int64_t>> wire;
+  for (std::int64_t s : tested) {
+    if (!grids.count(s)) continue;
+    std::set<std::int64_t> seen{s};
+    std::deque<std::int64_t> queue{s};
+    std::vector<std::pair<double, std::int64_t>> reached;
+    while (!queue.empty()) {
+      const std::int64_t n = queue.front();
+      queue.pop_front();
+      for (std::int64_t m : adjacent[n]) {
+        if (!seen.insert(m).second) continue;
+        if (tested.count(m)) {
+          if (grids.count(m)) reached.push_back({(grids.at(m) - grids.at(s)).norm(), m});
+        } else {
+          queue.push_back(m);
+        }
+      }
+    }
+    std::sort(reached.begin(), reached.end());
+    for (std::size_t k = 0; k < reached.size() && k < 3; ++k)
+      wire.insert({std::min(s, reached[k].second), std::max(s, reached[k].second)});
+  }
+  return {wire.begin(), wire.end()};
+}
+
 nlohmann::json geometry_json(const translators::FeModel& model, const std::vector<translators::GridPosition>& grids,
                              const std::vector<std::int64_t>& test_grids) {
   nlohmann::json g = nlohmann::json::array();
@@ -72,38 +107,15 @@ nlohmann::json geometry_json(const translators::FeModel& model, const std::vecto
   }
   const auto lines = element_lines(model.bulk());
   nlohmann::json l = nlohmann::json::array();
-  std::map<std::int64_t, std::vector<std::int64_t>> adjacent;
-  for (const auto& [a, b] : lines) {
-    if (!known.count(a) || !known.count(b)) continue;  // scalar points have no position
-    l.push_back({a, b});
-    adjacent[a].push_back(b);
-    adjacent[b].push_back(a);
-  }
-  // The test wire frame: from each test grid, a breadth-first walk that stops at
-  // test grids finds those the deck joins it to; the three nearest of them are
-  // kept (on a truss measured at every other joint, all of them would be a web).
-  std::map<std::int64_t, Eigen::Vector3d> at;
-  for (const auto& p : grids) at[p.id] = p.position;
-  const std::set<std::int64_t> tested(test_grids.begin(), test_grids.end());
-  std::set<std::pair<std::int64_t, std::int64_t>> wire;
-  for (std::int64_t s : tested) {
-    if (!at.count(s)) continue;
-    std::set<std::int64_t> seen{s};
-    std::deque<std::int64_t> queue{s};
-    std::vector<std::pair<double, std::int64_t>> reached;
-    while (!queue.empty()) {
-      const std::int64_t n = queue.front();
-      queue.pop_front();
-      for (std::int64_t m : adjacent[n]) {
-        if (!seen.insert(m).second) continue;
-        if (tested.count(m)) reached.push_back({(at[m] - at[s]).norm(), m});
-        else queue.push_back(m);
-      }
+  Lines positioned;
+  for (const auto& [a, b] : lines)
+    if (known.count(a) && known.count(b)) {  // scalar points have no position
+      l.push_back({a, b});
+      positioned.push_back({a, b});
     }
-    std::sort(reached.begin(), reached.end());
-    for (std::size_t k = 0; k < reached.size() && k < 3; ++k)
-      wire.insert({std::min(s, reached[k].second), std::max(s, reached[k].second)});
-  }
+  Points at;
+  for (const auto& p : grids) at[p.id] = p.position;
+  const Lines wire = test_wire_frame(positioned, at, test_grids);
   nlohmann::json t = nlohmann::json::array();
   for (const auto& [a, b] : wire) t.push_back({a, b});
   return {{"grids", g}, {"lines", l}, {"test_lines", t}};

@@ -11,6 +11,7 @@
 #include <vector>
 
 #include "cli/commands.hpp"
+#include "cli/report/projection.hpp"
 #include "translators/assembly/fe_model.hpp"
 #include "translators/measurement/sensor_mapping.hpp"
 
@@ -21,12 +22,17 @@ namespace ssid::cli::report {
 /// that is set (reproducible reports).
 nlohmann::json run_json(const std::string& subcommand, const Args& args, const std::vector<std::string>& inputs);
 
+/// The test's wire frame on `test_grids`: each test grid joined to the (at most
+/// three) nearest test grids (straight distance) that a path along `lines`
+/// through non-test grids reaches, each line (smaller id, larger id) once, sorted.
+/// A path never passes another test grid, so a line stands for a stretch of the
+/// structure between two sensors; test grids without a position in `grids` are skipped.
+Lines test_wire_frame(const Lines& lines, const Points& grids, const std::vector<std::int64_t>& test_grids);
+
 /// The deck drawn as lines: {"grids": [[id, x, y, z]] (basic), "lines": [[g1, g2]]
 /// (CROD, CONROD, CBAR, CBEAM, CBUSH, CELAS1/2 between two grids, RBAR, RBE2 legs),
-/// "test_lines": [[n1, n2]]}: the test's wire frame, joining each test grid to
-/// the (at most three) nearest test grids that an element path through
-/// non-test grids connects it to (the deck's geometry seen by the sensors; a
-/// test file's own trace lines, dataset 82, are not read yet).
+/// "test_lines": [[n1, n2]]}: the test's wire frame (test_wire_frame; the deck's
+/// geometry seen by the sensors; a test file's own trace lines, dataset 82, are not read yet).
 nlohmann::json geometry_json(const translators::FeModel& model, const std::vector<translators::GridPosition>& grids,
                              const std::vector<std::int64_t>& test_grids);
 

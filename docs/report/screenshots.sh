@@ -14,6 +14,8 @@ cd "$src"
   --study samples/estimate/study.json --json "$tmp/estimate.json" --report "$tmp/estimate.html" >/dev/null
 "$build/ssid" diagnose -q samples/mpi_rod.bdf samples/mpi_rod_hidden_mass.unv \
   --json "$tmp/diagnosis.json" --report "$tmp/diagnosis.html" >/dev/null
+"$build/ssid" pretest samples/mpi_rod.bdf --target-modes 12 --min-hz 1 --sensors 18 --method ei --exciters 2 \
+  --exciter-at 41:0,1,0 --exciter-at 79:0,0,1 --evaluate --json "$tmp/pretest.json" --report "$tmp/pretest.html" >/dev/null
 # shot REPORT NAME HEIGHT HIDDEN-SECTIONS
 shot() {
   sed "s|</head>|<style>$4{display:none}</style></head>|" "$tmp/$1.html" >"$tmp/shot-$2.html"
@@ -26,4 +28,6 @@ shot estimate estimate_parameters 1300 "#run,#correlation,#frequencies,h1"
 shot estimate estimate_shapes 900 "#run,#correlation,#frequencies,#parameters,#convergence,h1,#shape-0,#shape-1,#shape-2,#shape-3,#shape-4,#shape-5"
 shot diagnosis diagnosis 1400 ".none"
 shot diagnosis diagnosis_cause 1000 "#run,#residuals,#ranking,h1"
+shot pretest pretest 1250 "#run,h1,table.sensors"
+shot pretest pretest_tam 1000 "#run,#placement,#fisher,h1,#fig-tam-irs,#fig-tam-serep"
 ls -l "$out"/*.png

@@ -107,17 +107,30 @@ Placement effective_independence(const Eigen::Ref<const Eigen::MatrixXd>& Phi_c,
   p.method = PlacementMethod::EffectiveIndependence;
   p.grouped = grouped;
   int groups_alive = ng;
+  // The groups' rows in one flat array (group g: flat[start[g] … start[g+1])): the
+  // scan below visits every live group every step, and a list per group (25 000
+  // of them for single DOFs) made that scan cost more than the update itself
+  // (docs/performance.md "Pretest").
+  std::vector<Eigen::Index> flat;
+  std::vector<std::size_t> start{0};
+  for (const auto& g : groups) {
+    flat.insert(flat.end(), g.begin(), g.end());
+    start.push_back(flat.size());
+  }
+  std::vector<std::pair<double, int>> order;
+  order.reserve(static_cast<std::size_t>(ng));
   while (groups_alive > keep) {
     // The live groups' summed E; groups holding an essential row are passed over.
-    std::vector<std::pair<double, int>> order;
+    order.clear();
     int smallest = -1;
     for (int g = 0; g < ng; ++g) {
       if (!group_alive[static_cast<std::size_t>(g)]) continue;
       double sum = 0;
       bool ess = false;
-      for (auto r : groups[static_cast<std::size_t>(g)]) {
-        sum += E(r);
-        ess = ess || 1.0 - E(r) < kEssential;
+      for (std::size_t k = start[static_cast<std::size_t>(g)]; k < start[static_cast<std::size_t>(g) + 1]; ++k) {
+        const double e = E(flat[k]);
+        sum += e;
+        ess = ess || 1.0 - e < kEssential;
       }
       if (ess) continue;
       order.emplace_back(sum, g);

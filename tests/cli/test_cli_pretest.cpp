@@ -4,9 +4,13 @@
 #include <catch2/catch.hpp>
 
 #include <Eigen/Dense>
+#include <algorithm>
 #include <fstream>
+#include <iterator>
 #include <map>
 #include <set>
+#include <sstream>
+#include <variant>
 #include <nlohmann/json.hpp>
 #include <unistd.h>
 
@@ -174,4 +178,208 @@ TEST_CASE("ssid pretest --perturb-areas: the model-error study is seeded and cou
   CHECK(m["added"].size() == missing);
   // A stiffness change moves every target.
   for (const auto& c : m["frequency_change_pct"]) CHECK(std::abs(c.get<double>()) > 1e-3);
+}
+
+namespace {
+
+/// Every start tag `<g class="cls" ...>` of `svg`, as its attribute text.
+std::vector<std::string> groups_of(const std::string& svg, const std::string& cls) {
+  std::vector<std::string> out;
+  const std::string start = "<g class=\"" + cls + "\"";
+  for (auto a = svg.find(start); a != std::string::npos; a = svg.find(start, a + 1))
+    out.push_back(svg.substr(a, svg.find('>', a) - a));
+  return out;
+}
+
+std::string attribute(const std::string& tag, const std::string& name) {
+  const auto a = tag.find(" " + name + "=\"");
+  if (a == std::string::npos) return "";
+  const auto b = a + name.size() + 3;
+  return tag.substr(b, tag.find('"', b) - b);
+}
+
+std::string read_text(const fs::path& p) {
+  std::ifstream in(p, std::ios::binary);
+  return {std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>()};
+}
+
+}  // namespace
+
+TEST_CASE("ssid pretest --svg: one marker per sensor and exciter, in the chosen view", "[cli][pretest][svg]") {
+  const fs::path dir = scratch();
+  const fs::path svg = dir / "ei.svg", pj = dir / "ei_svg.json";
+  auto r = run_ssid("pretest " + rod() + " --target-modes 12 --min-hz 1 --sensors 18 --method ei --exciters 2 --population 6 "
+                    "--generations 2 --exciter-at 41:0,1,0 --view z --svg " + svg.string() + " --json " + pj.string());
+  INFO(r.err);
+  REQUIRE(r.code == 0);
+  const auto j = read_json(pj);
+  const std::string s = read_text(svg);
+  CHECK(s.rfind("<?xml version=\"1.0\" encoding=\"UTF-8\"?>\n<svg ", 0) == 0);
+  CHECK(s.find("</svg>") != std::string::npos);
+  // One view only, the top one (--view z), with its legend.
+  CHECK(groups_of(s, "view").size() == 1);
+  CHECK(attribute(groups_of(s, "view").at(0), "data-view") == "top");
+  CHECK(s.find("<g class=\"legend\">") != std::string::npos);
+  // A marker per sensor DOF: exactly the JSON's (grid, component) pairs.
+  std::multiset<std::pair<long, int>> want, got;
+  for (const auto& x : j["sensors"]) want.insert({x["grid"].get<long>(), x["component"].get<int>()});
+  for (const auto& g : groups_of(s, "sensor")) got.insert({std::stol(attribute(g, "data-grid")), std::stoi(attribute(g, "data-component"))});
+  CHECK(got == want);
+  CHECK(got.size() == 18);
+  // The GA's two exciters and the given one, each at its grid with its direction cosines.
+  const auto ex = groups_of(s, "exciter"), given = groups_of(s, "exciter-given");
+  REQUIRE(ex.size() == 2);
+  REQUIRE(given.size() == 1);
+  for (std::size_t k = 0; k < 2; ++k) {
+    CHECK(std::stol(attribute(ex[k], "data-grid")) == j["exciters"][k]["grid"].get<long>());
+    std::stringstream d(attribute(ex[k], "data-direction"));
+    for (int c = 0; c < 3; ++c) {
+      std::string v;
+      std::getline(d, v, ',');
+      CHECK(std::stod(v) == j["exciters"][k]["direction"][c].get<double>());
+    }
+  }
+  CHECK(attribute(given[0], "data-grid") == "41");
+  CHECK(attribute(given[0], "data-direction") == "0,1,0");
+  // The rod deck's grids have CD = 0: a sensor's direction is its component's basic axis.
+  for (const auto& x : j["sensors"]) {
+    const int c = x["component"];
+    for (int k = 0; k < 3; ++k) CHECK(x["direction_basic"][k].get<double>() == (k == c - 1 ? 1.0 : 0.0));
+  }
+
+  SECTION("triaxes: one marker per triax, none per DOF") {
+    const fs::path tsvg = dir / "triax.svg";
+    auto t = run_ssid("pretest " + rod() + " --target-modes 12 --min-hz 1 --sensors 18 --method ei --triax --svg " + tsvg.string());
+    REQUIRE(t.code == 0);
+    const std::string ts = read_text(tsvg);
+    CHECK(groups_of(ts, "triax").size() == 6);
+    CHECK(groups_of(ts, "sensor").empty());
+    CHECK(groups_of(ts, "exciter").empty());
+    CHECK(attribute(groups_of(ts, "view").at(0), "data-view") == "iso");  // the default
+  }
+  SECTION("a view that is not one is bad input") {
+    auto b = run_ssid("pretest " + rod() + " --target-modes 12 --min-hz 1 --sensors 18 --view w --svg " + (dir / "w.svg").string());
+    CHECK(b.code == 2);
+    CHECK(b.err == "ssid: error: --view: expected iso, x, y or z, got \"w\"\n");
+  }
+}
+
+TEST_CASE("ssid pretest --uff: the trace lines (82) join sensor grids along the deck's elements and read back",
+          "[cli][pretest][uff]") {
+  const fs::path dir = scratch();
+  const fs::path unv = dir / "wire.unv", pj = dir / "wire.json";
+  auto r = run_ssid("pretest " + rod() + " --target-modes 12 --min-hz 1 --sensors 18 --method ei --json " + pj.string() +
+                    " --uff " + unv.string());
+  INFO(r.err);
+  REQUIRE(r.code == 0);
+  const auto j = read_json(pj);
+  std::set<long> sensor_grids;
+  for (const auto& x : j["sensors"]) sensor_grids.insert(x["grid"].get<long>());
+
+  // The deck's grids and CROD lines, read here from the fixed-format bulk data.
+  std::map<long, Eigen::Vector3d> at;
+  std::map<long, std::vector<long>> adjacent;
+  {
+    std::ifstream in(rod());
+    std::string line;
+    auto field = [&](int k) { return line.size() > std::size_t(8 * k) ? line.substr(8 * k, 8) : std::string(); };
+    while (std::getline(in, line)) {
+      if (line.rfind("GRID    ", 0) == 0)
+        at[std::stol(field(1))] = {std::stod(field(3)), std::stod(field(4)), std::stod(field(5))};
+      if (line.rfind("CROD    ", 0) == 0) {
+        const long a = std::stol(field(3)), b = std::stol(field(4));
+        adjacent[a].push_back(b);
+        adjacent[b].push_back(a);
+      }
+    }
+  }
+  REQUIRE(at.size() == 80);
+  // From each sensor grid, the sensor grids reached along elements without passing another sensor grid.
+  auto reached = [&](long s) {
+    std::set<long> seen{s}, hit;
+    std::vector<long> stack{s};
+    while (!stack.empty()) {
+      const long n = stack.back();
+      stack.pop_back();
+      for (long m : adjacent[n]) {
+        if (!seen.insert(m).second) continue;
+        if (sensor_grids.count(m)) hit.insert(m);
+        else stack.push_back(m);
+      }
+    }
+    return hit;
+  };
+
+  const auto f = ssid::formats::uff::read_uff(unv.string());
+  std::vector<const ssid::formats::uff::TraceLine82*> traces;
+  for (const auto& d : f.datasets)
+    if (auto t = std::get_if<ssid::formats::uff::TraceLine82>(&d)) traces.push_back(t);
+  REQUIRE(traces.size() == 1);
+  // Segments: node pairs between pen lifts (0).
+  std::set<std::pair<long, long>> segments;
+  const auto& nodes = traces[0]->nodes;
+  for (std::size_t k = 0; k < nodes.size(); k += 3) {
+    REQUIRE(k + 1 < nodes.size());
+    if (k + 2 < nodes.size()) CHECK(nodes[k + 2] == 0);
+    segments.insert({nodes[k], nodes[k + 1]});
+  }
+  REQUIRE(!segments.empty());
+  std::set<long> joined;
+  for (const auto& [a, b] : segments) {
+    CHECK(sensor_grids.count(a) == 1);  // sensor grids only
+    CHECK(sensor_grids.count(b) == 1);
+    CHECK(reached(a).count(b) == 1);    // an element path between them that passes no other sensor grid
+    // b is among a's three nearest such grids, or a among b's (the rule of docs/pretest.md).
+    auto among_nearest = [&](long p, long q) {
+      std::vector<std::pair<double, long>> d;
+      for (long m : reached(p)) d.push_back({(at[m] - at[p]).norm(), m});
+      std::sort(d.begin(), d.end());
+      for (std::size_t i = 0; i < d.size() && i < 3; ++i)
+        if (d[i].second == q) return true;
+      return false;
+    };
+    CHECK((among_nearest(a, b) || among_nearest(b, a)));
+    joined.insert(a), joined.insert(b);
+  }
+  // Every sensor grid that the elements join to another one has a line.
+  for (long s : sensor_grids)
+    if (!reached(s).empty()) CHECK(joined.count(s) == 1);
+  // The nodes of the trace lines are the file's nodes (15).
+  std::set<long> node_ids;
+  for (const auto& nd : f.nodes()) node_ids.insert(nd.id);
+  for (long g : joined) CHECK(node_ids.count(g) == 1);
+
+  auto l = run_ssid("uff list " + unv.string());
+  CHECK(l.code == 0);
+  CHECK_THAT(l.out, Catch::Contains("trace lines (82): 1"));
+}
+
+TEST_CASE("ssid pretest --report: a method that cannot place the sensors is reported, not fatal", "[cli][pretest][report]") {
+  const fs::path dir = scratch();
+  const fs::path pj = dir / "ke10.json", html = dir / "ke10.html";
+  // 10 sensors for 12 targets: KE ranks them, EI refuses (its Fisher information would be singular).
+  auto r = run_ssid("pretest " + rod() + " --target-modes 12 --min-hz 1 --sensors 10 --method ke --json " + pj.string() +
+                    " --report " + html.string());
+  INFO(r.err);
+  REQUIRE(r.code == 0);
+  const auto j = read_json(pj);
+  REQUIRE(j["methods"].size() == 5);
+  CHECK(j["methods"][0]["method"] == "ei");
+  CHECK(j["methods"][0]["error"] ==
+        "effective independence: 10 sensors cannot resolve 12 target modes (the Fisher information would be singular)");
+  // The others place 10 sensors: a singular Fisher information (rank 10 of 12), no log10 det, no condition number.
+  for (std::size_t k = 1; k < 5; ++k) {
+    CHECK(j["methods"][k]["fisher_determinant"] == 0.0);
+    CHECK(j["methods"][k]["fisher_rank"] == 10);
+    CHECK(j["methods"][k]["log10_fisher_determinant"].is_null());
+  }
+  CHECK(j["methods"][1]["method"] == "ke");
+  CHECK(j["methods"][1]["sensors"].size() == 10);
+  const std::string page = read_text(html);
+  CHECK(page.find("<tr class=\"method\" data-method=\"ei\"><td>ei</td><td colspan=\"4\">no set: effective independence: 10 "
+                  "sensors cannot resolve 12 target modes") != std::string::npos);
+  CHECK(page.find("<tr class=\"method\" data-method=\"ke\">") != std::string::npos);
+  // Nothing finite to draw: no bar chart (an empty figure would fail the browser check).
+  CHECK(page.find("id=\"fig-fisher-det\"") == std::string::npos);
+  CHECK(page.find("id=\"fig-fisher-cond\"") == std::string::npos);
 }

@@ -184,6 +184,12 @@ Report diagnose_report() {
   return run_report("diagnose", "diagnose -q " + src("samples/mpi_rod.bdf") + " " + src("samples/mpi_rod_hidden_mass.unv"));
 }
 
+Report pretest_report() {
+  return run_report("pretest", "pretest " + src("samples/mpi_rod.bdf") +
+                                   " --target-modes 12 --min-hz 1 --sensors 18 --method ei --exciters 2 --population 8 "
+                                   "--generations 4 --exciter-at 41:0,1,0 --exciter-at 79:0,0,1 --evaluate");
+}
+
 }  // namespace
 
 TEST_CASE("ssid correlate --report: MAC, frequencies and shapes are the JSON's", "[cli][report]") {
@@ -304,8 +310,61 @@ TEST_CASE("ssid diagnose --report: residuals, ranking, cause and gain are the JS
   CHECK(num(rms[1], "data-v") == j["gain"]["after"]["freq_rms_pct"].get<double>());
 }
 
+TEST_CASE("ssid pretest --report: sensors, Fisher figures, cross-orthogonality, MIF/GA and the simulated test are the JSON's",
+          "[cli][report]") {
+  const Report r = pretest_report();
+  const json& j = r.j;
+  check_run(j, r.html, {src("samples/mpi_rod.bdf")});
+  // The picture: four views, each with a marker per sensor DOF, per GA exciter and per given exciter.
+  const std::string pic = figure(r.html, "fig-placement");
+  CHECK(marks(pic, "g", "view").size() == 4);
+  const auto sensors = marks(pic, "g", "sensor");
+  REQUIRE(sensors.size() == 4 * j["sensors"].size());
+  for (std::size_t k = 0; k < j["sensors"].size(); ++k) {
+    CHECK(num(sensors[k], "data-grid") == j["sensors"][k]["grid"].get<double>());
+    CHECK(num(sensors[k], "data-component") == j["sensors"][k]["component"].get<double>());
+  }
+  CHECK(marks(pic, "g", "exciter").size() == 4 * j["exciters"].size());
+  CHECK(marks(pic, "g", "exciter-given").size() == 4 * 2);
+  // Fisher determinant and condition number of every method; this run's is the top level's.
+  REQUIRE(j["methods"].size() == 5);
+  const auto det = marks(figure(r.html, "fig-fisher-det"), "rect", "fisher-det");
+  const auto cond = marks(figure(r.html, "fig-fisher-cond"), "rect", "fisher-cond");
+  REQUIRE(det.size() == 5);
+  REQUIRE(cond.size() == 5);
+  for (std::size_t k = 0; k < 5; ++k) {
+    const json& m = j["methods"][k];
+    CHECK(det[k].at("data-method") == m["method"].get<std::string>());
+    CHECK(num(det[k], "data-v") == m["fisher_determinant"].get<double>());
+    CHECK(num(cond[k], "data-v") == m["condition_number"].get<double>());
+    if (m["method"] == j["method"]) {
+      CHECK(m["fisher_determinant"] == j["fisher_determinant"]);
+      CHECK(m["sensors"].size() == j["sensors"].size());
+    }
+  }
+  // The target modes' cross-orthogonality for each TAM, the diagonal outlined.
+  std::set<std::pair<int, int>> diagonal;
+  for (int k = 0; k < 12; ++k) diagonal.insert({k, k});
+  for (const char* tam : {"guyan", "irs", "serep"})
+    check_heat_map(figure(r.html, std::string("fig-tam-") + tam), j["tam"][tam]["xor"], diagonal);
+  // MIF drop-offs of the GA's and the given exciters; the GA per generation.
+  check_heat_map(figure(r.html, "fig-mif"), j["mif_dropoff"], {});
+  check_heat_map(figure(r.html, "fig-mif-given"), j["given_exciters"]["mif_dropoff"], {});
+  const auto ga = marks(figure(r.html, "fig-ga"), "circle", "ga");
+  REQUIRE(ga.size() == j["ga"]["best_per_generation"].size());
+  for (std::size_t k = 0; k < ga.size(); ++k) CHECK(num(ga[k], "data-v") == j["ga"]["best_per_generation"][k].get<double>());
+  // The simulated test: a row per target, the identified frequency where identified; its cross-orthogonality.
+  const json& e = j["evaluation"];
+  const auto rows = marks(r.html, "tr", "target");
+  REQUIRE(rows.size() == 2 * e["targets"].size());  // the GA's and the given exciters' tests
+  for (std::size_t k = 0; k < e["targets"].size(); ++k) CHECK(num(rows[k], "data-mode") == e["targets"][k]["mode"].get<double>());
+  REQUIRE(e.contains("xor"));
+  check_heat_map(figure(r.html, "fig-evaluation-xor"), e["xor"], {});
+}
+
 TEST_CASE("the samples' reports render in headless Chromium", "[cli][report][browser]") {
   check_in_browser(correlate_report().path, 27);
   check_in_browser(estimate_report().path, 28);
   check_in_browser(diagnose_report().path, 7);
+  check_in_browser(pretest_report().path, 10);
 }
