@@ -58,9 +58,13 @@ fs::path records_file(const std::string& name, Eigen::Index ni, Eigen::Index no,
   Eigen::MatrixXd x(samples, ni);
   for (Eigen::Index i = 0; i < x.size(); ++i) x(i) = z();
   const Eigen::Index taps = 6;
-  std::vector<Eigen::MatrixXd> b(static_cast<std::size_t>(taps), Eigen::MatrixXd(no, ni));
-  for (auto& m : b)
+  // Each tap sized in place (copying one prototype matrix into the vector trips
+  // GCC 12's -Wmaybe-uninitialized inside Eigen at -O3, an error with SSID_WERROR).
+  std::vector<Eigen::MatrixXd> b(static_cast<std::size_t>(taps));
+  for (auto& m : b) {
+    m.resize(no, ni);
     for (Eigen::Index i = 0; i < m.size(); ++i) m(i) = z();
+  }
   Eigen::MatrixXd y = Eigen::MatrixXd::Zero(samples, no);
   for (Eigen::Index n = 0; n < samples; ++n) {
     for (Eigen::Index l = 0; l < taps && l <= n; ++l)
