@@ -9,11 +9,14 @@
 #include <algorithm>
 #include <cmath>
 #include <fmt/format.h>
+#include <fstream>
 #include <iostream>
 #include <map>
 #include <utility>
 
 #include "cli/cli_util.hpp"
+#include "cli/report/html_report.hpp"
+#include "cli/report/report_data.hpp"
 #include "estimator/identification/armax_order.hpp"
 #include "estimator/identification/era.hpp"
 #include "estimator/identification/frf.hpp"
@@ -171,7 +174,41 @@ struct Identified {
   std::string columns_header;  ///< heads `Mode::columns`
   std::vector<Mode> modes;
   std::map<std::string, int> rejected;  ///< poles not kept, per reason
+  /// ERA's stabilisation diagram (stabilisation_json), null for ARMAX.
+  nlohmann::json stabilisation;
 };
+
+/// The diagram of `st` over `orders` as JSON: {"criteria", "orders", "poles": [{"order",
+/// "hz", "zeta", "class" (o f d v s x: pole_class_symbol), "reason", "mode" (1-based,
+/// null when in none)}]}, and "frf_sum" {"hz", "magnitude"}: Σ |H_ij| over every FRF
+/// at each line, the curve drawn behind the diagram.
+nlohmann::json stabilisation_json(const id::StabilisationResult& st, const std::vector<Eigen::Index>& orders,
+                                  const id::StabilisationOptions& so, const FrfSet& s) {
+  nlohmann::json poles = nlohmann::json::array();
+  for (const auto& d : st.diagram)
+    poles.push_back({{"order", d.order},
+                     {"hz", d.hz},
+                     {"zeta", d.zeta},
+                     {"class", std::string(1, id::pole_class_symbol(d.cls))},
+                     {"reason", id::reject_reason_text(d.reason)},
+                     {"mode", d.mode >= 0 ? nlohmann::json(d.mode + 1) : nlohmann::json(nullptr)}});
+  nlohmann::json hz = nlohmann::json::array(), mag = nlohmann::json::array();
+  for (std::size_t k = 0; k < s.lines.size(); ++k) {
+    hz.push_back(static_cast<double>(k) * s.df);
+    mag.push_back(s.lines[k].cwiseAbs().sum());
+  }
+  return {{"criteria",
+           {{"freq_tol", so.freq_tol},
+            {"damping_tol", so.damping_tol},
+            {"mac_min", so.mac_min},
+            {"zeta_max", so.zeta_max},
+            {"mpc_min", so.mpc_min},
+            {"mpd_max_deg", so.mpd_max_deg},
+            {"min_fraction", so.min_fraction}}},
+          {"orders", orders},
+          {"poles", poles},
+          {"frf_sum", {{"hz", hz}, {"magnitude", mag}}}};
+}
 
 Identified era_modes(const FrfSet& s, int max_order, const id::StabilisationOptions& so) {
   // The impulse response over one period; its first half carries the least wrap-around.
@@ -190,6 +227,7 @@ Identified era_modes(const FrfSet& s, int max_order, const id::StabilisationOpti
   for (const id::ClusteredMode& md : st.modes)
     r.modes.push_back({md.hz, md.zeta, md.hz_std, md.zeta_std, id::rotate_to_real(md.shape),
                        fmt::format(" {:7.4f} {:7d}", md.mpc, md.poles), {{"mpc", md.mpc}, {"orders", md.poles}}});
+  r.stabilisation = stabilisation_json(st, orders, so, s);
   return r;
 }
 
@@ -227,6 +265,9 @@ int identify_modes(const Args& args) {
       "method", po::value<std::string>()->default_value("era"), "identification method: armax (time histories) or era")(
       "json", po::value<std::string>(), "write the modes as JSON to this file ('-' for stdout)")(
       "uff", po::value<std::string>(), "write the modes as real normal modes, UFF dataset 55")(
+      "svg", po::value<std::string>(), "era: write the stabilisation diagram as SVG to this file")(
+      "report", po::value<std::string>(),
+      "write an HTML report (stabilisation diagram, the modes' table) to this file (docs/report.md)")(
       "max-order", po::value<int>()->default_value(40), "era: largest model order (state dimension), even")(
       "segment", po::value<int>()->default_value(1024), "era on time histories: Welch segment, samples")(
       "ar-order", po::value<int>(), "armax: AR order s with all p responses (default ⌈12/p⌉)")(
@@ -238,8 +279,8 @@ int identify_modes(const Args& args) {
   po::variables_map vm;
   int rc = 0;
   if (!parse_options(args,
-                     "ssid identify modes FILE.unv [--method armax|era] [--json OUT] [--uff OUT] [--max-order N] "
-                     "[--segment N] [--ar-order S] [--arx-order M] [--min-hz F] [--max-hz F]",
+                     "ssid identify modes FILE.unv [--method armax|era] [--json OUT] [--uff OUT] [--svg OUT.svg] "
+                     "[--report OUT.html] [--max-order N] [--segment N] [--ar-order S] [--arx-order M] [--min-hz F] [--max-hz F]",
                      desc, pos, vm, rc))
     return rc;
   const std::string method = vm["method"].as<std::string>();
@@ -262,6 +303,10 @@ int identify_modes(const Args& args) {
       print_error(fmt::format("--{}: expected an order ≥ 1, got {}", name, vm[name].as<int>()));
       return 2;
     }
+  if (vm.count("svg") && method != "era") {
+    print_error("--svg: the stabilisation diagram is ERA's (--method era); ARMAX's modes come from runs, not orders");
+    return 2;
+  }
   id::StabilisationOptions so;
   so.hz_min = vm["min-hz"].as<double>();
   if (vm.count("max-hz")) so.hz_max = vm["max-hz"].as<double>();
@@ -349,6 +394,8 @@ int identify_modes(const Args& args) {
     nlohmann::json j = {
         {"hz", md.hz}, {"zeta", md.zeta}, {"hz_std", md.hz_std}, {"zeta_std", md.zeta_std}, {"shape", shape}};
     j.update(md.extra);
+    if (!j.contains("mpc")) j["mpc"] = id::modal_phase_collinearity(md.shape);
+    j["mpd_deg"] = id::mean_phase_deviation(md.shape);
     modes.push_back(j);
     out.datasets.emplace_back(uff::NodalData55::normal_mode(static_cast<std::int64_t>(m + 1), md.hz, nodes, values,
                                                             0.0, md.zeta));
@@ -361,13 +408,20 @@ int identify_modes(const Args& args) {
   for (const auto& w : warnings) std::cerr << "warning: " << w << "\n";
   if (rotations_dropped) std::cerr << "warning: rotational responses are in the JSON only (UFF 55 gets X, Y, Z)\n";
 
-  if (vm.count("json")) {
-    nlohmann::json j;
-    j["modes"] = modes;
-    j["method"] = method;
-    j["rejected"] = r.rejected;
-    write_json(vm["json"].as<std::string>(), j);
+  nlohmann::json j;
+  j["modes"] = modes;
+  j["method"] = method;
+  j["rejected"] = r.rejected;
+  if (!r.stabilisation.is_null()) j["stabilisation"] = r.stabilisation;
+  if (vm.count("report")) j["run"] = report::run_json("identify modes", args, {vm["file"].as<std::string>()});
+  if (vm.count("json")) write_json(vm["json"].as<std::string>(), j);
+  if (vm.count("svg")) {
+    const std::string path = vm["svg"].as<std::string>();
+    std::ofstream o(path, std::ios::binary);
+    o << report::stabilisation_svg(j, true);
+    if (!o) throw formats::InputError("cannot write " + path);
   }
+  if (vm.count("report")) report::write_report(vm["report"].as<std::string>(), j);
   if (vm.count("uff")) {
     out.path = vm["uff"].as<std::string>();
     uff::write_uff(out, out.path);
@@ -380,7 +434,7 @@ int identify_modes(const Args& args) {
 int cmd_identify(const Args& args) {
   const std::string usage =
       "usage: ssid identify <modes> ...\n"
-      "  modes FILE.unv [--method armax|era] [--json OUT] [--uff OUT]   modes from the FRFs or time histories\n"
+      "  modes FILE.unv [--method armax|era] [--json OUT] [--uff OUT] [--svg OUT] [--report OUT]   modes from the FRFs or time histories\n"
       "                                                               (UFF 58) of a modal test\n";
   if (args.empty() || args[0] == "--help" || args[0] == "-h") {
     (args.empty() ? std::cerr : std::cout) << usage;
