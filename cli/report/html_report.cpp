@@ -165,9 +165,10 @@ std::string mac_figure(const json& mac, const std::vector<int>& row_modes, const
   return figure(id, heat_map_svg(h, id + "-svg", "MAC matrix"), caption);
 }
 
-/// The cross-orthogonality heat map (|X|, rows analysis modes), the pairs outlined, and
-/// the pairs' acceptance (diagonal > min_diagonal, off-diagonal < max_off_diagonal).
-std::string xor_figure(const json& x) {
+/// The cross-orthogonality heat map (|X|; rows the analysis modes, or with `rows_are_test`
+/// the test modes, as the MAC beside it), the pairs outlined, and the pairs' acceptance
+/// (diagonal > min_diagonal, off-diagonal < max_off_diagonal).
+std::string xor_figure(const json& x, bool rows_are_test) {
   if (x.contains("unavailable"))
     return fmt::format("<p class=\"note\" id=\"xor-unavailable\">Cross-orthogonality: not available ({}).</p>\n",
                        esc(x["unavailable"].get<std::string>()));
@@ -178,6 +179,14 @@ std::string xor_figure(const json& x) {
   for (int m : cols) h.col_labels.push_back(std::to_string(m));
   h.row_title = "analysis mode";
   h.col_title = "test mode";
+  if (rows_are_test) {
+    std::vector<std::vector<double>> t(cols.size(), std::vector<double>(rows.size()));
+    for (std::size_t i = 0; i < rows.size(); ++i)
+      for (std::size_t k = 0; k < cols.size(); ++k) t[k][i] = h.values[i][k];
+    h.values = t;
+    std::swap(h.row_labels, h.col_labels);
+    std::swap(h.row_title, h.col_title);
+  }
   h.value_label = "|cross-orthogonality|";
   const double dmin = x["min_diagonal"], omax = x["max_off_diagonal"];
   std::string table = "<table class=\"xor-pairs\">\n<tr><th>analysis</th><th>test</th><th>|X| of the pair</th><th>largest "
@@ -186,7 +195,7 @@ std::string xor_figure(const json& x) {
     const int fe = p["fe_mode"], test = p["test_mode"];
     const auto i = static_cast<std::size_t>(std::find(rows.begin(), rows.end(), fe) - rows.begin());
     const auto k = static_cast<std::size_t>(std::find(cols.begin(), cols.end(), test) - cols.begin());
-    if (i < rows.size() && k < cols.size()) h.marked.insert({i, k});
+    if (i < rows.size() && k < cols.size()) h.marked.insert(rows_are_test ? std::make_pair(k, i) : std::make_pair(i, k));
     table += fmt::format("<tr class=\"xor-pair\" data-fe-mode=\"{}\" data-test-mode=\"{}\" data-v=\"{}\" data-off=\"{}\"><td "
                          "class=\"n\">{}</td><td class=\"n\">{}</td><td class=\"n\">{}</td><td class=\"n\">{}</td><td>{}</td></tr>\n",
                          fe, test, exact(p["xor"]), exact(p["largest_off_diagonal"]), fe, test, fixed(p["xor"], 3),
@@ -194,10 +203,11 @@ std::string xor_figure(const json& x) {
   }
   table += "</table>\n";
   return figure("fig-xor", heat_map_svg(h, "fig-xor-svg", "cross-orthogonality matrix"),
-                fmt::format("Cross-orthogonality |φ_aᵀ M_r φ_e| of {} with every test mode, each mode at unit generalised "
+                fmt::format("Cross-orthogonality |φ_aᵀ M_r φ_e| (cell values as in the JSON's matrix, here {}) of {} with every test mode, each mode at unit generalised "
                             "mass under M_r; M_r: {}. Outlined: the pairs. The usual acceptance: the pair's value above {} and "
                             "every other value in its row and column below {}.",
-                            esc(x.value("basis", "")), esc(x.value("reduction", "")), significant(dmin, 3),
+                            rows_are_test ? "rows the test modes" : "rows the analysis modes", esc(x.value("basis", "")),
+                            esc(x.value("reduction", "")), significant(dmin, 3),
                             significant(omax, 3))) +
          table;
 }
@@ -1027,7 +1037,7 @@ std::string html_report(const json& j) {
       if (p.value("accepted", false)) accepted.push_back(p);
     s += mac_figure(j["mac"], mode_numbers(j["fe_modes"]), mode_numbers(j["test_modes"]), true, accepted, "fig-mac",
                     "MAC of every analysis mode with every test mode; outlined: the accepted pairs.", form);
-    if (j.contains("cross_orthogonality")) s += xor_figure(j["cross_orthogonality"]);
+    if (j.contains("cross_orthogonality")) s += xor_figure(j["cross_orthogonality"], false);
     s += "</section>\n<section id=\"frequencies\">\n<h2>Frequencies</h2>\n";
     s += frequency_figure(accepted, nullptr, j.value("max_frequency_error_pct", 10.0), "accepted pairs");
     s += error_figure(accepted, nullptr, "accepted pairs");
@@ -1044,7 +1054,7 @@ std::string html_report(const json& j) {
                         std::string(j["configurations"].size() > 1 ? " (first configuration)" : "") +
                         "; outlined: the pairs of the update.",
                     "");
-    if (j.contains("cross_orthogonality")) s += xor_figure(j["cross_orthogonality"]);
+    if (j.contains("cross_orthogonality")) s += xor_figure(j["cross_orthogonality"], true);
     s += "</section>\n<section id=\"frequencies\">\n<h2>Frequencies before and after the update</h2>\n";
     const json* before = j.contains("initial_pairs") ? &j["initial_pairs"] : nullptr;
     s += frequency_figure(j["pairs"], before, 5.0, "at the estimate");

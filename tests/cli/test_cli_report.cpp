@@ -178,22 +178,31 @@ void check_mems(const std::string& html, const json& j) {
   }
 }
 
-/// The cross-orthogonality heat map against the JSON, its pairs outlined, each pair's
-/// acceptance as the JSON's thresholds say.
-void check_xor(const std::string& html, const json& x) {
+/// The cross-orthogonality heat map against the JSON (`rows_are_test`: drawn transposed,
+/// as estimate's MAC), its pairs outlined, each pair's acceptance as the JSON's thresholds say.
+void check_xor(const std::string& html, const json& x, bool rows_are_test) {
   REQUIRE(!x.contains("unavailable"));
   std::set<std::pair<int, int>> pairs;
   const auto rows = x["fe_modes"].get<std::vector<int>>(), cols = x["test_modes"].get<std::vector<int>>();
   for (const auto& p : x["pairs"]) {
     const int i = static_cast<int>(std::find(rows.begin(), rows.end(), p["fe_mode"].get<int>()) - rows.begin());
     const int k = static_cast<int>(std::find(cols.begin(), cols.end(), p["test_mode"].get<int>()) - cols.begin());
-    pairs.insert({i, k});
+    pairs.insert(rows_are_test ? std::make_pair(k, i) : std::make_pair(i, k));
     CHECK(p["xor"].get<double>() == x["matrix"][static_cast<std::size_t>(i)][static_cast<std::size_t>(k)].get<double>());
     CHECK(p["accepted"].get<bool>() ==
           (p["xor"].get<double>() > x["min_diagonal"].get<double>() &&
            p["largest_off_diagonal"].get<double>() < x["max_off_diagonal"].get<double>()));
   }
-  check_heat_map(figure(html, "fig-xor"), x["matrix"], pairs);
+  json drawn = x["matrix"];
+  if (rows_are_test) {
+    drawn = json::array();
+    for (std::size_t k = 0; k < cols.size(); ++k) {
+      json row = json::array();
+      for (std::size_t i = 0; i < rows.size(); ++i) row.push_back(x["matrix"][i][k]);
+      drawn.push_back(row);
+    }
+  }
+  check_heat_map(figure(html, "fig-xor"), drawn, pairs);
   const auto rowsdrawn = marks(html, "tr", "xor-pair");
   REQUIRE(rowsdrawn.size() == x["pairs"].size());
   for (std::size_t k = 0; k < rowsdrawn.size(); ++k) {
@@ -297,7 +306,7 @@ TEST_CASE("ssid correlate --report: MAC, frequencies and shapes are the JSON's",
   for (std::size_t k = 0; k < bars.size(); ++k) CHECK(num(bars[k], "data-v") == acc[k]["error_pct"].get<double>());
   check_shapes(r.html, j, acc);
   check_mems(r.html, j);
-  check_xor(r.html, j["cross_orthogonality"]);
+  check_xor(r.html, j["cross_orthogonality"], false);
   CHECK(j["cross_orthogonality"]["basis"] == "every analysis mode");
   // The pair selector and the anchors: one option and one link per pair.
   for (std::size_t k = 0; k < j["shapes"].size(); ++k) {
@@ -391,7 +400,7 @@ TEST_CASE("ssid estimate --report: before and after, parameters, convergence and
   for (std::size_t k = 0; k < obj.size(); ++k) CHECK(num(obj[k], "data-v") == j["iterations"][k]["objective"].get<double>());
   check_shapes(r.html, j, c0["pairs"]);
   check_mems(r.html, j);
-  check_xor(r.html, j["cross_orthogonality"]);
+  check_xor(r.html, j["cross_orthogonality"], true);
 }
 
 TEST_CASE("ssid identify modes --report and --svg: the stabilisation diagram and the modes are the JSON's",
