@@ -224,6 +224,13 @@ int cmd_correlate(const Args& args) {
   j["mac"] = matrix_json(p.mac);
   j["auto_mac_fe"] = matrix_json(c.auto_mac_fe);
   j["auto_mac_test"] = matrix_json(c.auto_mac_test);
+  {
+    std::vector<std::pair<int, int>> accepted;
+    for (const auto& mp : p.pairs)
+      if (mp.accepted) accepted.emplace_back(fe_no(mp.fe), test_no(mp.test));
+    j["cross_orthogonality"] = report::cross_orthogonality_json(c.fe.shapes, c.fe.modal_mass, c.fe.numbers,
+                                                                c.test.shapes, c.test.numbers, accepted);
+  }
   j["problems"] = problems;
 
   if (vm.count("report")) {
@@ -237,7 +244,7 @@ int cmd_correlate(const Args& args) {
         sp.push_back({fe_no(mp.fe), test_no(mp.test), c.fe.frequency_hz[i], c.test.frequency_hz[k], mp.mac,
                       static_cast<Eigen::Index>(mp.fe), c.fe.shapes.col(mp.fe), c.test.shapes.col(mp.test)});
       }
-      report::add_shapes(j, *lm.model, fe_modes.modes, c.dofs, sp);
+      report::add_shapes(j, *lm.model, fe_modes.modes, c.dofs, sp, c.test.shapes, c.test.numbers);
     }
     report::write_report(vm["report"].as<std::string>(), j);
   }

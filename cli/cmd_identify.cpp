@@ -12,6 +12,7 @@
 #include <algorithm>
 #include <cmath>
 #include <fmt/format.h>
+#include <fstream>
 #include <iostream>
 #include <fstream>
 #include <limits>
@@ -22,6 +23,8 @@
 
 #include "cli/cli_util.hpp"
 #include "cli/progress_lines.hpp"
+#include "cli/report/html_report.hpp"
+#include "cli/report/report_data.hpp"
 #include "estimator/identification/armax_order.hpp"
 #include "estimator/identification/data_checks.hpp"
 #include "estimator/identification/era.hpp"
@@ -187,7 +190,41 @@ struct Identified {
   std::map<std::string, int> rejected;  ///< poles not kept, per reason
   nlohmann::json summary = nlohmann::json::object();  ///< the method's own top-level JSON fields
   std::vector<std::string> notes;                     ///< for stderr
+  /// ERA's or pLSCF's stabilisation diagram (stabilisation_json), null for ARMAX.
+  nlohmann::json stabilisation;
 };
+
+/// The diagram of `st` over `orders` as JSON: {"criteria", "orders", "poles": [{"order",
+/// "hz", "zeta", "class" (o f d v s x: pole_class_symbol), "reason", "mode" (1-based,
+/// null when in none)}]}, and "frf_sum" {"hz", "magnitude"}: Σ |H_ij| over every FRF
+/// at each line, the curve drawn behind the diagram.
+nlohmann::json stabilisation_json(const id::StabilisationResult& st, const std::vector<Eigen::Index>& orders,
+                                  const id::StabilisationOptions& so, const FrfSet& s) {
+  nlohmann::json poles = nlohmann::json::array();
+  for (const auto& d : st.diagram)
+    poles.push_back({{"order", d.order},
+                     {"hz", d.hz},
+                     {"zeta", d.zeta},
+                     {"class", std::string(1, id::pole_class_symbol(d.cls))},
+                     {"reason", id::reject_reason_text(d.reason)},
+                     {"mode", d.mode >= 0 ? nlohmann::json(d.mode + 1) : nlohmann::json(nullptr)}});
+  nlohmann::json hz = nlohmann::json::array(), mag = nlohmann::json::array();
+  for (std::size_t k = 0; k < s.lines.size(); ++k) {
+    hz.push_back(static_cast<double>(k) * s.df);
+    mag.push_back(s.lines[k].cwiseAbs().sum());
+  }
+  return {{"criteria",
+           {{"freq_tol", so.freq_tol},
+            {"damping_tol", so.damping_tol},
+            {"mac_min", so.mac_min},
+            {"zeta_max", so.zeta_max},
+            {"mpc_min", so.mpc_min},
+            {"mpd_max_deg", so.mpd_max_deg},
+            {"min_fraction", so.min_fraction}}},
+          {"orders", orders},
+          {"poles", poles},
+          {"frf_sum", {{"hz", hz}, {"magnitude", mag}}}};
+}
 
 Identified era_modes(const FrfSet& s, int max_order, const id::StabilisationOptions& so) {
   // The impulse response over one period; its first half carries the least wrap-around.
@@ -206,6 +243,7 @@ Identified era_modes(const FrfSet& s, int max_order, const id::StabilisationOpti
   for (const id::ClusteredMode& md : st.modes)
     r.modes.push_back({md.hz, md.zeta, md.hz_std, md.zeta_std, id::rotate_to_real(md.shape),
                        fmt::format(" {:7.4f} {:7d}", md.mpc, md.poles), {{"mpc", md.mpc}, {"orders", md.poles}}});
+  r.stabilisation = stabilisation_json(st, orders, so, s);
   return r;
 }
 
@@ -225,6 +263,7 @@ Identified plscf_modes(const FrfSet& s, int max_order, const id::PlscfOptions& b
   r.columns_header = "     MPC     MPD  orders";
   for (const auto& d : st.diagram)
     if (d.reason != id::RejectReason::None) ++r.rejected[id::reject_reason_text(d.reason)];
+  r.stabilisation = stabilisation_json(st, orders, so, s);
   if (st.modes.empty()) return r;
   const id::LsfdResult fit = id::lsfd(hz, s.lines, id::mode_poles(st, poles), band);
   for (std::size_t m = 0; m < st.modes.size(); ++m) {
@@ -276,6 +315,9 @@ int identify_modes(const Args& args) {
       "identification method: armax (time histories), era or plscf")(
       "json", po::value<std::string>(), "write the modes as JSON to this file ('-' for stdout)")(
       "uff", po::value<std::string>(), "write the modes as real normal modes, UFF dataset 55")(
+      "svg", po::value<std::string>(), "era, plscf: write the stabilisation diagram as SVG to this file")(
+      "report", po::value<std::string>(),
+      "write an HTML report (stabilisation diagram, the modes' table) to this file (docs/report.md)")(
       "max-order", po::value<int>()->default_value(40),
       "largest model order: era: state dimension, even; plscf: polynomial order")(
       "segment", po::value<int>()->default_value(1024), "era, plscf on time histories: Welch segment, samples")(
@@ -290,8 +332,8 @@ int identify_modes(const Args& args) {
   po::variables_map vm;
   int rc = 0;
   if (!parse_options(args,
-                     "ssid identify modes FILE.unv [--method armax|era|plscf] [--json OUT] [--uff OUT] "
-                     "[--max-order N] [--segment N] [--ar-order S] [--arx-order M] [--min-hz F] [--max-hz F]",
+                     "ssid identify modes FILE.unv [--method armax|era|plscf] [--json OUT] [--uff OUT] [--svg OUT.svg] "
+                     "[--report OUT.html] [--max-order N] [--segment N] [--ar-order S] [--arx-order M] [--min-hz F] [--max-hz F]",
                      desc, pos, vm, rc))
     return rc;
   const std::string method = vm["method"].as<std::string>();
@@ -315,6 +357,11 @@ int identify_modes(const Args& args) {
       print_error(fmt::format("--{}: expected an order ≥ 1, got {}", name, vm[name].as<int>()));
       return 2;
     }
+  if (vm.count("svg") && method == "armax") {
+    print_error("--svg: the stabilisation diagram is ERA's and pLSCF's (--method era|plscf); ARMAX's modes come from "
+                "runs, not orders");
+    return 2;
+  }
   id::StabilisationOptions so;
   so.hz_min = vm["min-hz"].as<double>();
   if (vm.count("max-hz")) so.hz_max = vm["max-hz"].as<double>();
@@ -418,6 +465,8 @@ int identify_modes(const Args& args) {
     nlohmann::json j = {
         {"hz", md.hz}, {"zeta", md.zeta}, {"hz_std", md.hz_std}, {"zeta_std", md.zeta_std}, {"shape", shape}};
     j.update(md.extra);
+    if (!j.contains("mpc")) j["mpc"] = id::modal_phase_collinearity(md.shape);
+    j["mpd_deg"] = id::mean_phase_deviation(md.shape);
     modes.push_back(j);
     out.datasets.emplace_back(uff::NodalData55::normal_mode(static_cast<std::int64_t>(m + 1), md.hz, nodes, values,
                                                             0.0, md.zeta));
@@ -431,14 +480,21 @@ int identify_modes(const Args& args) {
   for (const auto& w : warnings) std::cerr << "warning: " << w << "\n";
   if (rotations_dropped) std::cerr << "warning: rotational responses are in the JSON only (UFF 55 gets X, Y, Z)\n";
 
-  if (vm.count("json")) {
-    nlohmann::json j;
-    j["modes"] = modes;
-    j["method"] = method;
-    j["rejected"] = r.rejected;
-    j.update(r.summary);
-    write_json(vm["json"].as<std::string>(), j);
+  nlohmann::json j;
+  j["modes"] = modes;
+  j["method"] = method;
+  j["rejected"] = r.rejected;
+  j.update(r.summary);
+  if (!r.stabilisation.is_null()) j["stabilisation"] = r.stabilisation;
+  if (vm.count("report")) j["run"] = report::run_json("identify modes", args, {vm["file"].as<std::string>()});
+  if (vm.count("json")) write_json(vm["json"].as<std::string>(), j);
+  if (vm.count("svg")) {
+    const std::string path = vm["svg"].as<std::string>();
+    std::ofstream o(path, std::ios::binary);
+    o << report::stabilisation_svg(j, true);
+    if (!o) throw formats::InputError("cannot write " + path);
   }
+  if (vm.count("report")) report::write_report(vm["report"].as<std::string>(), j);
   if (vm.count("uff")) {
     out.path = vm["uff"].as<std::string>();
     uff::write_uff(out, out.path);
@@ -1106,8 +1162,9 @@ int identify_check(const Args& args) {
 int cmd_identify(const Args& args) {
   const std::string usage =
       "usage: ssid identify <modes|frf|check> ...\n"
-      "  modes FILE.unv [--method armax|era|plscf] [--json OUT] [--uff OUT]   modes from the FRFs or time\n"
-      "                                                                     histories (UFF 58) of a modal test\n"
+      "  modes FILE.unv [--method armax|era|plscf] [--json OUT] [--uff OUT] [--svg OUT] [--report OUT]\n"
+      "                                                               modes from the FRFs or time histories\n"
+      "                                                               (UFF 58) of a modal test\n"
       "  frf FILE.unv [--estimator h1|h2|hv] [--window W] [--uff OUT]   FRFs, coherence and multiple coherence\n"
       "                                                               from time histories (Welch)\n"
       "  check FILE.unv [--second FILE2.unv] [--json OUT]             reciprocity, linearity, coherence and\n"

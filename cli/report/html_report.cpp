@@ -61,13 +61,13 @@ svg.chart text{font-size:11px;fill:#222}svg .label{font-size:12px}
 svg .grid{stroke:#e4e4e4}svg .frame{fill:none;stroke:#666}
 svg .pair{fill:none;stroke:#e15759;stroke-width:2.5}svg .cellv{font-size:9px}
 svg .undeformed{fill:none;stroke:#c8c8c8;stroke-width:1}svg .deformed{fill:none;stroke-width:1.6}
-svg .fe{stroke:#1f5fa8}svg .test{stroke:#c0392b}svg .wire0{fill:none;stroke:#e6b0aa;stroke-width:1;stroke-dasharray:3 2}
+svg .fe{stroke:#1f5fa8}svg .test{stroke:#c0392b}svg .error{stroke:#7b3294}svg .wire0{fill:none;stroke:#e6b0aa;stroke-width:1;stroke-dasharray:3 2}
 svg .cause{fill:#e15759;stroke:#7a1f1f}svg .misfit{fill:#f28e2b;fill-opacity:.75}
 .key{display:inline-block;margin-right:14px;font-size:12px}.swatch{display:inline-block;width:14px;height:10px;margin-right:4px;vertical-align:middle}
 .controls{margin:6px 0;padding:6px;background:#f6f6f6;border:1px solid #e0e0e0}
 .partial{background:#fdecea;border:1px solid #e15759;padding:6px}
 .note{color:#555;font-size:12px}
-@media print{.controls{display:none}body{max-width:none}h2{break-after:avoid}}
+@media print{.controls{display:none}figure[data-pair]{display:inline-block!important}body{max-width:none}h2{break-after:avoid}}
 )";
 
 std::string page_head(const std::string& title) {
@@ -89,6 +89,11 @@ const char* kScript = R"(<script>
   var sel=document.getElementById('view');
   function show(v){document.querySelectorAll('g.view').forEach(function(g){g.style.display=g.getAttribute('data-view')===v?'':'none';});}
   if(sel){sel.addEventListener('change',function(){show(sel.value);});show(sel.value);}
+  // The pair shown (all by default; print shows all).
+  var pair=document.getElementById('pair');
+  function showPair(k){document.querySelectorAll('figure[data-pair]').forEach(function(f){f.style.display=k==='all'||f.getAttribute('data-pair')===k?'':'none';});}
+  if(pair){pair.addEventListener('change',function(){showPair(pair.value);});
+    window.addEventListener('hashchange',function(){var m=/^#(shape|mems)-([0-9]+)$/.exec(location.hash);if(m){pair.value=m[2];showPair(m[2]);}});}
   // Animation: each visible deformed drawing swings between +1 and -1 times its
   // deflection about its undeformed base (path data-base); print shows the static +1.
   var anim=document.getElementById('animate'),cache=new Map(),t0=performance.now();
@@ -172,6 +177,53 @@ std::string mac_figure(const json& mac, const std::vector<int>& row_modes, const
   }
   return matrix_figure(mac, rows, cols, rows_are_fe ? "analysis mode" : "test mode", rows_are_fe ? "test mode" : "analysis mode",
                        "MAC" + form, marked, id, caption);
+}
+
+/// The cross-orthogonality heat map (|X|; rows the analysis modes, or with `rows_are_test`
+/// the test modes, as the MAC beside it), the pairs outlined, and the pairs' acceptance
+/// (diagonal > min_diagonal, off-diagonal < max_off_diagonal).
+std::string xor_figure(const json& x, bool rows_are_test) {
+  if (x.contains("unavailable"))
+    return fmt::format("<p class=\"note\" id=\"xor-unavailable\">Cross-orthogonality: not available ({}).</p>\n",
+                       esc(x["unavailable"].get<std::string>()));
+  HeatMap h;
+  for (const auto& row : x["matrix"]) h.values.push_back(row.get<std::vector<double>>());
+  const auto rows = x["fe_modes"].get<std::vector<int>>(), cols = x["test_modes"].get<std::vector<int>>();
+  for (int m : rows) h.row_labels.push_back(std::to_string(m));
+  for (int m : cols) h.col_labels.push_back(std::to_string(m));
+  h.row_title = "analysis mode";
+  h.col_title = "test mode";
+  if (rows_are_test) {
+    std::vector<std::vector<double>> t(cols.size(), std::vector<double>(rows.size()));
+    for (std::size_t i = 0; i < rows.size(); ++i)
+      for (std::size_t k = 0; k < cols.size(); ++k) t[k][i] = h.values[i][k];
+    h.values = t;
+    std::swap(h.row_labels, h.col_labels);
+    std::swap(h.row_title, h.col_title);
+  }
+  h.value_label = "|cross-orthogonality|";
+  const double dmin = x["min_diagonal"], omax = x["max_off_diagonal"];
+  std::string table = "<table class=\"xor-pairs\">\n<tr><th>analysis</th><th>test</th><th>|X| of the pair</th><th>largest "
+                      "off-diagonal</th><th>accepted</th></tr>\n";
+  for (const auto& p : x["pairs"]) {
+    const int fe = p["fe_mode"], test = p["test_mode"];
+    const auto i = static_cast<std::size_t>(std::find(rows.begin(), rows.end(), fe) - rows.begin());
+    const auto k = static_cast<std::size_t>(std::find(cols.begin(), cols.end(), test) - cols.begin());
+    if (i < rows.size() && k < cols.size()) h.marked.insert(rows_are_test ? std::make_pair(k, i) : std::make_pair(i, k));
+    table += fmt::format("<tr class=\"xor-pair\" data-fe-mode=\"{}\" data-test-mode=\"{}\" data-v=\"{}\" data-off=\"{}\"><td "
+                         "class=\"n\">{}</td><td class=\"n\">{}</td><td class=\"n\">{}</td><td class=\"n\">{}</td><td>{}</td></tr>\n",
+                         fe, test, exact(p["xor"]), exact(p["largest_off_diagonal"]), fe, test, fixed(p["xor"], 3),
+                         fixed(p["largest_off_diagonal"], 3), p["accepted"].get<bool>() ? "yes" : "<b>no</b>");
+  }
+  table += "</table>\n";
+  return figure("fig-xor", heat_map_svg(h, "fig-xor-svg", "cross-orthogonality matrix"),
+                fmt::format("Cross-orthogonality |φ_aᵀ M_r φ_e| (cell values as in the JSON's matrix, here {}) of {} with every test mode, each mode at unit generalised "
+                            "mass under M_r; M_r: {}. Outlined: the pairs. The usual acceptance: the pair's value above {} and "
+                            "every other value in its row and column below {}.",
+                            rows_are_test ? "rows the test modes" : "rows the analysis modes", esc(x.value("basis", "")),
+                            esc(x.value("reduction", "")), significant(dmin, 3),
+                            significant(omax, 3))) +
+         table;
 }
 
 // ---------------------------------------------------------------- frequencies
@@ -424,6 +476,59 @@ double largest(const Points& s) {
   return m;
 }
 
+/// The seed's Figure 4 for one pair: the error mode ê of MEMS (Eqs. 2–3) drawn on the
+/// test's wire frame at the analysis shape's amplitude `amp` (so its size reads against
+/// the analysis panel's), beside the MEMS coefficients α of every test mode.
+std::string mems_figure(const json& sh, std::size_t k, const Points& grids,
+                        const std::vector<std::pair<std::int64_t, std::int64_t>>& test_lines, double amp,
+                        const std::vector<View>& vs, const std::vector<Placement>& pl, double w, double h) {
+  const json& m = sh["mems"];
+  const Points err = read_points(m["error"]);
+  const int fm = sh["fe_mode"], tm = sh["test_mode"];
+  std::string svg = fmt::format(
+      "<svg id=\"mems-{}-svg\" class=\"shapes\" xmlns=\"http://www.w3.org/2000/svg\" viewBox=\"0 0 {} {}\" width=\"{}\" "
+      "height=\"{}\" role=\"img\" aria-label=\"error mode of analysis mode {}\">\n",
+      k, px(w), px(h), px(w), px(h), fm);
+  for (std::size_t v = 0; v < vs.size(); ++v)
+    svg += fmt::format("<g class=\"view\" data-view=\"{0}\"{1}>\n<g transform=\"translate(0 0)\"><rect x=\"0.5\" y=\"0.5\" "
+                       "width=\"{2}\" height=\"{3}\" fill=\"none\" stroke=\"#ddd\"/><use href=\"#undeformed-{0}\" "
+                       "class=\"undeformed\"/>\n<use href=\"#wire-{0}\" class=\"wire0\"/>\n<path class=\"deformed error\" "
+                       "data-base=\"wire-{0}\" d=\"{4}\"/>\n<text x=\"8\" y=\"16\" font-size=\"12\">error mode ê, e² = {5}</text></g>\n</g>\n",
+                       vs[v].name, v ? " style=\"display:none\"" : "", px(w - 1), px(h - 1),
+                       lines_d(test_lines, grids, &err, amp, pl[v]), significant(m["error_squared"], 4));
+  svg += "</svg>\n";
+  // The coefficients α_i of the unit-norm test shapes.
+  std::vector<double> a{0.0};
+  for (const auto& r : m["alpha"]) a.push_back(r[1]);
+  const double n = static_cast<double>(m["alpha"].size());
+  Chart c(std::max(300.0, 80 + 17 * n), h, {-0.5, n - 0.5, "test mode"}, axis_around(a, "MEMS coefficient α", 0.08, true));
+  std::vector<std::pair<double, std::string>> cats;
+  const double bw = (c.x(1) - c.x(0)) * 0.7;
+  c.add(fmt::format("<line x1=\"{0}\" x2=\"{1}\" y1=\"{2}\" y2=\"{2}\" stroke=\"#444\"/>\n", px(c.left()), px(c.right()), px(c.y(0))));
+  for (std::size_t i = 0; i < m["alpha"].size(); ++i) {
+    const int t = m["alpha"][i][0];
+    const double al = m["alpha"][i][1];
+    const double y0 = c.y(std::max(al, 0.0)), y1 = c.y(std::min(al, 0.0));
+    cats.push_back({static_cast<double>(i), std::to_string(t)});
+    c.add(fmt::format("<rect class=\"alpha\" data-test-mode=\"{}\" data-v=\"{}\" x=\"{}\" y=\"{}\" width=\"{}\" height=\"{}\" "
+                      "fill=\"{}\"><title>test mode {}: α = {}</title></rect>\n",
+                      t, exact(al), px(c.x(static_cast<double>(i)) - bw / 2), px(y0), px(bw), px(std::max(y1 - y0, 0.5)),
+                      t == tm ? "#c0392b" : "#7f7f7f", t, significant(al, 4)));
+  }
+  if (cats.size() > 30)
+    for (std::size_t i = 1; i < cats.size(); i += 2) cats[i].second.clear();
+  c.set_x_categories(cats);
+  return fmt::format(
+      "<figure id=\"mems-{0}\" class=\"mems\" data-pair=\"{0}\" data-error-squared=\"{1}\" data-mac-superposition=\"{2}\" "
+      "data-pair-error-squared=\"{3}\">\n{4}{5}<figcaption>Pair {6}, MEMS (the seed's Eqs. 2–3 and Figure 4): analysis mode {7} "
+      "fitted by every test mode (each scaled to unit norm) in the least-squares sense. Left: the error mode ê = φ_a − Σ α_i φ_e_i "
+      "on the test's wire frame, at the analysis panel's amplitude; right: the coefficients α_i (red: test mode {8}, the pair's). "
+      "e² = {9}, MAC of the superposition {10}; with the pair's test shape alone e² = {11}.</figcaption>\n</figure>\n",
+      k, exact(m["error_squared"]), exact(m["mac_superposition"]), exact(m["pair_error_squared"]), svg,
+      c.svg(fmt::format("mems-{}-alpha-svg", k), "MEMS coefficients"), k + 1, fm, tm, significant(m["error_squared"], 4),
+      fixed(m["mac_superposition"], 4), significant(m["pair_error_squared"], 4));
+}
+
 std::string shapes_section(const json& j) {
   if (!j.contains("geometry") || !j.contains("shapes") || j["shapes"].empty()) return "";
   const json& g = j["geometry"];
@@ -456,6 +561,15 @@ std::string shapes_section(const json& j) {
     s += fmt::format("<path id=\"undeformed-{0}\" d=\"{1}\"/>\n<path id=\"wire-{0}\" d=\"{2}\"/>\n", vs[v].name,
                      lines_d(lines, grids, nullptr, 0, pl[v]), lines_d(test_lines, grids, nullptr, 0, pl[v]));
   s += "</defs></svg>\n";
+  // The pair shown: every pair by default and in print; one through the selector or an anchor.
+  s += "<div class=\"controls\">pair <select id=\"pair\"><option value=\"all\">all</option>";
+  for (std::size_t k = 0; k < j["shapes"].size(); ++k)
+    s += fmt::format("<option value=\"{}\">{}: analysis {} / test {}</option>", k, k + 1, j["shapes"][k]["fe_mode"].get<int>(),
+                     j["shapes"][k]["test_mode"].get<int>());
+  s += "</select> <span class=\"note\">go to:";
+  for (std::size_t k = 0; k < j["shapes"].size(); ++k)
+    s += fmt::format(" <a href=\"#shape-{0}\">pair {1}</a> (<a href=\"#mems-{0}\">MEMS</a>)", k, k + 1);
+  s += "</span></div>\n";
   std::size_t k = 0;
   for (const auto& sh : j["shapes"]) {
     const Points fe = read_points(sh["fe"]), test = read_points(sh["test"]);
@@ -487,11 +601,12 @@ std::string shapes_section(const json& j) {
       svg += "</g>\n";
     }
     svg += "</svg>\n";
-    s += fmt::format("<figure id=\"shape-{}\" class=\"shape\" data-fe-mode=\"{}\" data-test-mode=\"{}\" data-fe-hz=\"{}\" "
+    s += fmt::format("<figure id=\"shape-{}\" class=\"shape\" data-pair=\"{}\" data-fe-mode=\"{}\" data-test-mode=\"{}\" data-fe-hz=\"{}\" "
                      "data-test-hz=\"{}\" data-mac=\"{}\">\n{}<figcaption>Pair {}: analysis mode {} ({} Hz) and test mode {} ({} "
                      "Hz), MAC {}, error {} %.</figcaption>\n</figure>\n",
-                     k, fm, tm, exact(fhz), exact(thz), exact(mac), svg, k + 1, fm, significant(fhz, 6), tm, significant(thz, 6),
+                     k, k, fm, tm, exact(fhz), exact(thz), exact(mac), svg, k + 1, fm, significant(fhz, 6), tm, significant(thz, 6),
                      fixed(mac, 4), fixed((fhz - thz) / thz * 100, 3));
+    if (sh.contains("mems")) s += mems_figure(sh, k, grids, test_lines, amp, vs, pl, w, h);
     ++k;
   }
   return s + "</section>\n";
@@ -953,7 +1068,132 @@ std::vector<int> mode_numbers(const json& modes) {
   return v;
 }
 
+/// The identified modes' table: frequency, damping, their σ, MPC, MPD.
+std::string identification_sections(const json& j) {
+  std::string s = "<section id=\"stabilisation\">\n<h2>Stabilisation diagram</h2>\n";
+  if (j.contains("stabilisation")) {
+    const json& st = j["stabilisation"];
+    const json& c = st["criteria"];
+    s += figure("fig-stabilisation", stabilisation_svg(j, false),
+                fmt::format("ERA poles at model orders {}…{}, classed against the previous order: stable in frequency within "
+                            "{} %, in damping within {} %, in shape at complex MAC ≥ {}; screened out (×): damping ≤ 0 or > {}, "
+                            "MPC < {}, MPD > {}°. A cluster of stable poles recurring at {} % of the orders or more is a mode "
+                            "(red lines). Grey curve: Σ|H| over every FRF (log scale, fitted to the order range).",
+                            st["orders"].empty() ? 0 : st["orders"].front().get<long>(),
+                            st["orders"].empty() ? 0 : st["orders"].back().get<long>(),
+                            significant(100 * c["freq_tol"].get<double>(), 3),
+                            significant(100 * c["damping_tol"].get<double>(), 3), significant(c["mac_min"], 3),
+                            significant(c["zeta_max"], 3), significant(c["mpc_min"], 3), significant(c["mpd_max_deg"], 3),
+                            significant(100 * c["min_fraction"].get<double>(), 3)));
+  } else {
+    s += "<p class=\"note\">No diagram: ARMAX's modes come from runs over response subsets, not from model orders.</p>\n";
+  }
+  s += "</section>\n<section id=\"modes\">\n<h2>Identified modes</h2>\n<table class=\"modes\">\n<tr><th>mode</th><th>frequency "
+       "[Hz]</th><th>σ [Hz]</th><th>damping [%]</th><th>σ [%]</th><th>MPC</th><th>MPD [°]</th></tr>\n";
+  std::size_t k = 0;
+  for (const auto& m : j["modes"]) {
+    ++k;
+    const double hz = m["hz"], hs = m["hz_std"], z = m["zeta"], zs = m["zeta_std"], mpc = num_or(m, "mpc"),
+                 mpd = num_or(m, "mpd_deg");
+    s += fmt::format("<tr class=\"mode\" data-hz=\"{}\" data-hz-std=\"{}\" data-zeta=\"{}\" data-zeta-std=\"{}\" data-mpc=\"{}\" "
+                     "data-mpd=\"{}\"><td class=\"n\">{}</td><td class=\"n\">{}</td><td class=\"n\">{}</td><td class=\"n\">{}</td>"
+                     "<td class=\"n\">{}</td><td class=\"n\">{}</td><td class=\"n\">{}</td></tr>\n",
+                     exact(hz), exact(hs), exact(z), exact(zs), exact(mpc), exact(mpd), k, fixed(hz, 6), significant(hs, 4),
+                     fixed(100 * z, 4), significant(100 * zs, 4), fixed(mpc, 4), fixed(mpd, 2));
+  }
+  s += "</table>\n";
+  if (j.contains("rejected") && !j["rejected"].empty()) {
+    s += "<p class=\"note\">Poles not kept:";
+    for (const auto& [reason, n] : j["rejected"].items()) s += fmt::format(" {} {};", esc(reason), n.get<int>());
+    s += "</p>\n";
+  }
+  return s + "</section>\n";
+}
+
 }  // namespace
+
+std::string stabilisation_svg(const json& j, bool standalone) {
+  const json& st = j["stabilisation"];
+  std::vector<double> hz, ord{0.0};
+  for (const auto& p : st["poles"]) hz.push_back(p["hz"]), ord.push_back(p["order"]);
+  for (const auto& m : j["modes"]) hz.push_back(m["hz"]);
+  const json& fs = st["frf_sum"];
+  const auto fhz = fs["hz"].get<std::vector<double>>(), fmag = fs["magnitude"].get<std::vector<double>>();
+  double hz_hi = fhz.empty() ? 0 : fhz.back();
+  for (double f : hz) hz_hi = std::max(hz_hi, f);
+  for (const auto& o : st["orders"]) ord.push_back(o);  // orders without poles (beyond ERA's rank) too
+  const double order_hi = *std::max_element(ord.begin(), ord.end()) + 2;
+  Chart c(900, 460, {0, hz_hi > 0 ? hz_hi : 1, "frequency [Hz]"}, {0, order_hi, "model order"});
+  // Σ|H| on a log scale mapped onto [0, order_hi]: a backdrop telling where the peaks are.
+  double lo = INFINITY, hi = -INFINITY;
+  for (double m : fmag)
+    if (m > 0) lo = std::min(lo, std::log10(m)), hi = std::max(hi, std::log10(m));
+  if (hi > lo) {
+    std::string pts;
+    for (std::size_t k = 0; k < fhz.size() && k < fmag.size(); ++k)
+      if (fmag[k] > 0) pts += px(c.x(fhz[k])) + "," + px(c.y((std::log10(fmag[k]) - lo) / (hi - lo) * order_hi)) + " ";
+    c.add("<polyline class=\"frf-sum\" fill=\"none\" stroke=\"#b8b8b8\" stroke-width=\"1\" points=\"" + pts + "\"/>\n");
+  }
+  int mode = 0;
+  for (const auto& m : j["modes"]) {
+    ++mode;
+    const double f = m["hz"];
+    c.add(fmt::format("<line class=\"chosen\" data-mode=\"{0}\" data-x=\"{1}\" x1=\"{2}\" x2=\"{2}\" y1=\"{3}\" y2=\"{4}\" "
+                      "stroke=\"#e15759\" stroke-width=\"1.2\" stroke-dasharray=\"5 3\"><title>mode {0}: {5} Hz</title></line>\n"
+                      "<text x=\"{6}\" y=\"{7}\" font-size=\"11\" fill=\"#e15759\">{0}</text>\n",
+                      mode, exact(f), px(c.x(f)), px(c.top()), px(c.bottom()), significant(f, 6), px(c.x(f) + 3), px(c.top() + 12)));
+  }
+  // One symbol per class (pole_class_symbol): s stable, v frequency and shape, d frequency and
+  // damping, f frequency only, o new, x screened out.
+  auto symbol = [](const std::string& cls, double x, double y) -> std::string {
+    if (cls == "s") return fmt::format("<circle cx=\"{}\" cy=\"{}\" r=\"3.5\" fill=\"#2ca02c\"", px(x), px(y));
+    if (cls == "v")
+      return fmt::format("<path d=\"M{} {}l4 4l-4 4l-4 -4z\" fill=\"none\" stroke=\"#9467bd\" stroke-width=\"1.3\"", px(x), px(y - 4));
+    if (cls == "d")
+      return fmt::format("<rect x=\"{}\" y=\"{}\" width=\"7\" height=\"7\" fill=\"none\" stroke=\"#ff7f0e\" stroke-width=\"1.3\"",
+                         px(x - 3.5), px(y - 3.5));
+    if (cls == "f")
+      return fmt::format("<path d=\"M{} {}h8M{} {}v8\" stroke=\"#1f77b4\" stroke-width=\"1.5\"", px(x - 4), px(y), px(x), px(y - 4));
+    if (cls == "o")
+      return fmt::format("<circle cx=\"{}\" cy=\"{}\" r=\"3\" fill=\"none\" stroke=\"#666\" stroke-width=\"1\"", px(x), px(y));
+    return fmt::format("<path d=\"M{} {}l5 5m0 -5l-5 5\" stroke=\"#c9c9c9\" stroke-width=\"1\"", px(x - 2.5), px(y - 2.5));
+  };
+  for (const auto& p : st["poles"]) {
+    const double f = p["hz"], o = p["order"].get<double>();
+    const std::string cls = p["class"];
+    const std::string reason = p["reason"];
+    c.add(symbol(cls, c.x(f), c.y(o)) +
+          fmt::format(" class=\"pole\" data-x=\"{}\" data-y=\"{}\" data-cls=\"{}\"><title>order {}: {} Hz, ζ {} %{}{}</title></{}>\n",
+                      exact(f), exact(o), esc(cls), p["order"].get<long>(), significant(f, 6),
+                      significant(100 * p["zeta"].get<double>(), 3), reason.empty() ? "" : ", ", esc(reason),
+                      cls == "s" || cls == "o" ? "circle" : cls == "d" ? "rect" : "path"));
+  }
+  // The legend, inside the plot's top right corner (an SVG file carries no caption).
+  const std::vector<std::pair<std::string, std::string>> keys = {
+      {"s", "stable (frequency, damping, shape)"}, {"v", "frequency and shape"}, {"d", "frequency and damping"},
+      {"f", "frequency only"}, {"o", "new"}, {"x", "screened out"}};
+  const double lx = c.right() - 250, ly = c.top() + 8;
+  std::string legend = fmt::format("<rect class=\"legend\" x=\"{}\" y=\"{}\" width=\"242\" height=\"{}\" fill=\"#fff\" "
+                                   "fill-opacity=\"0.9\" stroke=\"#ccc\"/>\n",
+                                   px(lx), px(ly), px(14.0 * (keys.size() + 1) + 6));
+  for (std::size_t k = 0; k < keys.size(); ++k) {
+    const double y = ly + 12 + 14.0 * static_cast<double>(k);
+    legend += symbol(keys[k].first, lx + 10, y) + "/>" +
+              fmt::format("<text x=\"{}\" y=\"{}\" font-size=\"11\">{}</text>\n", px(lx + 22), px(y + 4), esc(keys[k].second));
+  }
+  legend += fmt::format("<path d=\"M{} {}h14\" stroke=\"#e15759\" stroke-dasharray=\"5 3\"/><text x=\"{}\" y=\"{}\" "
+                        "font-size=\"11\">chosen mode</text>\n",
+                        px(lx + 3), px(ly + 12 + 14.0 * keys.size()), px(lx + 22), px(ly + 16 + 14.0 * keys.size()));
+  c.add(legend);
+  std::string svg = c.svg("stabilisation-svg", "stabilisation diagram");
+  if (standalone) {
+    const auto at = svg.find('>') + 1;
+    svg.insert(at, "\n<style>text{font:11px sans-serif;fill:#222}.grid{stroke:#e4e4e4}.frame{fill:none;stroke:#666}"
+                   ".label{font-size:12px}</style>");
+    svg = "<?xml version=\"1.0\" encoding=\"UTF-8\"?>\n" + svg;
+  }
+  return svg;
+}
 
 std::string html_report(const json& j) {
   const std::string cmd = command_of(j);
@@ -973,6 +1213,7 @@ std::string html_report(const json& j) {
       if (p.value("accepted", false)) accepted.push_back(p);
     s += mac_figure(j["mac"], mode_numbers(j["fe_modes"]), mode_numbers(j["test_modes"]), true, accepted, "fig-mac",
                     "MAC of every analysis mode with every test mode; outlined: the accepted pairs.", form);
+    if (j.contains("cross_orthogonality")) s += xor_figure(j["cross_orthogonality"], false);
     s += "</section>\n<section id=\"frequencies\">\n<h2>Frequencies</h2>\n";
     s += frequency_figure(accepted, nullptr, j.value("max_frequency_error_pct", 10.0), "accepted pairs");
     s += error_figure(accepted, nullptr, "accepted pairs");
@@ -989,12 +1230,15 @@ std::string html_report(const json& j) {
                         std::string(j["configurations"].size() > 1 ? " (first configuration)" : "") +
                         "; outlined: the pairs of the update.",
                     "");
+    if (j.contains("cross_orthogonality")) s += xor_figure(j["cross_orthogonality"], true);
     s += "</section>\n<section id=\"frequencies\">\n<h2>Frequencies before and after the update</h2>\n";
     const json* before = j.contains("initial_pairs") ? &j["initial_pairs"] : nullptr;
     s += frequency_figure(j["pairs"], before, 5.0, "at the estimate");
     s += error_figure(j["pairs"], before, "at the estimate");
     s += pair_table(j["pairs"], before) + "</section>\n";
     s += parameter_figures(j) + convergence_figures(j);
+  } else if (cmd == "identify") {
+    s += identification_sections(j);
   } else if (cmd == "diagnose") {
     s += diagnosis_sections(j);
   } else if (cmd == "pretest") {

@@ -11,6 +11,7 @@
 ///     "initial_pairs" (before and after the update), "parameters" (prior and
 ///     posterior mean ± σ in prior σ), "identifiability.posterior_correlation",
 ///     "iterations" (convergence per cycle);
+///   - identify: "stabilisation" (the diagram) and "modes" (their table);
 ///   - diagnose: "evidence" (residuals by mode and by grid), "ranking",
 ///     "cause" (and where it sits on "geometry"), "gain";
 ///   - pretest: the sensors and exciters on "geometry" (pretest_picture.hpp),
@@ -28,5 +29,12 @@ namespace ssid::cli::report {
 
 /// The report page of a command's JSON (with its "run" object).
 std::string html_report(const nlohmann::json& j);
+
+/// `ssid identify modes`' stabilisation diagram (issue 22 item 8) from its JSON
+/// ("stabilisation", "modes"): frequency on x, model order on y, one symbol per
+/// pole and stability class, the chosen modes as vertical lines, the sum of the FRF
+/// magnitudes (log scale, fitted to the order range) behind. `standalone`: an SVG
+/// file of its own (with its fonts and legend inline), else for the report page.
+std::string stabilisation_svg(const nlohmann::json& j, bool standalone);
 
 }  // namespace ssid::cli::report

@@ -9,12 +9,17 @@
 #include <filesystem>
 #include <fstream>
 #include <map>
+#include <optional>
 #include <set>
+
+#include <Eigen/SVD>
+#include <fmt/format.h>
 
 #include "cli/report/html_report.hpp"
 #include "cli/report/sha256.hpp"
 #include "cli/model_load.hpp"
 #include "cli/version.hpp"
+#include "estimator/correlation/measures.hpp"
 #include "estimator/study/deck_study.hpp"
 #include "formats/parse_error.hpp"
 #include "translators/synthetic_modes.hpp"
@@ -157,6 +162,79 @@ double scale_onto(const Eigen::VectorXd& fe, const Eigen::VectorXd& test) {
   return tt > 0 ? fe.dot(test) / tt : 0.0;
 }
 
+nlohmann::json cross_orthogonality_json(const Eigen::MatrixXd& fe, const std::vector<double>& modal_mass,
+                                        const std::vector<int>& fe_numbers, const Eigen::MatrixXd& test,
+                                        const std::vector<int>& test_numbers,
+                                        const std::vector<std::pair<int, int>>& pairs) {
+  if (modal_mass.size() != static_cast<std::size_t>(fe.cols()) ||
+      std::any_of(modal_mass.begin(), modal_mass.end(), [](double m) { return !(m > 0); }))
+    return {{"unavailable", "the analysis modes carry no generalised mass"}};
+  // SEREP's pseudo-inverse Φ_a⁺ of the basis, or nothing when the basis is not independent at the test DOFs.
+  auto pinv_of = [](const Eigen::MatrixXd& Pa) -> std::optional<Eigen::MatrixXd> {
+    if (Pa.cols() == 0 || Pa.rows() < Pa.cols()) return std::nullopt;
+    Eigen::JacobiSVD<Eigen::MatrixXd> svd(Pa, Eigen::ComputeThinU | Eigen::ComputeThinV);
+    const auto& sv = svd.singularValues();
+    if (sv(sv.size() - 1) <= static_cast<double>(std::max(Pa.rows(), Pa.cols())) * 1e-12 * sv(0)) return std::nullopt;
+    return Eigen::MatrixXd(svd.matrixV() * sv.cwiseInverse().asDiagonal() * svd.matrixU().transpose());
+  };
+  std::vector<Eigen::Index> basis;
+  for (Eigen::Index i = 0; i < fe.cols(); ++i) basis.push_back(i);
+  std::string basis_text = "every analysis mode";
+  auto take = [&](const std::vector<Eigen::Index>& b) {
+    Eigen::MatrixXd Pa(fe.rows(), static_cast<Eigen::Index>(b.size()));
+    for (std::size_t k = 0; k < b.size(); ++k) Pa.col(static_cast<Eigen::Index>(k)) = fe.col(b[k]);
+    return Pa;
+  };
+  auto pinv = pinv_of(take(basis));
+  if (!pinv) {
+    basis.clear();
+    for (const auto& [f, t] : pairs) {
+      const auto i = std::find(fe_numbers.begin(), fe_numbers.end(), f) - fe_numbers.begin();
+      if (i < static_cast<long>(fe_numbers.size()) && std::find(basis.begin(), basis.end(), i) == basis.end()) basis.push_back(i);
+    }
+    std::sort(basis.begin(), basis.end());
+    basis_text = "the analysis modes of the pairs (all of them are not independent at the test DOFs)";
+    pinv = pinv_of(take(basis));
+    if (!pinv)
+      return {{"unavailable", fmt::format("the analysis modes are not independent at the {} test DOFs: SEREP needs at least "
+                                          "as many independent sensors as modes", fe.rows())}};
+  }
+  Eigen::VectorXd m(static_cast<Eigen::Index>(basis.size()));
+  for (std::size_t k = 0; k < basis.size(); ++k) m(static_cast<Eigen::Index>(k)) = modal_mass[static_cast<std::size_t>(basis[k])];
+  const Eigen::MatrixXd Mr = pinv->transpose() * m.asDiagonal() * *pinv;
+  const Eigen::MatrixXd X = estimator::cross_orthogonality(take(basis), Mr, test, true).cwiseAbs();
+  std::vector<int> rows;
+  for (auto i : basis) rows.push_back(fe_numbers[static_cast<std::size_t>(i)]);
+  nlohmann::json matrix = nlohmann::json::array();
+  for (Eigen::Index i = 0; i < X.rows(); ++i) {
+    std::vector<double> r;
+    for (Eigen::Index k = 0; k < X.cols(); ++k) r.push_back(X(i, k));
+    matrix.push_back(r);
+  }
+  const double min_diagonal = 0.9, max_off = 0.1;
+  nlohmann::json pj = nlohmann::json::array();
+  for (const auto& [f, t] : pairs) {
+    const auto i = std::find(rows.begin(), rows.end(), f) - rows.begin();
+    const auto k = std::find(test_numbers.begin(), test_numbers.end(), t) - test_numbers.begin();
+    if (i >= static_cast<long>(rows.size()) || k >= static_cast<long>(test_numbers.size())) continue;
+    double off = 0;
+    for (Eigen::Index c = 0; c < X.cols(); ++c)
+      if (c != k) off = std::max(off, X(i, c));
+    for (Eigen::Index r = 0; r < X.rows(); ++r)
+      if (r != i) off = std::max(off, X(r, k));
+    pj.push_back({{"fe_mode", f}, {"test_mode", t}, {"xor", X(i, k)}, {"largest_off_diagonal", off},
+                  {"accepted", X(i, k) > min_diagonal && off < max_off}});
+  }
+  return {{"reduction", "SEREP from the analysis modes: M_r = pinv(Phi_a)^T diag(generalised mass) pinv(Phi_a)"},
+          {"basis", basis_text},
+          {"fe_modes", rows},
+          {"test_modes", test_numbers},
+          {"matrix", matrix},
+          {"min_diagonal", min_diagonal},
+          {"max_off_diagonal", max_off},
+          {"pairs", pj}};
+}
+
 void write_report(const std::string& path, const nlohmann::json& j) {
   std::ofstream o(path, std::ios::binary);
   if (!o) throw formats::InputError("cannot write " + path);
@@ -168,8 +246,24 @@ void write_report(const std::string& path, const nlohmann::json& j) {
 
 namespace ssid::cli::report {
 
+nlohmann::json mems_json(const std::vector<translators::MeasuredDof>& dofs, const Eigen::VectorXd& fe,
+                         const Eigen::VectorXd& pair_test, const Eigen::MatrixXd& test_set,
+                         const std::vector<int>& test_numbers) {
+  const estimator::MemsResult m = estimator::mems(fe, test_set, estimator::ComparisonScaling::UnitNorm);
+  const estimator::MemsResult one = estimator::mems(fe, pair_test, estimator::ComparisonScaling::UnitNorm);
+  nlohmann::json alpha = nlohmann::json::array();
+  for (Eigen::Index i = 0; i < m.alpha.size(); ++i) alpha.push_back({test_numbers[static_cast<std::size_t>(i)], m.alpha(i)});
+  return {{"comparison", "every test mode, each scaled to unit norm"},
+          {"alpha", alpha},
+          {"error_squared", m.error_squared},
+          {"mac_superposition", m.mac_superposition},
+          {"error", dof_shape_json(dofs, m.error_mode, 1.0)},
+          {"pair_error_squared", one.error_squared}};
+}
+
 void add_shapes(nlohmann::json& j, const translators::FeModel& model, const Eigen::MatrixXd& a_modes,
-                const std::vector<translators::MeasuredDof>& dofs, const std::vector<ShapePair>& pairs) {
+                const std::vector<translators::MeasuredDof>& dofs, const std::vector<ShapePair>& pairs,
+                const Eigen::MatrixXd& test_set, const std::vector<int>& test_numbers) {
   const std::vector<translators::GridPosition> grids = grid_positions(model);
   std::vector<std::int64_t> test_grids;
   for (const auto& d : dofs)
@@ -189,7 +283,8 @@ void add_shapes(nlohmann::json& j, const translators::FeModel& model, const Eige
                            {"mac", p.mac},
                            {"fe", fe[k]},
                            {"test", dof_shape_json(dofs, p.test_at_dofs, s)},
-                           {"test_scale", s}});
+                           {"test_scale", s},
+                           {"mems", mems_json(dofs, p.fe_at_dofs, p.test_at_dofs, test_set, test_numbers)}});
   }
 }
 
@@ -246,7 +341,17 @@ void write_estimate_report(const std::string& path, const Args& args, const boos
         sp.push_back({fe, test, p["fe_hz"], p["test_hz"], p["mac"], fe - 1, sol.sensor_shapes.col(fe - 1),
                       c.test[static_cast<std::size_t>(t)].shape});
       }
-      add_shapes(j, *lm.model, om->modes(), dofs_of_labels(c.sensor_labels), sp);
+      Eigen::MatrixXd test_set(sol.sensor_shapes.rows(), static_cast<Eigen::Index>(c.test.size()));
+      for (std::size_t k = 0; k < c.test.size(); ++k) test_set.col(static_cast<Eigen::Index>(k)) = c.test[k].shape;
+      add_shapes(j, *lm.model, om->modes(), dofs_of_labels(c.sensor_labels), sp, test_set, c.test_numbers);
+      // The eigen-solver's modes are mass-normalised: unit generalised masses.
+      std::vector<int> fe_numbers;
+      for (Eigen::Index i = 0; i < sol.sensor_shapes.cols(); ++i) fe_numbers.push_back(static_cast<int>(i) + 1);
+      std::vector<std::pair<int, int>> pairs;
+      for (const auto& p : sp) pairs.emplace_back(p.fe_mode, p.test_mode);
+      j["cross_orthogonality"] =
+          cross_orthogonality_json(sol.sensor_shapes, std::vector<double>(fe_numbers.size(), 1.0), fe_numbers, test_set,
+                                   c.test_numbers, pairs);
     }
   }
   write_report(path, j);

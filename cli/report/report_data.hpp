@@ -51,6 +51,22 @@ nlohmann::json dof_shape_json(const std::vector<translators::MeasuredDof>& dofs,
 /// The least-squares factor taking `test` onto `fe` (fe·test / test·test; 0 for a zero test shape).
 double scale_onto(const Eigen::VectorXd& fe, const Eigen::VectorXd& test);
 
+/// Test–analysis cross-orthogonality X = φ_aᵀ M_r φ_e (measures.hpp's cross_orthogonality,
+/// each mode at unit generalised mass under M_r), with the analysis mass reduced to the test
+/// DOFs by SEREP from the analysis modes themselves: for mass-orthogonal modes Φᵀ M Φ =
+/// diag(m), SEREP's M_r = Tᵀ M T with T = Φ Φ_a⁺ is Φ_a⁺ᵀ diag(m) Φ_a⁺, so the shapes at
+/// the test DOFs (`fe`, columns numbered `fe_numbers`) and their generalised masses
+/// `modal_mass` suffice. The basis is every analysis mode when they are independent at the
+/// test DOFs, else the analysis modes of `pairs` ((analysis, test) numbers). Returns
+/// {"reduction", "basis", "fe_modes", "test_modes", "matrix" (|X|: a test shape's sign is
+/// arbitrary), "min_diagonal" 0.9, "max_off_diagonal" 0.1, "pairs": [{"fe_mode",
+/// "test_mode", "xor", "largest_off_diagonal" (in the pair's row and column), "accepted"}]},
+/// or {"unavailable": why}.
+nlohmann::json cross_orthogonality_json(const Eigen::MatrixXd& fe, const std::vector<double>& modal_mass,
+                                        const std::vector<int>& fe_numbers, const Eigen::MatrixXd& test,
+                                        const std::vector<int>& test_numbers,
+                                        const std::vector<std::pair<int, int>>& pairs);
+
 /// Writes the HTML report of `j` (html_report.hpp) to `path`. Throws InputError when it cannot.
 void write_report(const std::string& path, const nlohmann::json& j);
 
@@ -68,9 +84,23 @@ struct ShapePair {
 
 /// Adds "geometry" (geometry_json) and "shapes" to `j`: per pair {"fe_mode", "test_mode",
 /// "fe_hz", "test_hz", "mac", "fe" (every grid), "test" (the measured nodes, scaled onto
-/// the analysis shape by scale_onto), "test_scale"}.
+/// the analysis shape by scale_onto), "test_scale", "mems" (mems_json of the analysis
+/// shape against `test_set`)}. `test_set` holds every test shape at `dofs` (columns),
+/// numbered `test_numbers`.
 void add_shapes(nlohmann::json& j, const translators::FeModel& model, const Eigen::MatrixXd& a_modes,
-                const std::vector<translators::MeasuredDof>& dofs, const std::vector<ShapePair>& pairs);
+                const std::vector<translators::MeasuredDof>& dofs, const std::vector<ShapePair>& pairs,
+                const Eigen::MatrixXd& test_set, const std::vector<int>& test_numbers);
+
+/// The seed's MEMS and error mode (reconciliation paper Eqs. 2–3, its Figure 4) of
+/// one analysis shape `fe` (the reference φ_a, at `dofs`) against every test shape
+/// (columns of `test_set`, each scaled to unit norm: the paper's remedy for the
+/// arbitrary test scaling): {"comparison", "alpha": [[test mode, α]], "error_squared"
+/// (e², Eq. 2), "mac_superposition" (squared MAC of φ_a and Σ α_i φ_e_i), "error" (ê,
+/// Eq. 3, at the measured nodes, in the analysis shape's units), "pair_error_squared"
+/// (e² with the pair's test shape alone: 1 − MAC)}.
+nlohmann::json mems_json(const std::vector<translators::MeasuredDof>& dofs, const Eigen::VectorXd& fe,
+                         const Eigen::VectorXd& pair_test, const Eigen::MatrixXd& test_set,
+                         const std::vector<int>& test_numbers);
 
 /// Measured DOFs from the estimator's sensor labels ("grid:direction").
 std::vector<translators::MeasuredDof> dofs_of_labels(const std::vector<std::string>& labels);

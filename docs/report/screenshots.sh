@@ -16,6 +16,10 @@ cd "$src"
   --json "$tmp/diagnosis.json" --report "$tmp/diagnosis.html" >/dev/null
 "$build/ssid" pretest samples/mpi_rod.bdf --target-modes 12 --min-hz 1 --sensors 18 --method ei --exciters 2 \
   --exciter-at 41:0,1,0 --exciter-at 79:0,0,1 --evaluate --json "$tmp/pretest.json" --report "$tmp/pretest.html" >/dev/null
+"$build/ssid" correlate samples/mpi_rod.bdf samples/estimate/measured.unv \
+  --json "$tmp/correlate.json" --report "$tmp/correlate.html" >/dev/null 2>&1
+python3 samples/identify/chain_frf.py "$tmp/chain_frf.unv"
+"$build/ssid" identify modes "$tmp/chain_frf.unv" --json "$tmp/identify.json" --report "$tmp/identify.html" >/dev/null 2>&1
 # shot REPORT NAME HEIGHT HIDDEN-SECTIONS
 shot() {
   sed "s|</head>|<style>$4{display:none}</style></head>|" "$tmp/$1.html" >"$tmp/shot-$2.html"
@@ -23,9 +27,12 @@ shot() {
     --user-data-dir="$tmp/profile" --virtual-time-budget=3000 --hide-scrollbars --window-size=1000,"$3" \
     --screenshot="$out/$2.png" "file://$tmp/shot-$2.html" >/dev/null 2>&1
 }
-shot estimate estimate_correlation 1250 ".none"
+shot estimate estimate_correlation 1250 "#fig-xor,table.xor-pairs"
 shot estimate estimate_parameters 1300 "#run,#correlation,#frequencies,h1"
-shot estimate estimate_shapes 900 "#run,#correlation,#frequencies,#parameters,#convergence,h1,#shape-0,#shape-1,#shape-2,#shape-3,#shape-4,#shape-5"
+shot estimate estimate_shapes 900 "#run,#correlation,#frequencies,#parameters,#convergence,h1,#shape-0,#shape-1,#shape-2,#shape-3,#shape-4,#shape-5,.mems"
+shot correlate correlate_xor 1050 "#run,#fig-mac,h1,#frequencies,#shapes,table.xor-pairs"
+shot correlate correlate_mems 950 "#run,#correlation,#frequencies,h1,#shape-0,#shape-1,#mems-0,#mems-1,.shape:not(#shape-2),.mems:not(#mems-2)"
+shot identify identify 900 ".none"
 shot diagnosis diagnosis 1400 ".none"
 shot diagnosis diagnosis_cause 1000 "#run,#residuals,#ranking,h1"
 shot pretest pretest 1250 "#run,h1,table.sensors"

@@ -9,6 +9,7 @@
 #include <fstream>
 #include <nlohmann/json.hpp>
 
+#include "cli/chain_frf.hpp"
 #include "cli/cli_run.hpp"
 #include "estimator/identification/armax_paper.hpp"
 #include "estimator/identification/chain_model.hpp"
@@ -26,36 +27,10 @@ fs::path scratch(const std::string& name) {
   return dir / name;
 }
 
-/// Receptance FRFs of the chain (Rayleigh damping) from each driven DOF d to every DOF,
-/// 0 … 500 Hz every 0.25 Hz, as dataset 58 (complex double); nodes 1, 2, 3 in +X, the
-/// reference node d + 1 in +X.
+/// The chain's FRFs (chain_frf.hpp) in the scratch folder.
 fs::path chain_frf_file(const ident_test::ChainModel& model, const std::string& name = "chain_frf.unv") {
-  uff::UffFile f;
-  int id = 0;
-  for (const Eigen::Index d : model.drive)
-    for (int o = 0; o < 3; ++o) {
-      uff::Function58 fn;
-      fn.function_type = 4;
-      fn.function_id = ++id;
-      fn.response_node = o + 1;
-      fn.response_direction = 1;
-      fn.reference_node = static_cast<std::int64_t>(d) + 1;
-      fn.reference_direction = 1;
-      fn.ordinate_type = 6;
-      fn.even = true;
-      fn.abscissa_min = 0;
-      fn.abscissa_increment = 0.25;
-      for (int k = 0; k <= 2000; ++k) {
-        const double w = 2 * M_PI * 0.25 * k;
-        const Eigen::MatrixXcd H =
-            (model.K.cast<cd>() - w * w * model.M.cast<cd>() + cd(0, w) * model.C.cast<cd>()).inverse();
-        fn.x.push_back(0.25 * k);
-        fn.y.push_back(H(o, d));
-      }
-      f.datasets.emplace_back(fn);
-    }
   const fs::path p = scratch(name);
-  uff::write_uff(f, p.string(), uff::Precision::Extended);
+  write_chain_frf(model, p.string());
   return p;
 }
 

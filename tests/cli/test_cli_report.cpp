@@ -3,7 +3,9 @@
 // in headless Chromium (Debian's `chromium`, installed by scripts/install-deps).
 #include <catch2/catch.hpp>
 
+#include <algorithm>
 #include <array>
+#include <tuple>
 #include <cstdio>
 #include <filesystem>
 #include <map>
@@ -12,6 +14,7 @@
 #include <set>
 #include <unistd.h>
 
+#include "chain_frf.hpp"
 #include "cli_run.hpp"
 
 namespace fs = std::filesystem;
@@ -128,8 +131,88 @@ void check_shapes(const std::string& html, const json& j, const json& pairs) {
   }
 }
 
+/// The MEMS figure of each pair (the seed's Figure 4) against the JSON, and what
+/// least squares guarantees of it: with the pair's test shape alone e² = 1 − MAC;
+/// with every test shape e² is no larger and the superposition's MAC no smaller; the
+/// error mode ê is orthogonal to the pair's test shape and its norm gives e².
+void check_mems(const std::string& html, const json& j) {
+  REQUIRE(!j["shapes"].empty());
+  for (std::size_t k = 0; k < j["shapes"].size(); ++k) {
+    const json& sh = j["shapes"][k];
+    const json& m = sh["mems"];
+    const std::string f = figure(html, "mems-" + std::to_string(k));
+    REQUIRE(!f.empty());
+    const auto fig = marks(html, "figure", "mems");
+    REQUIRE(fig.size() == j["shapes"].size());
+    CHECK(num(fig[k], "data-pair") == static_cast<double>(k));
+    CHECK(num(fig[k], "data-error-squared") == m["error_squared"].get<double>());
+    CHECK(num(fig[k], "data-mac-superposition") == m["mac_superposition"].get<double>());
+    CHECK(num(fig[k], "data-pair-error-squared") == m["pair_error_squared"].get<double>());
+    CHECK(marks(f, "path", "deformed error").size() == 4);
+    const auto bars = marks(f, "rect", "alpha");
+    REQUIRE(bars.size() == m["alpha"].size());
+    for (std::size_t i = 0; i < bars.size(); ++i) {
+      CHECK(num(bars[i], "data-test-mode") == m["alpha"][i][0].get<double>());
+      CHECK(num(bars[i], "data-v") == m["alpha"][i][1].get<double>());
+    }
+    const double mac = sh["mac"];
+    CHECK(m["pair_error_squared"].get<double>() == Approx(1 - mac).margin(1e-12));
+    CHECK(m["error_squared"].get<double>() <= m["pair_error_squared"].get<double>() + 1e-12);
+    CHECK(m["mac_superposition"].get<double>() >= mac - 1e-12);
+    // ê against the analysis shape and the pair's test shape at the measured nodes.
+    std::map<long, std::array<double, 3>> fe, test;
+    for (const auto& r : sh["fe"]) fe[r[0]] = {r[1], r[2], r[3]};
+    for (const auto& r : sh["test"]) test[r[0]] = {r[1], r[2], r[3]};
+    double ee = 0, aa = 0, et = 0, tt = 0;
+    for (const auto& r : m["error"]) {
+      const long node = r[0];
+      REQUIRE(fe.count(node));
+      REQUIRE(test.count(node));
+      for (std::size_t c = 0; c < 3; ++c) {
+        const double e = r[c + 1];
+        ee += e * e, aa += fe[node][c] * fe[node][c], et += e * test[node][c], tt += test[node][c] * test[node][c];
+      }
+    }
+    CHECK(ee / aa == Approx(m["error_squared"].get<double>()).epsilon(1e-9));
+    CHECK(std::abs(et) <= 1e-9 * std::sqrt(ee * tt));
+  }
+}
+
+/// The cross-orthogonality heat map against the JSON (`rows_are_test`: drawn transposed,
+/// as estimate's MAC), its pairs outlined, each pair's acceptance as the JSON's thresholds say.
+void check_xor(const std::string& html, const json& x, bool rows_are_test) {
+  REQUIRE(!x.contains("unavailable"));
+  std::set<std::pair<int, int>> pairs;
+  const auto rows = x["fe_modes"].get<std::vector<int>>(), cols = x["test_modes"].get<std::vector<int>>();
+  for (const auto& p : x["pairs"]) {
+    const int i = static_cast<int>(std::find(rows.begin(), rows.end(), p["fe_mode"].get<int>()) - rows.begin());
+    const int k = static_cast<int>(std::find(cols.begin(), cols.end(), p["test_mode"].get<int>()) - cols.begin());
+    pairs.insert(rows_are_test ? std::make_pair(k, i) : std::make_pair(i, k));
+    CHECK(p["xor"].get<double>() == x["matrix"][static_cast<std::size_t>(i)][static_cast<std::size_t>(k)].get<double>());
+    CHECK(p["accepted"].get<bool>() ==
+          (p["xor"].get<double>() > x["min_diagonal"].get<double>() &&
+           p["largest_off_diagonal"].get<double>() < x["max_off_diagonal"].get<double>()));
+  }
+  json drawn = x["matrix"];
+  if (rows_are_test) {
+    drawn = json::array();
+    for (std::size_t k = 0; k < cols.size(); ++k) {
+      json row = json::array();
+      for (std::size_t i = 0; i < rows.size(); ++i) row.push_back(x["matrix"][i][k]);
+      drawn.push_back(row);
+    }
+  }
+  check_heat_map(figure(html, "fig-xor"), drawn, pairs);
+  const auto rowsdrawn = marks(html, "tr", "xor-pair");
+  REQUIRE(rowsdrawn.size() == x["pairs"].size());
+  for (std::size_t k = 0; k < rowsdrawn.size(); ++k) {
+    CHECK(num(rowsdrawn[k], "data-v") == x["pairs"][k]["xor"].get<double>());
+    CHECK(num(rowsdrawn[k], "data-off") == x["pairs"][k]["largest_off_diagonal"].get<double>());
+  }
+}
+
 /// Headless Chromium: the page renders, no script error, every figure drawn, a screenshot.
-void check_in_browser(const fs::path& html, std::size_t min_figures) {
+void check_in_browser(const fs::path& html, std::size_t min_figures, unsigned long min_height = 1500) {
   REQUIRE(std::system("command -v chromium >/dev/null 2>&1") == 0);  // scripts/install-deps installs it
   const fs::path profile = html.parent_path() / ("chromium-" + html.stem().string());
   const std::string common = "timeout 120 chromium --headless=new --no-sandbox --disable-gpu --disable-dev-shm-usage "
@@ -145,7 +228,7 @@ void check_in_browser(const fs::path& html, std::size_t min_figures) {
   REQUIRE(std::regex_search(root, m, std::regex("data-empty-figures=\"([^\"]*)\"")));
   CHECK(m[1] == "");
   REQUIRE(std::regex_search(root, m, std::regex("data-page-height=\"(\\d+)\"")));
-  CHECK(std::stoul(m[1]) > 1500);
+  CHECK(std::stoul(m[1]) > min_height);
   const fs::path png = html.parent_path() / (html.stem().string() + ".png");
   fs::remove(png);
   std::system((common + "--window-size=1200,1600 --screenshot=" + png.string() + " file://" + fs::absolute(html).string() +
@@ -190,6 +273,12 @@ Report pretest_report() {
                                    "--generations 4 --exciter-at 41:0,1,0 --exciter-at 79:0,0,1 --evaluate");
 }
 
+Report identify_report() {
+  const fs::path in = scratch() / "chain_frf.unv";
+  write_chain_frf(ident_test::chain_model(true, {0}), in.string());
+  return run_report("identify", "identify modes " + in.string() + " --svg " + (scratch() / "stabilisation.svg").string());
+}
+
 }  // namespace
 
 TEST_CASE("ssid correlate --report: MAC, frequencies and shapes are the JSON's", "[cli][report]") {
@@ -222,6 +311,43 @@ TEST_CASE("ssid correlate --report: MAC, frequencies and shapes are the JSON's",
   REQUIRE(bars.size() == acc.size());
   for (std::size_t k = 0; k < bars.size(); ++k) CHECK(num(bars[k], "data-v") == acc[k]["error_pct"].get<double>());
   check_shapes(r.html, j, acc);
+  check_mems(r.html, j);
+  check_xor(r.html, j["cross_orthogonality"], false);
+  CHECK(j["cross_orthogonality"]["basis"] == "every analysis mode");
+  // The pair selector and the anchors: one option and one link per pair.
+  for (std::size_t k = 0; k < j["shapes"].size(); ++k) {
+    CHECK(r.html.find("<option value=\"" + std::to_string(k) + "\">") != std::string::npos);
+    CHECK(r.html.find("href=\"#mems-" + std::to_string(k) + "\"") != std::string::npos);
+  }
+}
+
+TEST_CASE("ssid correlate: the cross-orthogonality of a deck's modes with themselves is the identity", "[cli][report]") {
+  // SEREP's reduced mass makes the analysis modes orthonormal at the test DOFs: a test
+  // that is the deck's own modes (ssid modes --uff) gives X = I, whatever the sensors.
+  const fs::path dir = scratch();
+  const fs::path own = dir / "own_modes.unv", js = dir / "own.json";
+  const auto m = run_ssid("modes " + src("samples/mpi_rod.bdf") + " --nmodes 12 --uff " + own.string() +
+                          " --sensors 1,3,5,7,9,11,13,15,17,19,21,23");
+  INFO(m.err);
+  REQUIRE(m.code == 0);
+  const auto r = run_ssid("correlate " + src("samples/mpi_rod.bdf") + " " + own.string() + " --nmodes 12 --json " + js.string());
+  INFO(r.err);
+  REQUIRE(r.code == 0);
+  const json x = json::parse(cli_slurp(js))["cross_orthogonality"];
+  REQUIRE(!x.contains("unavailable"));
+  REQUIRE(x["fe_modes"].size() == 12);
+  REQUIRE(x["test_modes"].size() == 12);
+  double worst_diag = 0, worst_off = 0;
+  for (std::size_t i = 0; i < 12; ++i)
+    for (std::size_t k = 0; k < 12; ++k) {
+      const double v = x["matrix"][i][k];
+      if (i == k) worst_diag = std::max(worst_diag, std::abs(v - 1));
+      else worst_off = std::max(worst_off, v);
+    }
+  INFO("diagonal off 1 by " << worst_diag << ", largest off-diagonal " << worst_off);
+  CHECK(worst_diag < 1e-6);
+  CHECK(worst_off < 1e-6);
+  for (const auto& p : x["pairs"]) CHECK(p["accepted"].get<bool>());
 }
 
 TEST_CASE("ssid estimate --report: before and after, parameters, convergence and shapes are the JSON's", "[cli][report]") {
@@ -279,6 +405,82 @@ TEST_CASE("ssid estimate --report: before and after, parameters, convergence and
   REQUIRE(obj.size() == j["iterations"].size());
   for (std::size_t k = 0; k < obj.size(); ++k) CHECK(num(obj[k], "data-v") == j["iterations"][k]["objective"].get<double>());
   check_shapes(r.html, j, c0["pairs"]);
+  check_mems(r.html, j);
+  check_xor(r.html, j["cross_orthogonality"], true);
+}
+
+TEST_CASE("ssid identify modes --report and --svg: the stabilisation diagram and the modes are the JSON's",
+          "[cli][report][identify]") {
+  const Report r = identify_report();
+  const json& j = r.j;
+  check_run(j, r.html, {(scratch() / "chain_frf.unv").string()});
+  REQUIRE(j["modes"].size() == 3);
+  const json& st = j["stabilisation"];
+  // One symbol per pole of the diagram, at its frequency and order, of its class.
+  const std::string svg = cli_slurp(scratch() / "stabilisation.svg");
+  CHECK(svg.rfind("<?xml", 0) == 0);
+  for (const std::string& drawing : {figure(r.html, "fig-stabilisation"), svg}) {
+    std::vector<Attributes> poles;
+    for (const char* tag : {"circle", "rect", "path"})
+      for (const auto& a : marks(drawing, tag, "pole")) poles.push_back(a);
+    REQUIRE(poles.size() == st["poles"].size());
+    std::multiset<std::tuple<double, double, std::string>> drawn, listed;
+    for (const auto& a : poles) drawn.insert({num(a, "data-x"), num(a, "data-y"), a.at("data-cls")});
+    for (const auto& p : st["poles"]) listed.insert({p["hz"].get<double>(), p["order"].get<double>(), p["class"].get<std::string>()});
+    CHECK(drawn == listed);
+    const auto chosen = marks(drawing, "line", "chosen");
+    REQUIRE(chosen.size() == 3);
+    for (std::size_t m = 0; m < 3; ++m) CHECK(num(chosen[m], "data-x") == j["modes"][m]["hz"].get<double>());
+    // Σ|H| behind: one point per FRF line.
+    const auto sum = marks(drawing, "polyline", "frf-sum");
+    REQUIRE(sum.size() == 1);
+    const std::string pts = sum[0].at("points");
+    CHECK(static_cast<std::size_t>(std::count(pts.begin(), pts.end(), ',')) == st["frf_sum"]["hz"].size());
+  }
+  // Σ|H|: the sum of the moduli of the three FRFs, at every line of the file.
+  CHECK(st["frf_sum"]["hz"].size() == 2001);
+  CHECK(st["frf_sum"]["hz"][40].get<double>() == 10.0);
+  {
+    const auto model = ident_test::chain_model(true, {0});
+    const double w = 2 * M_PI * 10.0;
+    using cd = std::complex<double>;
+    const Eigen::MatrixXcd H = (model.K.cast<cd>() - w * w * model.M.cast<cd>() + cd(0, w) * model.C.cast<cd>()).inverse();
+    CHECK(st["frf_sum"]["magnitude"][40].get<double>() == Approx(H.col(0).cwiseAbs().sum()).epsilon(1e-12));
+  }
+  // Each chosen mode's poles: stable ones, as many as the mode's "orders".
+  for (std::size_t m = 0; m < 3; ++m) {
+    std::size_t n = 0;
+    for (const auto& p : st["poles"])
+      if (p["mode"] == static_cast<int>(m) + 1) {
+        CHECK(p["class"] == "s");
+        ++n;
+      }
+    CHECK(n == j["modes"][m]["orders"].get<std::size_t>());
+  }
+  // The table: frequency, damping, their σ, MPC, MPD.
+  const auto rows = marks(r.html, "tr", "mode");
+  REQUIRE(rows.size() == 3);
+  for (std::size_t m = 0; m < 3; ++m) {
+    const json& md = j["modes"][m];
+    CHECK(num(rows[m], "data-hz") == md["hz"].get<double>());
+    CHECK(num(rows[m], "data-hz-std") == md["hz_std"].get<double>());
+    CHECK(num(rows[m], "data-zeta") == md["zeta"].get<double>());
+    CHECK(num(rows[m], "data-zeta-std") == md["zeta_std"].get<double>());
+    CHECK(num(rows[m], "data-mpc") == md["mpc"].get<double>());
+    CHECK(num(rows[m], "data-mpd") == md["mpd_deg"].get<double>());
+    // Real modes of a proportionally damped chain: collinear, no phase scatter.
+    CHECK(md["mpc"].get<double>() > 0.9999);
+    CHECK(md["mpd_deg"].get<double>() < 0.01);
+  }
+}
+
+TEST_CASE("ssid identify modes --svg needs ERA", "[cli][identify]") {
+  const fs::path in = scratch() / "chain_frf.unv";
+  write_chain_frf(ident_test::chain_model(true, {0}), in.string());
+  const auto r = run_ssid("identify modes " + in.string() + " --method armax --svg " + (scratch() / "x.svg").string());
+  CHECK(r.code == 2);
+  CHECK(r.err == "ssid: error: --svg: the stabilisation diagram is ERA's and pLSCF's (--method era|plscf); ARMAX's modes "
+                 "come from runs, not orders\n");
 }
 
 TEST_CASE("ssid diagnose --report: residuals, ranking, cause and gain are the JSON's", "[cli][report]") {
@@ -367,4 +569,5 @@ TEST_CASE("the samples' reports render in headless Chromium", "[cli][report][bro
   check_in_browser(estimate_report().path, 28);
   check_in_browser(diagnose_report().path, 7);
   check_in_browser(pretest_report().path, 10);
+  check_in_browser(identify_report().path, 1, 600);
 }
