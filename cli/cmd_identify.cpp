@@ -10,6 +10,7 @@
 #include <cmath>
 #include <fmt/format.h>
 #include <iostream>
+#include <limits>
 #include <map>
 #include <utility>
 
@@ -167,6 +168,9 @@ struct Identified {
     Eigen::VectorXcd shape;  ///< at `responses`, unit norm, rotated to its best real line
     std::string columns;     ///< the method's own table columns
     nlohmann::json extra;    ///< the method's own JSON fields
+    /// σ of each component of the unit shape, RMS over the components (the
+    /// spread of the cluster's shapes across orders); NaN: the method gives none.
+    double shape_std = std::numeric_limits<double>::quiet_NaN();
   };
   std::string columns_header;  ///< heads `Mode::columns`
   std::vector<Mode> modes;
@@ -187,9 +191,14 @@ Identified era_modes(const FrfSet& s, int max_order, const id::StabilisationOpti
   r.columns_header = "     MPC  orders";
   for (const auto& d : st.diagram)
     if (d.reason != id::RejectReason::None) ++r.rejected[id::reject_reason_text(d.reason)];
-  for (const id::ClusteredMode& md : st.modes)
+  for (const id::ClusteredMode& md : st.modes) {
     r.modes.push_back({md.hz, md.zeta, md.hz_std, md.zeta_std, id::rotate_to_real(md.shape),
                        fmt::format(" {:7.4f} {:7d}", md.mpc, md.poles), {{"mpc", md.mpc}, {"orders", md.poles}}});
+    // On the unit shape, as the estimator's σ is (deck_study.hpp).
+    if (md.shape_std.size() && md.shape.norm() > 0)
+      r.modes.back().shape_std =
+          md.shape_std.norm() / std::sqrt(static_cast<double>(md.shape_std.size())) / md.shape.norm();
+  }
   return r;
 }
 
@@ -348,6 +357,7 @@ int identify_modes(const Args& args) {
     }
     nlohmann::json j = {
         {"hz", md.hz}, {"zeta", md.zeta}, {"hz_std", md.hz_std}, {"zeta_std", md.zeta_std}, {"shape", shape}};
+    if (std::isfinite(md.shape_std)) j["shape_std"] = md.shape_std;
     j.update(md.extra);
     modes.push_back(j);
     out.datasets.emplace_back(uff::NodalData55::normal_mode(static_cast<std::int64_t>(m + 1), md.hz, nodes, values,

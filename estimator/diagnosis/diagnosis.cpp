@@ -35,6 +35,8 @@ translators::ModeSet select_modes(const translators::ModeSet& s, const std::vect
     if (i < s.numbers.size()) out.numbers.push_back(s.numbers[i]);
     if (i < s.damping.size()) out.damping.push_back(s.damping[i]);
     if (i < s.modal_mass.size()) out.modal_mass.push_back(s.modal_mass[i]);
+    if (i < s.frequency_std_hz.size()) out.frequency_std_hz.push_back(s.frequency_std_hz[i]);
+    if (i < s.shape_std.size()) out.shape_std.push_back(s.shape_std[i]);
   }
   return out;
 }
@@ -286,11 +288,15 @@ class Engine {
   }
   /// The measurement σ of the next hypotheses' estimates (the noise the data
   /// imply): frequencies in % of each, shapes in % of the RMS component (an
-  /// absolute shape σ of the study gives way to it).
-  void set_noise(double frequency_std_pct, double shape_std_pct) {
+  /// absolute shape σ of the study gives way to it); modes with σ of the
+  /// identification keep theirs, times the scales ŝ_f, ŝ_s (on the σ
+  /// assumed, not compounded).
+  void set_noise(double frequency_std_pct, double shape_std_pct, double frequency_scale, double shape_scale) {
     m_opt.study.frequency_std_pct = frequency_std_pct;
     m_opt.study.shape_std.reset();
     m_opt.study.shape_std_pct = shape_std_pct;
+    m_opt.study.identified_frequency_std_scale = frequency_scale;
+    m_opt.study.identified_shape_std_scale = shape_scale;
   }
   /// Where the estimates of the next hypotheses report their cycles.
   void set_update_progress(Progress p) { m_update_progress = std::move(p); }
@@ -735,6 +741,9 @@ class Diagnoser {
     dg.noise.estimated = options.calibration.estimate_noise;
     dg.noise.assumed_frequency_pct = dg.noise.frequency_pct = options.study.frequency_std_pct;
     dg.noise.assumed_shape_pct = dg.noise.shape_pct = assumed_shape_pct();
+    dg.noise.std_from = m_base.measurement_std;
+    for (const auto& c : m_base.configurations)
+      for (const auto& f : c.std_from) dg.noise.identified = dg.noise.identified || f == "identification";
     if (m_engine.interrupted()) return;
     const UpdateResult& first = m_engine.last();
     const Screen s1 =
@@ -745,7 +754,15 @@ class Diagnoser {
       dg.noise.shape_pct = dg.noise.assumed_shape_pct * dg.noise.scale.scale[kShapeRows];
     }
     try {
-      if (options.calibration.estimate_noise)
+      if (options.calibration.estimate_noise && dg.noise.identified)
+        report(options.progress,
+               "ordinary update at the noise the data imply (the identification's sigma times " +
+                   significant(dg.noise.scale.scale[kFrequencyRows], 3) + " for frequencies" +
+                   (dg.noise.scale.rows[kShapeRows] > 0
+                        ? ", times " + significant(dg.noise.scale.scale[kShapeRows], 3) + " for shapes)"
+                        : "; no shapes measured)"),
+               0.05);
+      else if (options.calibration.estimate_noise)
         report(options.progress,
                "ordinary update at the noise the data imply (frequencies " + significant(dg.noise.frequency_pct, 3) +
                    (dg.noise.scale.rows[kShapeRows] > 0
@@ -758,7 +775,8 @@ class Diagnoser {
     }
     if (options.calibration.estimate_noise && !dg.interrupted) {
       m_engine.warm_start(m_param.names, first.r);
-      m_engine.set_noise(dg.noise.frequency_pct, dg.noise.shape_pct);
+      m_engine.set_noise(dg.noise.frequency_pct, dg.noise.shape_pct, dg.noise.scale.scale[kFrequencyRows],
+                         dg.noise.scale.scale[kShapeRows]);
       const Fit before = m_param.before;  // the deck as given, not the warm start
       m_param = m_engine.evaluate("parameter", m_base_texts, {}, &m_base);
       m_param.before = before;
