@@ -440,9 +440,15 @@ std::vector<Eigen::VectorXd> neighbours_of_unexplained(PreparedConfiguration& pb
 }
 
 /// The noise the comparisons of fits use: σ of a frequency [% of it] and of a
-/// component of a unit shape.
+/// component of a unit shape; per test mode (configuration, test index) where
+/// its σ is the identification's (Study::std_from), else the uniform values.
 struct FitNoise {
   double frequency_pct = 1, shape_unit = 1;
+  std::map<std::pair<int, int>, std::pair<double, double>> per_mode;  ///< (σ_f %, σ_s)
+  std::pair<double, double> of(int config, int test) const {
+    const auto it = per_mode.find({config, test});
+    return it != per_mode.end() ? it->second : std::make_pair(frequency_pct, shape_unit);
+  }
 };
 
 /// "" when `h` fits the test modes that both pair no worse than `ref`, pairs
@@ -456,23 +462,22 @@ std::string worse_fit(const Hypothesis& h, const Hypothesis& ref, const FitNoise
     return "pairs fewer test modes (" + std::to_string(h.after.paired) + " vs " + std::to_string(ref.after.paired) + ")";
   std::map<std::pair<int, int>, const UpdatePair*> mine;
   for (const auto& p : h.pairs) mine[{p.config, p.test}] = &p;
-  double e2h = 0, e2r = 0, mach = 0, macr = 0, shh = 0, shr = 0;
+  double e2h = 0, e2r = 0, mach = 0, macr = 0, df = 0, ds = 0;
   int n = 0;
   for (const auto& p : ref.pairs) {
     const auto it = mine.find({p.config, p.test});
     if (it == mine.end()) continue;
+    const auto [sf, ss] = noise.of(p.config, p.test);
     e2h += it->second->error_pct * it->second->error_pct;
     e2r += p.error_pct * p.error_pct;
+    df += (it->second->error_pct * it->second->error_pct - p.error_pct * p.error_pct) / (sf * sf);
     mach += it->second->mac;
     macr += p.mac;
-    shh += 2.0 - 2.0 * std::sqrt(std::clamp(it->second->mac, 0.0, 1.0));
-    shr += 2.0 - 2.0 * std::sqrt(std::clamp(p.mac, 0.0, 1.0));
+    ds += (std::sqrt(std::clamp(p.mac, 0.0, 1.0)) - std::sqrt(std::clamp(it->second->mac, 0.0, 1.0))) * 2.0 / (ss * ss);
     ++n;
   }
   if (n > 0) {
     const std::string on = " on the " + std::to_string(n) + " modes both pair";
-    const double df = (e2h - e2r) / (noise.frequency_pct * noise.frequency_pct);
-    const double ds = (shh - shr) / (noise.shape_unit * noise.shape_unit);
     if (df > 1.0)
       return "makes the frequency fit worse (RMS error " + fixed(std::sqrt(e2h / n), 3) + " % vs " + fixed(std::sqrt(e2r / n), 3) +
              " %" + on + ": chi^2 up by " + significant(df, 3) + ")";
@@ -1015,6 +1020,16 @@ class Diagnoser {
     n.frequency_pct = m_dg.noise.frequency_pct;
     const auto ns = static_cast<double>(m_base.configurations.front().dofs.size());  // the sensors the shapes have
     n.shape_unit = m_dg.noise.shape_pct / 100.0 / std::sqrt(std::max(ns, 1.0));
+    // Modes with the identification's σ: those the estimates used (scaled by
+    // the estimated noise when it is estimated: m_base is the re-run update's).
+    for (std::size_t c = 0; c < m_base.configurations.size(); ++c) {
+      const auto& pc = m_base.configurations[c];
+      for (std::size_t t = 0; t < pc.test.size() && t < pc.std_from.size(); ++t)
+        if (pc.std_from[t] == "identification")
+          n.per_mode[{static_cast<int>(c), static_cast<int>(t)}] = {
+              100.0 * pc.test[t].frequency_std_hz / pc.test[t].frequency_hz,
+              pc.test[t].shape_std > 0 ? pc.test[t].shape_std : n.shape_unit};
+    }
     return n;
   }
 

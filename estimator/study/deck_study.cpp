@@ -1365,10 +1365,10 @@ std::string format_summary(const EstimationProblem& problem, const EstimationRes
     o << "NOT converged after " << cycles << " cycle(s)" << how;
   else o << "STOPPED after " << cycles << " cycle(s)" << how;
   o << "; operators " << problem.operators << "\n";
-  if (!problem.measurement_std.empty()) o << "measurement σ: " << problem.measurement_std << "\n";
   if (r.partial())
     o << "PARTIAL RESULT (" << r.partial_reason << "): the values below are those of the last accepted cycle, not an "
       << "estimate to trust\n";
+  if (!problem.measurement_std.empty()) o << "measurement σ: " << problem.measurement_std << "\n";
   o << "\n";
 
   // Parameters, with what each designs and its unit.

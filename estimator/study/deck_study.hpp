@@ -25,7 +25,9 @@
 ///    the unit-normalised test shape): 5 % of its RMS component, 0.05/√n_s with
 ///    n_s sensor DOFs — both above what a good modal test resolves (about 0.2 %
 ///    and 2 %): they must also cover the model's own form error, and a σ assumed
-///    too small makes the diagnosis explain noise (issue 26);
+///    too small makes the diagnosis explain noise (issue 26); identified modes
+///    (`ssid identify modes --json`) bring their own σ per mode, which replace
+///    these (Study::std_from, floored);
 ///  - sensors: measured DOFs on constrained analysis DOFs are dropped (they
 ///    measure nothing the model can move), with a note;
 ///  - pairing: the study's fixed pairs first, then MAC ≥ 0.6 within ±50 % in
