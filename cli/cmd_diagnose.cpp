@@ -63,7 +63,7 @@ nlohmann::json fit_json(const dx::Fit& f) {
 void add_diagnose_options(po::options_description& desc) {
   desc.add_options()("deck", po::value<std::string>()->required(), "the nominal deck with its DESVAR parameters")(
       "measured", po::value<std::string>()->required(),
-      "measured modes: universal file (dataset 55), or frequencies only (.csv, .txt, .json: docs/estimation.md)")(
+      "measured modes: universal file (dataset 55), the JSON of ssid identify modes (modes with their sigma), or frequencies only (.csv, .txt, .json: docs/estimation.md)")(
       "study", po::value<std::string>(),
       "study file (JSON, docs/estimation.md; its \"diagnosis\" section: docs/diagnosis.md): noise, priors, pairs, kinds, configurations")(
       "json", po::value<std::string>(), "write the diagnosis as JSON to this file ('-' for stdout)")(
@@ -267,6 +267,8 @@ nlohmann::json diagnosis_json(const dx::Diagnosis& dg, const dx::Hypothesis& cau
     };
     j["noise"] = {{"mode", n.estimated ? "estimated" : "given"},
                   {"pooled", n.scale.pooled},
+                  {"std_from", n.std_from},
+                  {"identified", n.identified},
                   {"frequency", group(dx::kFrequencyRows, n.assumed_frequency_pct, n.frequency_pct, n.frequency_pct_cause)},
                   {"shape", group(dx::kShapeRows, n.assumed_shape_pct, n.shape_pct, n.shape_pct_cause)}};
     const auto& r = dg.residual;
@@ -348,17 +350,28 @@ void print_report(const dx::Diagnosis& dg, const dx::Hypothesis& cause, const st
     const auto& n = dg.noise;
     // Frequency-only data has no shape rows: no shape noise to imply or test.
     const bool shapes = n.scale.rows[dx::kShapeRows] > 0;
-    std::cout << "   - noise " << (n.estimated ? "the data imply" : "(given)") << ": frequencies "
-              << estimator::significant(n.frequency_pct, 3) << " %";
-    if (shapes) std::cout << ", shapes " << estimator::significant(n.shape_pct, 3) << " % of the RMS component";
-    if (n.estimated && shapes)
-      std::cout << " (assumed " << estimator::significant(n.assumed_frequency_pct, 3) << " % and "
-                << estimator::significant(n.assumed_shape_pct, 3) << " %; " << estimator::significant(n.scale.dof[dx::kFrequencyRows], 3)
-                << " and " << estimator::significant(n.scale.dof[dx::kShapeRows], 4) << " degrees of freedom"
-                << (n.scale.pooled ? ", one scale for both" : "") << ")";
-    else if (n.estimated)
-      std::cout << " (assumed " << estimator::significant(n.assumed_frequency_pct, 3) << " %; "
-                << estimator::significant(n.scale.dof[dx::kFrequencyRows], 3) << " degrees of freedom; no shapes measured)";
+    if (n.identified) {  // per-mode σ of the identification: the scales on them
+      std::cout << "   - noise " << (n.estimated ? "the data imply" : "(given)") << ": the assumed sigma times "
+                << estimator::significant(n.scale.scale[dx::kFrequencyRows], 3) << " (frequencies)";
+      if (shapes) std::cout << " and " << estimator::significant(n.scale.scale[dx::kShapeRows], 3) << " (shapes)";
+      if (n.estimated)
+        std::cout << " (" << estimator::significant(n.scale.dof[dx::kFrequencyRows], 3)
+                  << (shapes ? " and " + estimator::significant(n.scale.dof[dx::kShapeRows], 4) : std::string())
+                  << " degrees of freedom" << (n.scale.pooled ? ", one scale for both" : "") << ")";
+      std::cout << "\n   - assumed sigma: " << n.std_from;
+    } else {
+      std::cout << "   - noise " << (n.estimated ? "the data imply" : "(given)") << ": frequencies "
+                << estimator::significant(n.frequency_pct, 3) << " %";
+      if (shapes) std::cout << ", shapes " << estimator::significant(n.shape_pct, 3) << " % of the RMS component";
+      if (n.estimated && shapes)
+        std::cout << " (assumed " << estimator::significant(n.assumed_frequency_pct, 3) << " % and "
+                  << estimator::significant(n.assumed_shape_pct, 3) << " %; " << estimator::significant(n.scale.dof[dx::kFrequencyRows], 3)
+                  << " and " << estimator::significant(n.scale.dof[dx::kShapeRows], 4) << " degrees of freedom"
+                  << (n.scale.pooled ? ", one scale for both" : "") << ")";
+      else if (n.estimated)
+        std::cout << " (assumed " << estimator::significant(n.assumed_frequency_pct, 3) << " %; "
+                  << estimator::significant(n.scale.dof[dx::kFrequencyRows], 3) << " degrees of freedom; no shapes measured)";
+    }
     std::cout << "\n   - against the assumed noise: frequency chi^2 " << estimator::significant(n.scale.chi2[dx::kFrequencyRows], 4)
               << " (p = " << estimator::significant(dg.residual.chi2_p[dx::kFrequencyRows], 2) << ")";
     if (shapes)

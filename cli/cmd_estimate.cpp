@@ -77,7 +77,7 @@ int cmd_estimate(const Args& args) {
   po::options_description desc("ssid estimate options");
   desc.add_options()("deck", po::value<std::string>(), "NASTRAN deck with DESVAR parameters")(
       "measured", po::value<std::string>(),
-      "measured modes: universal file with dataset 55 (+ nodes 15/2411), or frequencies only (.csv, .txt, .json)")(
+      "measured modes: universal file with dataset 55 (+ nodes 15/2411), the JSON of ssid identify modes (modes with their sigma), or frequencies only (.csv, .txt, .json)")(
       "study", po::value<std::string>(), "study file (JSON, docs/estimation.md): priors, weights, pairing, pairs, configurations")(
       "frequencies-only", "use the measured frequencies only, not the shapes (study \"measurement\": {\"frequencies_only\": true})")(
       "json", po::value<std::string>(), "write the result as JSON to this file ('-' for stdout)")(

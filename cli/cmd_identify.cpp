@@ -184,6 +184,9 @@ struct Identified {
     Eigen::VectorXcd shape;  ///< at `responses`, unit norm, rotated to its best real line
     std::string columns;     ///< the method's own table columns
     nlohmann::json extra;    ///< the method's own JSON fields
+    /// σ of each component of the unit shape, RMS over the components (the
+    /// spread of the cluster's shapes across orders); NaN: the method gives none.
+    double shape_std = std::numeric_limits<double>::quiet_NaN();
   };
   std::string columns_header;  ///< heads `Mode::columns`
   std::vector<Mode> modes;
@@ -240,9 +243,14 @@ Identified era_modes(const FrfSet& s, int max_order, const id::StabilisationOpti
   r.columns_header = "     MPC  orders";
   for (const auto& d : st.diagram)
     if (d.reason != id::RejectReason::None) ++r.rejected[id::reject_reason_text(d.reason)];
-  for (const id::ClusteredMode& md : st.modes)
+  for (const id::ClusteredMode& md : st.modes) {
     r.modes.push_back({md.hz, md.zeta, md.hz_std, md.zeta_std, id::rotate_to_real(md.shape),
                        fmt::format(" {:7.4f} {:7d}", md.mpc, md.poles), {{"mpc", md.mpc}, {"orders", md.poles}}});
+    // On the unit shape, as the estimator's σ is (deck_study.hpp).
+    if (md.shape_std.size() && md.shape.norm() > 0)
+      r.modes.back().shape_std =
+          md.shape_std.norm() / std::sqrt(static_cast<double>(md.shape_std.size())) / md.shape.norm();
+  }
   r.stabilisation = stabilisation_json(st, orders, so, s);
   return r;
 }
@@ -272,6 +280,10 @@ Identified plscf_modes(const FrfSet& s, int max_order, const id::PlscfOptions& b
     r.modes.push_back({p.hz, p.zeta, md.hz_std, md.zeta_std, id::rotate_to_real(p.shape.normalized()),
                        fmt::format(" {:7.4f} {:7.2f} {:7d}", p.mpc, p.mpd, md.poles),
                        {{"mpc", p.mpc}, {"mpd", p.mpd}, {"orders", md.poles}}});
+    // The spread of the cluster's shapes over the orders, on the unit shape (as ERA's).
+    if (md.shape_std.size() && md.shape.norm() > 0)
+      r.modes.back().shape_std =
+          md.shape_std.norm() / std::sqrt(static_cast<double>(md.shape_std.size())) / md.shape.norm();
   }
   r.summary["lsfd_fit_error"] = fit.fit_error;
   r.notes.push_back(fmt::format("LSFD (lower and upper residuals) leaves {:.3g} of the FRFs in the band unexplained "
@@ -464,6 +476,7 @@ int identify_modes(const Args& args) {
     }
     nlohmann::json j = {
         {"hz", md.hz}, {"zeta", md.zeta}, {"hz_std", md.hz_std}, {"zeta_std", md.zeta_std}, {"shape", shape}};
+    if (std::isfinite(md.shape_std)) j["shape_std"] = md.shape_std;
     j.update(md.extra);
     if (!j.contains("mpc")) j["mpc"] = id::modal_phase_collinearity(md.shape);
     j["mpd_deg"] = id::mean_phase_deviation(md.shape);

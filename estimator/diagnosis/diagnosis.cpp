@@ -35,6 +35,8 @@ translators::ModeSet select_modes(const translators::ModeSet& s, const std::vect
     if (i < s.numbers.size()) out.numbers.push_back(s.numbers[i]);
     if (i < s.damping.size()) out.damping.push_back(s.damping[i]);
     if (i < s.modal_mass.size()) out.modal_mass.push_back(s.modal_mass[i]);
+    if (i < s.frequency_std_hz.size()) out.frequency_std_hz.push_back(s.frequency_std_hz[i]);
+    if (i < s.shape_std.size()) out.shape_std.push_back(s.shape_std[i]);
   }
   return out;
 }
@@ -286,11 +288,15 @@ class Engine {
   }
   /// The measurement σ of the next hypotheses' estimates (the noise the data
   /// imply): frequencies in % of each, shapes in % of the RMS component (an
-  /// absolute shape σ of the study gives way to it).
-  void set_noise(double frequency_std_pct, double shape_std_pct) {
+  /// absolute shape σ of the study gives way to it); modes with σ of the
+  /// identification keep theirs, times the scales ŝ_f, ŝ_s (on the σ
+  /// assumed, not compounded).
+  void set_noise(double frequency_std_pct, double shape_std_pct, double frequency_scale, double shape_scale) {
     m_opt.study.frequency_std_pct = frequency_std_pct;
     m_opt.study.shape_std.reset();
     m_opt.study.shape_std_pct = shape_std_pct;
+    m_opt.study.identified_frequency_std_scale = frequency_scale;
+    m_opt.study.identified_shape_std_scale = shape_scale;
   }
   /// Where the estimates of the next hypotheses report their cycles.
   void set_update_progress(Progress p) { m_update_progress = std::move(p); }
@@ -434,9 +440,15 @@ std::vector<Eigen::VectorXd> neighbours_of_unexplained(PreparedConfiguration& pb
 }
 
 /// The noise the comparisons of fits use: σ of a frequency [% of it] and of a
-/// component of a unit shape.
+/// component of a unit shape; per test mode (configuration, test index) where
+/// its σ is the identification's (Study::std_from), else the uniform values.
 struct FitNoise {
   double frequency_pct = 1, shape_unit = 1;
+  std::map<std::pair<int, int>, std::pair<double, double>> per_mode;  ///< (σ_f %, σ_s)
+  std::pair<double, double> of(int config, int test) const {
+    const auto it = per_mode.find({config, test});
+    return it != per_mode.end() ? it->second : std::make_pair(frequency_pct, shape_unit);
+  }
 };
 
 /// "" when `h` fits the test modes that both pair no worse than `ref`, pairs
@@ -450,23 +462,22 @@ std::string worse_fit(const Hypothesis& h, const Hypothesis& ref, const FitNoise
     return "pairs fewer test modes (" + std::to_string(h.after.paired) + " vs " + std::to_string(ref.after.paired) + ")";
   std::map<std::pair<int, int>, const UpdatePair*> mine;
   for (const auto& p : h.pairs) mine[{p.config, p.test}] = &p;
-  double e2h = 0, e2r = 0, mach = 0, macr = 0, shh = 0, shr = 0;
+  double e2h = 0, e2r = 0, mach = 0, macr = 0, df = 0, ds = 0;
   int n = 0;
   for (const auto& p : ref.pairs) {
     const auto it = mine.find({p.config, p.test});
     if (it == mine.end()) continue;
+    const auto [sf, ss] = noise.of(p.config, p.test);
     e2h += it->second->error_pct * it->second->error_pct;
     e2r += p.error_pct * p.error_pct;
+    df += (it->second->error_pct * it->second->error_pct - p.error_pct * p.error_pct) / (sf * sf);
     mach += it->second->mac;
     macr += p.mac;
-    shh += 2.0 - 2.0 * std::sqrt(std::clamp(it->second->mac, 0.0, 1.0));
-    shr += 2.0 - 2.0 * std::sqrt(std::clamp(p.mac, 0.0, 1.0));
+    ds += (std::sqrt(std::clamp(p.mac, 0.0, 1.0)) - std::sqrt(std::clamp(it->second->mac, 0.0, 1.0))) * 2.0 / (ss * ss);
     ++n;
   }
   if (n > 0) {
     const std::string on = " on the " + std::to_string(n) + " modes both pair";
-    const double df = (e2h - e2r) / (noise.frequency_pct * noise.frequency_pct);
-    const double ds = (shh - shr) / (noise.shape_unit * noise.shape_unit);
     if (df > 1.0)
       return "makes the frequency fit worse (RMS error " + fixed(std::sqrt(e2h / n), 3) + " % vs " + fixed(std::sqrt(e2r / n), 3) +
              " %" + on + ": chi^2 up by " + significant(df, 3) + ")";
@@ -735,6 +746,9 @@ class Diagnoser {
     dg.noise.estimated = options.calibration.estimate_noise;
     dg.noise.assumed_frequency_pct = dg.noise.frequency_pct = options.study.frequency_std_pct;
     dg.noise.assumed_shape_pct = dg.noise.shape_pct = assumed_shape_pct();
+    dg.noise.std_from = m_base.measurement_std;
+    for (const auto& c : m_base.configurations)
+      for (const auto& f : c.std_from) dg.noise.identified = dg.noise.identified || f == "identification";
     if (m_engine.interrupted()) return;
     const UpdateResult& first = m_engine.last();
     const Screen s1 =
@@ -745,7 +759,15 @@ class Diagnoser {
       dg.noise.shape_pct = dg.noise.assumed_shape_pct * dg.noise.scale.scale[kShapeRows];
     }
     try {
-      if (options.calibration.estimate_noise)
+      if (options.calibration.estimate_noise && dg.noise.identified)
+        report(options.progress,
+               "ordinary update at the noise the data imply (the identification's sigma times " +
+                   significant(dg.noise.scale.scale[kFrequencyRows], 3) + " for frequencies" +
+                   (dg.noise.scale.rows[kShapeRows] > 0
+                        ? ", times " + significant(dg.noise.scale.scale[kShapeRows], 3) + " for shapes)"
+                        : "; no shapes measured)"),
+               0.05);
+      else if (options.calibration.estimate_noise)
         report(options.progress,
                "ordinary update at the noise the data imply (frequencies " + significant(dg.noise.frequency_pct, 3) +
                    (dg.noise.scale.rows[kShapeRows] > 0
@@ -758,7 +780,8 @@ class Diagnoser {
     }
     if (options.calibration.estimate_noise && !dg.interrupted) {
       m_engine.warm_start(m_param.names, first.r);
-      m_engine.set_noise(dg.noise.frequency_pct, dg.noise.shape_pct);
+      m_engine.set_noise(dg.noise.frequency_pct, dg.noise.shape_pct, dg.noise.scale.scale[kFrequencyRows],
+                         dg.noise.scale.scale[kShapeRows]);
       const Fit before = m_param.before;  // the deck as given, not the warm start
       m_param = m_engine.evaluate("parameter", m_base_texts, {}, &m_base);
       m_param.before = before;
@@ -997,6 +1020,16 @@ class Diagnoser {
     n.frequency_pct = m_dg.noise.frequency_pct;
     const auto ns = static_cast<double>(m_base.configurations.front().dofs.size());  // the sensors the shapes have
     n.shape_unit = m_dg.noise.shape_pct / 100.0 / std::sqrt(std::max(ns, 1.0));
+    // Modes with the identification's σ: those the estimates used (scaled by
+    // the estimated noise when it is estimated: m_base is the re-run update's).
+    for (std::size_t c = 0; c < m_base.configurations.size(); ++c) {
+      const auto& pc = m_base.configurations[c];
+      for (std::size_t t = 0; t < pc.test.size() && t < pc.std_from.size(); ++t)
+        if (pc.std_from[t] == "identification")
+          n.per_mode[{static_cast<int>(c), static_cast<int>(t)}] = {
+              100.0 * pc.test[t].frequency_std_hz / pc.test[t].frequency_hz,
+              pc.test[t].shape_std > 0 ? pc.test[t].shape_std : n.shape_unit};
+    }
     return n;
   }
 

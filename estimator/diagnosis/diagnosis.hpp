@@ -128,6 +128,11 @@ struct NoiseReport {
   double assumed_frequency_pct = 0, assumed_shape_pct = 0;  ///< σ assumed (options, study file)
   double frequency_pct = 0, shape_pct = 0;        ///< σ the estimates use: implied (estimated) or assumed
   NoiseScale scale;                               ///< ŝ, χ², ν of the ordinary update at the assumed σ
+  /// Where the assumed σ come from (EstimationProblem::measurement_std). Where
+  /// they are the identification's, per mode, the estimated noise scales them
+  /// (σ_i → ŝ_g σ_i) and the percentages above are the study's, for modes without.
+  std::string std_from;
+  bool identified = false;  ///< some test mode's σ is the identification's
   /// σ the data imply with the (first) screened cause in the model (linearised
   /// at its estimate); NaN when no screened cause was named.
   double frequency_pct_cause = std::numeric_limits<double>::quiet_NaN();

@@ -13,6 +13,7 @@
 
 #include "estimator/correlation/measures.hpp"
 #include "estimator/eigen/eigen_solver.hpp"
+#include "estimator/identification/modal_indicators.hpp"
 #include "estimator/reporting/number_text.hpp"
 #include "formats/bulk_model.hpp"
 #include "formats/parse_error.hpp"
@@ -157,7 +158,16 @@ Study parse_study(const json& j, const std::string& source) {
   if (j.contains("prior_std_pct")) s.prior_std_pct = rd.number(j["prior_std_pct"], "prior_std_pct", true);
   if (j.contains("measurement")) {
     const auto& m = j["measurement"];
-    rd.keys(m, "measurement", {"frequency_std_pct", "shape_std", "shape_std_pct", "use_shapes", "frequencies_only"});
+    rd.keys(m, "measurement", {"frequency_std_pct", "shape_std", "shape_std_pct", "use_shapes", "frequencies_only",
+                               "std_from", "frequency_std_floor_pct", "shape_std_floor_pct"});
+    if (m.contains("std_from"))
+      s.std_from = rd.choice(m["std_from"], "measurement.std_from", {"identification", "study"}) == "study"
+                       ? MeasurementStd::Study
+                       : MeasurementStd::Identification;
+    if (m.contains("frequency_std_floor_pct"))
+      s.frequency_std_floor_pct = rd.number(m["frequency_std_floor_pct"], "measurement.frequency_std_floor_pct", true);
+    if (m.contains("shape_std_floor_pct"))
+      s.shape_std_floor_pct = rd.number(m["shape_std_floor_pct"], "measurement.shape_std_floor_pct", true);
     if (m.contains("frequency_std_pct"))
       s.frequency_std_pct = rd.number(m["frequency_std_pct"], "measurement.frequency_std_pct", true);
     if (m.contains("shape_std")) s.shape_std = rd.number(m["shape_std"], "measurement.shape_std", true);
@@ -423,7 +433,15 @@ ShapeRows map_sensors(const Study& study, const ConfigurationSource& sc, const t
                                      ? " by id; map them by position (study \"mapping\": {\"by\": \"position\", "
                                        "\"tolerance\": ...})"
                                      : " within the position tolerance"));
-  // A measured node that maps nowhere is an error, not a sensor left out.
+  // A measured node that maps nowhere is an error, not a sensor left out;
+  // identified modes name the shape entry that brings it.
+  for (const auto& [node, key] : sc.data.node_keys)
+    if (!mapping.grid_of(node)) {
+      const auto why = mapping.why_unmapped.find(node);
+      throw formats::InputError(sc.measured + ": " + key + ": test node " + std::to_string(node) + ": " +
+                                (why != mapping.why_unmapped.end() ? why->second : "no grid with this id") +
+                                " in the deck " + sc.deck);
+    }
   translators::require_mapped(set.dofs, mapping, sc.measured, "the deck " + sc.deck);
   const SparseMatrix Cg = translators::observation_matrix(obs, fe.geometry().gset());
   const SparseMatrix Ca_all = Cg * fe.reduction().T;
@@ -479,10 +497,24 @@ MeasuredMode measured_mode(const Study& study, const translators::ModeSet& set, 
   mm.shape.resize(ns);
   for (Eigen::Index r = 0; r < ns; ++r) mm.shape(r) = set.shapes(shape_rows[static_cast<std::size_t>(r)], static_cast<Eigen::Index>(m));
   if (ns == 0 || mm.shape.norm() == 0) mm.shape.resize(0);
-  mm.shape_std =
-      study.shape_std ? *study.shape_std : (ns ? study.shape_std_pct / 100.0 / std::sqrt(static_cast<double>(ns)) : 0.0);
+  const double root_ns = std::sqrt(static_cast<double>(std::max<Eigen::Index>(ns, 1)));
+  mm.shape_std = study.shape_std ? *study.shape_std : (ns ? study.shape_std_pct / 100.0 / root_ns : 0.0);
   mm.use_shape = study.use_shapes && mm.shape.size() > 0;
+  // The identification's σ replaces the study's where it has one, floored and
+  // scaled (Study::std_from, frequency_std_floor_pct, identified_*_scale).
+  if (study.std_from != MeasurementStd::Study) {
+    if (m < set.frequency_std_hz.size() && std::isfinite(set.frequency_std_hz[m]))
+      mm.frequency_std_hz = study.identified_frequency_std_scale *
+                            std::max(set.frequency_std_hz[m], study.frequency_std_floor_pct / 100.0 * mm.frequency_hz);
+    if (m < set.shape_std.size() && std::isfinite(set.shape_std[m]) && ns)
+      mm.shape_std = study.identified_shape_std_scale * std::max(set.shape_std[m], study.shape_std_floor_pct / 100.0 / root_ns);
+  }
   return mm;
+}
+
+/// Whether mode `m` of `set` takes its σ from the identification (measured_mode).
+bool identified_std(const Study& study, const translators::ModeSet& set, std::size_t m) {
+  return study.std_from != MeasurementStd::Study && m < set.frequency_std_hz.size() && std::isfinite(set.frequency_std_hz[m]);
 }
 
 /// The measured modes the study's selection keeps, at the sensor rows, with
@@ -490,6 +522,10 @@ MeasuredMode measured_mode(const Study& study, const translators::ModeSet& set, 
 void select_measured_modes(const Study& study, const ConfigurationSource& sc, std::size_t k, const std::string& who,
                            const ShapeRows& shape_rows, PreparedConfiguration& pc) {
   const translators::ModeSet& set = sc.data.modes;
+  if (study.std_from == MeasurementStd::Identification && set.frequency_std_hz.empty())
+    throw formats::InputError(study.source + ": measurement.std_from: \"identification\", but " + sc.measured +
+                              " carries no σ of its own (the JSON of ssid identify modes does; UFF 55 and frequency "
+                              "lists do not)");
   const auto& sel = study.modes;
   const std::map<int, int> fixed = fixed_pairs_of(study, sc, k);
   std::vector<int> left_out;
@@ -514,6 +550,7 @@ void select_measured_modes(const Study& study, const ConfigurationSource& sc, st
     if (auto it = fixed.find(number); it != fixed.end()) mm.fixed_partner = it->second;
     pc.test.push_back(mm);
     pc.test_numbers.push_back(number);
+    pc.std_from.push_back(identified_std(study, set, m) ? "identification" : "study");
   }
   for (int n : sel.modes)
     if (!contains(set.numbers, n))
@@ -579,6 +616,28 @@ void attach_model(const Study& study, const ConfigurationSource& sc, const std::
                        "by frequency; modes followed by their shapes at every analysis DOF");
   pc.fe = ld.fe;
   for (const auto& n : fe.notes()) pc.notes.push_back(sc.deck + ": " + n);
+}
+
+/// The summary's words for where the σ of `configs` come from.
+std::string measurement_std_text(const Study& study, const std::vector<PreparedConfiguration>& configs) {
+  std::string from_id, from_study;
+  for (const auto& c : configs)
+    for (std::size_t i = 0; i < c.std_from.size(); ++i)
+      (c.std_from[i] == "identification" ? from_id : from_study) +=
+          " " + (configs.size() > 1 ? c.name + ":" : std::string()) + std::to_string(c.test_numbers[i]);
+  const std::string shape_pct =
+      study.shape_std ? significant(*study.shape_std, 3) + " on the unit shape" : significant(study.shape_std_pct, 3) + " % of the RMS shape component";
+  const std::string studys = "the study's " + significant(study.frequency_std_pct, 3) + " % of each frequency, " + shape_pct;
+  std::string scale;
+  if (study.identified_frequency_std_scale != 1.0 || study.identified_shape_std_scale != 1.0)
+    scale = ", times the noise scale the data imply (frequencies " + significant(study.identified_frequency_std_scale, 3) +
+            ", shapes " + significant(study.identified_shape_std_scale, 3) + ")";
+  const std::string ident = "from the identification (per mode: its hz_std, and its shape_std where given, else " + shape_pct +
+                            "), floored at " + significant(study.frequency_std_floor_pct, 3) + " % of the frequency and " +
+                            significant(study.shape_std_floor_pct, 3) + " % of the RMS shape component" + scale;
+  if (from_study.empty()) return ident;
+  if (from_id.empty()) return studys;
+  return ident + " for test modes" + from_id + "; " + studys + " for test modes" + from_study;
 }
 
 }  // namespace
@@ -674,6 +733,77 @@ translators::ModeSet parse_frequency_list(const std::string& text, const std::st
   return set;
 }
 
+MeasuredData parse_identified_modes(const json& j, const std::string& name) {
+  const StudyReader rd(name);
+  const json& modes = j.at("modes");
+  if (!modes.is_array() || modes.empty())
+    rd.fail("modes", "expected a non-empty array of identified modes, got " + StudyReader::shown(modes));
+  MeasuredData d;
+  translators::ModeSet& set = d.modes;
+  std::map<std::pair<std::int64_t, int>, Eigen::Index> row_of;  // (node, direction) → row
+  std::vector<Eigen::VectorXd> shapes;
+  bool any_std = false;
+  for (std::size_t i = 0; i < modes.size(); ++i) {
+    const std::string path = "modes[" + std::to_string(i) + "]";
+    const json& m = modes[i];
+    if (!m.is_object()) rd.fail(path, "expected an object {\"hz\", \"hz_std\", \"shape\", ...}, got " + StudyReader::shown(m));
+    if (!m.contains("hz")) rd.fail(path, "needs \"hz\" (the mode's frequency [Hz])");
+    const int number = m.contains("mode") ? rd.integer(m["mode"], path + ".mode", 0) : static_cast<int>(i + 1);
+    if (contains(set.numbers, number)) rd.fail(path, "mode " + std::to_string(number) + " is given twice");
+    set.numbers.push_back(number);
+    set.frequency_hz.push_back(rd.number(m["hz"], path + ".hz", true));
+    set.damping.push_back(m.contains("zeta") ? rd.number(m["zeta"], path + ".zeta", false, true) : 0.0);
+    const double nan = std::numeric_limits<double>::quiet_NaN();
+    set.frequency_std_hz.push_back(m.contains("hz_std") ? rd.number(m["hz_std"], path + ".hz_std", false, true) : nan);
+    set.shape_std.push_back(m.contains("shape_std") ? rd.number(m["shape_std"], path + ".shape_std", false, true) : nan);
+    any_std = any_std || m.contains("hz_std") || m.contains("shape_std");
+    if (!m.contains("shape")) rd.fail(path, "needs \"shape\" ([[node, direction, re, im], ...])");
+    const json& sh = m["shape"];
+    if (!sh.is_array() || sh.empty())
+      rd.fail(path + ".shape", "expected a non-empty array of [node, direction, re, im], got " + StudyReader::shown(sh));
+    Eigen::VectorXcd phi(static_cast<Eigen::Index>(sh.size()));
+    std::vector<Eigen::Index> rows;
+    for (std::size_t k = 0; k < sh.size(); ++k) {
+      const std::string at = path + ".shape[" + std::to_string(k) + "]";
+      const json& e = sh[k];
+      if (!e.is_array() || e.size() != 4) rd.fail(at, "expected [node, direction, re, im], got " + StudyReader::shown(e));
+      const std::int64_t node = rd.integer(e[0], at + "[0]", 1);
+      const int dir = rd.integer(e[1], at + "[1]", 1);
+      if (dir > 6) rd.fail(at + "[1]", "expected a direction 1 … 6 (X, Y, Z, RX, RY, RZ), got " + std::to_string(dir));
+      phi(static_cast<Eigen::Index>(k)) = {rd.number(e[2], at + "[2]"), rd.number(e[3], at + "[3]")};
+      auto it = row_of.find({node, dir});
+      if (i == 0) {
+        if (it != row_of.end()) rd.fail(at, "node " + std::to_string(node) + " direction " + std::to_string(dir) + " is given twice");
+        it = row_of.emplace(std::make_pair(node, dir), static_cast<Eigen::Index>(set.dofs.size())).first;
+        set.dofs.push_back({node, dir});
+        d.node_keys.emplace(node, at);
+      } else if (it == row_of.end()) {
+        rd.fail(at, "node " + std::to_string(node) + " direction " + std::to_string(dir) + " is not in modes[0].shape "
+                    "(every mode must have the same measured DOFs)");
+      } else if (std::find(rows.begin(), rows.end(), it->second) != rows.end()) {
+        rd.fail(at, "node " + std::to_string(node) + " direction " + std::to_string(dir) + " is given twice");
+      }
+      rows.push_back(it->second);
+    }
+    if (rows.size() != set.dofs.size())
+      rd.fail(path + ".shape", "has " + std::to_string(rows.size()) + " entries, modes[0].shape " +
+                                   std::to_string(set.dofs.size()) + " (every mode must have the same measured DOFs)");
+    if (phi.norm() == 0) rd.fail(path + ".shape", "is zero everywhere");
+    // Complex to real as identify does for UFF 55.
+    const Eigen::VectorXd real = identification::real_mode(phi);
+    Eigen::VectorXd col(real.size());
+    for (std::size_t k = 0; k < rows.size(); ++k) col(rows[k]) = real(static_cast<Eigen::Index>(k));
+    shapes.push_back(col);
+  }
+  set.shapes.resize(static_cast<Eigen::Index>(set.dofs.size()), static_cast<Eigen::Index>(shapes.size()));
+  for (std::size_t m = 0; m < shapes.size(); ++m) set.shapes.col(static_cast<Eigen::Index>(m)) = shapes[m];
+  if (!any_std) {
+    set.frequency_std_hz.clear();
+    set.shape_std.clear();
+  }
+  return d;
+}
+
 MeasuredData read_measured(const std::string& path, bool frequencies_only) {
   auto ends_with = [&](const std::string& ext) {
     if (path.size() < ext.size()) return false;
@@ -687,6 +817,23 @@ MeasuredData read_measured(const std::string& path, bool frequencies_only) {
     if (!in) throw formats::InputError(path + ": cannot open the measured file");
     std::stringstream ss;
     ss << in.rdbuf();
+    if (ends_with(".json")) {
+      json j;
+      try {
+        j = json::parse(ss.str());
+      } catch (const json::parse_error& e) {
+        throw formats::InputError(path + ": not valid JSON (byte " + std::to_string(e.byte) + "): " + e.what());
+      }
+      if (j.is_object() && j.contains("modes")) {  // ssid identify modes --json
+        d = parse_identified_modes(j, path);
+        if (frequencies_only) {
+          d.modes.dofs.clear();
+          d.modes.shapes.resize(0, static_cast<Eigen::Index>(d.modes.frequency_hz.size()));
+          d.node_keys.clear();
+        }
+        return d;
+      }
+    }
     d.modes = parse_frequency_list(ss.str(), path, ends_with(".json"));
     return d;
   }
@@ -771,6 +918,7 @@ EstimationProblem prepare_problem(const Study& study, const std::vector<Configur
     attach_model(study, sc, who, ld, index, problem, pc);
     problem.configurations.push_back(std::move(pc));
   }
+  problem.measurement_std = measurement_std_text(study, problem.configurations);
   return problem;
 }
 
@@ -884,6 +1032,7 @@ EstimationProblem problem_from_file(const formats::ProblemFile& file) {
       mm.use_shape = m.use_shape;
       pc.test.push_back(mm);
       pc.test_numbers.push_back(m.id);
+      pc.std_from.push_back("problem file");
     }
     const std::string who = "configuration '" + c.name + "'";
     if (file.options.operators == "exact") {
@@ -1116,6 +1265,20 @@ json result_json(const EstimationProblem& problem, const EstimationResult& r) {
                                   "parameters' distance from their prior means (docs/updating.md, Eq. (7))"}};
   }
   j["posterior_covariance"] = matrix_json(u.posterior_cov);
+  {  // The measurement σ of each test mode, and where it came from.
+    json mj = {{"std_from", problem.measurement_std}, {"modes", json::array()}};
+    for (const auto& c : problem.configurations)
+      for (std::size_t i = 0; i < c.test.size(); ++i) {
+        json t = {{"test_mode", c.test_numbers[i]},
+                  {"hz", c.test[i].frequency_hz},
+                  {"frequency_std_hz", c.test[i].frequency_std_hz},
+                  {"shape_std", c.test[i].shape_std},
+                  {"from", i < c.std_from.size() ? c.std_from[i] : "study"}};
+        if (problem.configurations.size() > 1) t["configuration"] = c.name;
+        mj["modes"].push_back(t);
+      }
+    j["measurement"] = mj;
+  }
 
   const auto pairs = final_pairs(problem, r);
   auto pair_json = [&](const UpdatePair& q) {
@@ -1205,6 +1368,7 @@ std::string format_summary(const EstimationProblem& problem, const EstimationRes
   if (r.partial())
     o << "PARTIAL RESULT (" << r.partial_reason << "): the values below are those of the last accepted cycle, not an "
       << "estimate to trust\n";
+  if (!problem.measurement_std.empty()) o << "measurement σ: " << problem.measurement_std << "\n";
   o << "\n";
 
   // Parameters, with what each designs and its unit.

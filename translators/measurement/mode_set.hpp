@@ -20,6 +20,11 @@ struct ModeSet {
   std::vector<int> numbers;         ///< mode numbers as labelled in the source
   std::vector<double> damping;      ///< viscous damping ratio (0 when not given)
   std::vector<double> modal_mass;   ///< as given (0 when not given)
+  /// Per mode, the identification's σ of the frequency [Hz] and of each component
+  /// of the unit-normalised shape (`ssid identify modes --json`: "hz_std",
+  /// "shape_std"); empty when the source gives none (UFF 55), NaN for a mode without.
+  std::vector<double> frequency_std_hz;
+  std::vector<double> shape_std;
 };
 
 /// What became of the 55 datasets of a file.
