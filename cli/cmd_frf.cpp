@@ -234,9 +234,8 @@ int cmd_frf(const Args& args) {
                      "[--measured FILE.unv] [--uff OUT.unv] [--json OUT] [--svg OUT.svg]",
                      desc, pos, vm, rc))
     return rc;
-  // With --json - the JSON is stdout: the table goes nowhere.
-  std::ostringstream discard;
-  std::ostream& text = vm.count("json") && vm["json"].as<std::string>() == "-" ? static_cast<std::ostream&>(discard) : std::cout;
+  TextOut text_out(vm);
+  std::ostream& text = text_out.stream();
   if (!vm.count("damping") && !vm.count("modes-from")) {
     print_error("give the modal damping: --damping Z (a ratio, 0.01 = 1 %) or --modes-from IDENTIFIED.json");
     return kExitBadInput;

@@ -381,8 +381,8 @@ int identify_modes(const Args& args) {
   band.hz_min = so.hz_min;
   if (vm.count("max-hz")) band.hz_max = so.hz_max;
   // With --json -, stdout carries the JSON alone (as every command's --json -): no table.
-  std::ostringstream discarded;
-  std::ostream& text = vm.count("json") && vm["json"].as<std::string>() == "-" ? discarded : std::cout;
+  TextOut text_out(vm);
+  std::ostream& text = text_out.stream();
   ProgressLines progress_lines("ssid identify", false, 2.0, 2.0);
   // ERA or pLSCF on FRFs, with the text that ends the input's description line.
   const auto frf_method = [&](const FrfSet& s) {
@@ -549,9 +549,8 @@ int identify_frf(const Args& args) {
                      "[--segment N] [--overlap F] [--force-fraction F] [--exp-decay P] [--uff OUT.unv] [--json OUT]",
                      desc, pos, vm, rc))
     return rc;
-  // With --json - the JSON is stdout: the table goes nowhere.
-  std::ostringstream discard;
-  std::ostream& text = vm.count("json") && vm["json"].as<std::string>() == "-" ? static_cast<std::ostream&>(discard) : std::cout;
+  TextOut text_out(vm);
+  std::ostream& text = text_out.stream();
   const std::string est = vm["estimator"].as<std::string>(), win = vm["window"].as<std::string>();
   id::FrfEstimator estimator = id::FrfEstimator::H1;
   if (est == "h2") estimator = id::FrfEstimator::H2;
@@ -844,8 +843,8 @@ int rank(const std::string& v) { return v == "fail" ? 3 : v == "warn" ? 2 : v ==
 /// `ssid identify check` on free decays: the dominant frequency of overlapping segments.
 int check_decays(const uff::UffFile& file, const std::vector<const uff::Function58*>& records, int segment,
                  double overlap, const std::string& json_path) {
-  std::ostringstream discard;  // with --json - the JSON is stdout: the table goes nowhere
-  std::ostream& text = json_path == "-" ? static_cast<std::ostream&>(discard) : std::cout;
+  TextOut text_out(json_path);
+  std::ostream& text = text_out.stream();
   const auto* first = records.front();
   for (const auto* f : records) {
     const std::string at = f->where.str() + ": dataset 58";
@@ -932,9 +931,8 @@ int identify_check(const Args& args) {
                      "[--json OUT]",
                      desc, pos, vm, rc))
     return rc;
-  // With --json - the JSON is stdout: the table goes nowhere.
-  std::ostringstream discard;
-  std::ostream& text = vm.count("json") && vm["json"].as<std::string>() == "-" ? static_cast<std::ostream&>(discard) : std::cout;
+  TextOut text_out(vm);
+  std::ostream& text = text_out.stream();
   const int segment = vm["segment"].as<int>();
   if (segment < 8) {
     print_error(fmt::format("--segment: expected at least 8 samples, got {}", segment));
