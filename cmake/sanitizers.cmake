@@ -1,11 +1,13 @@
 # Instrumented builds (docs/fuzzing.md). Included before the layers so that every
 # target, libraries included, is built the same way.
 #
-# SSID_SANITIZE: AddressSanitizer + UndefinedBehaviorSanitizer for the whole build
-#   (scripts/sanitize-tests builds and runs the test suite so in build-asan/). A UB
-#   report aborts (-fno-sanitize-recover), so a test that triggers one fails.
-# SSID_FUZZ: the libFuzzer harnesses of fuzz/ (clang only; scripts/fuzz-smoke).
-#   Implies the sanitizers; the libraries get libFuzzer's coverage instrumentation.
+# SSID_SANITIZE: AddressSanitizer + UndefinedBehaviorSanitizer for the whole build,
+#   GCC or clang. A UB report aborts (-fno-sanitize-recover), so a test that
+#   triggers one fails.
+# SSID_FUZZ: the libFuzzer harnesses of fuzz/ (clang only). Implies the sanitizers;
+#   every source gets libFuzzer's coverage instrumentation. scripts/sanitize-tests
+#   and scripts/fuzz-smoke share one such tree, build-asan/
+#   (scripts/configure-sanitized): the tests run there too.
 option(SSID_SANITIZE "Build with AddressSanitizer and UndefinedBehaviorSanitizer" OFF)
 option(SSID_FUZZ "Build the libFuzzer harnesses in fuzz/ (clang only)" OFF)
 
@@ -20,8 +22,11 @@ endif()
 
 if(SSID_SANITIZE)
   # -O1 keeps the suite's run time bearable and the reports exact; no frame
-  # pointer omission so that every report has a full stack.
+  # pointer omission so that every report has a full stack. -g1 (line tables and
+  # function names, all a report's stack needs) after the build type's -g: full
+  # debug information of the Eigen-heavy sources costs a quarter to a third more
+  # compile time (GCC, two sources: 50 s against 39 s, 32 s against 20 s).
   set(ssid_sanitize_flags -fsanitize=address,undefined -fno-sanitize-recover=all -fno-omit-frame-pointer)
-  add_compile_options(${ssid_sanitize_flags} -O1 -g)
+  add_compile_options(${ssid_sanitize_flags} -O1 -g1)
   add_link_options(${ssid_sanitize_flags})
 endif()

@@ -24,6 +24,12 @@ bool little_endian() {
   return b == 1;
 }
 
+/// memcpy that accepts an empty block: an empty vector's data() may be null, and
+/// memcpy's arguments must not be even for zero bytes (UBSan's nonnull check).
+void copy_bytes(void* to, const void* from, std::size_t n) {
+  if (n > 0) std::memcpy(to, from, n);
+}
+
 /// A block to write: a sparse or a dense matrix, by pointer (no copies).
 struct OutBlock {
   const Sparse* sparse = nullptr;
@@ -97,8 +103,8 @@ class Reader {
     if (rows < 0 || cols < 0 || nnz < 0) fail(what + ": negative size");
     const char* p = span(j, what, 8 * (static_cast<std::uint64_t>(cols) + 1) + 16 * static_cast<std::uint64_t>(nnz));
     std::vector<std::int64_t> starts(static_cast<std::size_t>(cols) + 1), idx(static_cast<std::size_t>(nnz));
-    std::memcpy(starts.data(), p, 8 * starts.size());
-    std::memcpy(idx.data(), p + 8 * starts.size(), 8 * idx.size());
+    copy_bytes(starts.data(), p, 8 * starts.size());
+    copy_bytes(idx.data(), p + 8 * starts.size(), 8 * idx.size());
     Sparse m(rows, cols);
     m.resizeNonZeros(nnz);
     if (starts.front() != 0 || starts.back() != nnz) fail(what + ": column starts inconsistent with the entry count");
@@ -112,7 +118,7 @@ class Reader {
       if (r < 0 || r >= rows) fail(what + ": row index " + std::to_string(r) + " out of range 0.." + std::to_string(rows - 1));
       m.innerIndexPtr()[k] = static_cast<Sparse::StorageIndex>(r);
     }
-    std::memcpy(m.valuePtr(), p + 8 * (starts.size() + idx.size()), 8 * static_cast<std::size_t>(nnz));
+    copy_bytes(m.valuePtr(), p + 8 * (starts.size() + idx.size()), 8 * static_cast<std::size_t>(nnz));
     return m;
   }
 
@@ -122,7 +128,7 @@ class Reader {
     if (rows < 0 || cols < 0) fail(what + ": negative size");
     const char* p = span(j, what, 8 * static_cast<std::uint64_t>(rows) * static_cast<std::uint64_t>(cols));
     Eigen::MatrixXd m(rows, cols);
-    std::memcpy(m.data(), p, 8 * static_cast<std::size_t>(m.size()));
+    copy_bytes(m.data(), p, 8 * static_cast<std::size_t>(m.size()));
     return m;
   }
 

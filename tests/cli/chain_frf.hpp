@@ -12,9 +12,9 @@
 #include "formats/uff.hpp"
 
 /// Receptance FRFs of the chain (Rayleigh damping) from each driven DOF d to every DOF,
-/// 0 … 500 Hz every 0.25 Hz, as dataset 58 (complex double) written to `path`; nodes 1,
-/// 2, 3 in +X, the reference node d + 1 in +X.
-inline void write_chain_frf(const ident_test::ChainModel& model, const std::string& path) {
+/// 0 … 500 Hz every 0.25 Hz, as dataset 58 (complex double) written to `path`; DOF i is
+/// node first_node + i in +X (the reference node first_node + d).
+inline void write_chain_frf(const ident_test::ChainModel& model, const std::string& path, int first_node = 1) {
   namespace uff = ssid::formats::uff;
   using cd = std::complex<double>;
   uff::UffFile f;
@@ -24,9 +24,9 @@ inline void write_chain_frf(const ident_test::ChainModel& model, const std::stri
       uff::Function58 fn;
       fn.function_type = 4;
       fn.function_id = ++id;
-      fn.response_node = o + 1;
+      fn.response_node = o + first_node;
       fn.response_direction = 1;
-      fn.reference_node = static_cast<std::int64_t>(d) + 1;
+      fn.reference_node = static_cast<std::int64_t>(d) + first_node;
       fn.reference_direction = 1;
       fn.ordinate_type = 6;
       fn.even = true;

@@ -22,12 +22,19 @@ inline std::string cli_slurp(const std::filesystem::path& p) {
   return std::string(std::istreambuf_iterator<char>(in), {});
 }
 
+/// A test file's scratch folder, TMP/ssid_cli_<tag>_<pid>, created: per process so
+/// that ctest's parallel runs of the same executable do not share files.
+inline std::filesystem::path cli_scratch(const std::string& tag) {
+  const auto dir = std::filesystem::temp_directory_path() / ("ssid_cli_" + tag + "_" + std::to_string(::getpid()));
+  std::filesystem::create_directories(dir);
+  return dir;
+}
+
 /// `args` is appended to the ssid path as is (quote paths with spaces yourself).
 inline CliResult run_ssid(const std::string& args) {
   namespace fs = std::filesystem;
   static int counter = 0;
-  const fs::path dir = fs::temp_directory_path() / ("ssid_cli_" + std::to_string(::getpid()));
-  fs::create_directories(dir);
+  const fs::path dir = cli_scratch("run");
   const fs::path o = dir / ("out" + std::to_string(counter)), e = dir / ("err" + std::to_string(counter++));
   const std::string cmd = std::string(SSID_EXE) + " " + args + " >" + o.string() + " 2>" + e.string();
   const int status = std::system(cmd.c_str());
@@ -50,8 +57,7 @@ struct RunningSsid {
 inline RunningSsid start_ssid(const std::vector<std::string>& args) {
   namespace fs = std::filesystem;
   static int counter = 0;
-  const fs::path dir = fs::temp_directory_path() / ("ssid_cli_" + std::to_string(::getpid()));
-  fs::create_directories(dir);
+  const fs::path dir = cli_scratch("run");
   RunningSsid r;
   r.out = dir / ("bg_out" + std::to_string(counter));
   r.err = dir / ("bg_err" + std::to_string(counter++));

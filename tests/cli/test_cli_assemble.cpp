@@ -19,11 +19,7 @@ using namespace ssid;
 
 namespace {
 
-fs::path scratch() {
-  fs::path p = fs::temp_directory_path() / ("ssid_cli_assemble_" + std::to_string(::getpid()));
-  fs::create_directories(p);
-  return p;
-}
+fs::path scratch() { return cli_scratch("assemble"); }
 
 const std::string kDeck = std::string(SSID_SOURCE_DIR) + "/samples/frame.bdf";
 
@@ -176,7 +172,7 @@ TEST_CASE("ssid assemble --import: perturbed exports rebuild the analytic operat
   CHECK_THAT(b.err, Catch::Contains("bad.json: parameter 1 (ROUT) plus K"));
 }
 
-TEST_CASE("samples/import/make_exports.sh runs and its import matches the exact operators", "[cli][assemble][import]") {
+TEST_CASE("samples/import/make_exports.sh runs and its import matches the exact operators", "[cli][assemble][import][slow]") {
   const fs::path work = scratch() / "script";
   const std::string cmd = "SSID_IMPORT_WORK=" + work.string() + " sh " + std::string(SSID_SOURCE_DIR) +
                           "/samples/import/make_exports.sh " + std::string(SSID_EXE) + " >" +

@@ -11,11 +11,7 @@
 namespace fs = std::filesystem;
 
 namespace {
-fs::path scratch() {
-  fs::path p = fs::temp_directory_path() / ("ssid_cli_corr_deck_" + std::to_string(::getpid()));
-  fs::create_directories(p);
-  return p;
-}
+fs::path scratch() { return cli_scratch("corr_deck"); }
 const std::string kDeck = std::string(SSID_SOURCE_DIR) + "/samples/frame.bdf";
 }  // namespace
 

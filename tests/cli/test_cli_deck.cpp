@@ -8,11 +8,7 @@
 namespace fs = std::filesystem;
 
 namespace {
-fs::path scratch() {
-  fs::path p = fs::temp_directory_path() / ("ssid_cli_deck_" + std::to_string(::getpid()));
-  fs::create_directories(p);
-  return p;
-}
+fs::path scratch() { return cli_scratch("deck"); }
 }  // namespace
 
 TEST_CASE("ssid --help lists the commands; each command has --help", "[cli]") {

@@ -14,11 +14,7 @@ namespace fs = std::filesystem;
 
 namespace {
 
-fs::path scratch() {
-  fs::path p = fs::temp_directory_path() / ("ssid_cli_integrity_" + std::to_string(::getpid()));
-  fs::create_directories(p);
-  return p;
-}
+fs::path scratch() { return cli_scratch("integrity"); }
 
 fs::path write(const fs::path& p, const std::string& text) {
   std::ofstream(p, std::ios::binary) << text;

@@ -17,8 +17,7 @@ using namespace ssid;
 using namespace ssid::test_support;
 
 TEST_CASE("ssid diagnose: hidden mass found, JSON layout, extended deck written", "[cli][diagnose]") {
-  const fs::path dir = fs::temp_directory_path() / ("ssid_diag_" + std::to_string(::getpid()));
-  fs::create_directories(dir);
+  const fs::path dir = cli_scratch("diag");
   const Case nominal = rod_case();
   {
     std::ofstream(dir / "rod.bdf") << deck_text(nominal.t, nominal.fe);
@@ -129,8 +128,7 @@ TEST_CASE("ssid diagnose: bad input is refused with a clear message", "[cli][dia
 TEST_CASE("ssid diagnose's \"parameter\" hypothesis is ssid estimate's result on the same study", "[cli][diagnose][study]") {
   // One estimation problem, one study file: the same deck, data and study give
   // the same estimates, covariance and evidence (issue 26 item 1).
-  const fs::path dir = fs::temp_directory_path() / ("ssid_diag_same_" + std::to_string(::getpid()));
-  fs::create_directories(dir);
+  const fs::path dir = cli_scratch("diag_same");
   std::ofstream(dir / "study.json") << R"({"measurement": {"frequency_std_pct": 0.8, "shape_std_pct": 4},
       "priors": {"STRUTA": {"std_pct": 20}}, "modes": {"exclude": [12]},
       "convergence": {"max_iterations": 60, "tolerance": 1e-3},

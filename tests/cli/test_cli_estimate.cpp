@@ -17,11 +17,7 @@ using json = nlohmann::json;
 
 namespace {
 
-fs::path scratch() {
-  fs::path p = fs::temp_directory_path() / ("ssid_cli_estimate_" + std::to_string(::getpid()));
-  fs::create_directories(p);
-  return p;
-}
+fs::path scratch() { return cli_scratch("estimate"); }
 
 /// Splits a deck into blocks: a line that starts a card (or a comment / control
 /// line) with its continuation lines ('+', '*', blank first field).

@@ -20,11 +20,7 @@ using cd = std::complex<double>;
 
 namespace {
 
-fs::path scratch(const std::string& name) {
-  const fs::path dir = fs::temp_directory_path() / ("ssid_frf_" + std::to_string(::getpid()));
-  fs::create_directories(dir);
-  return dir / name;
-}
+fs::path scratch(const std::string& name) { return cli_scratch("frf") / name; }
 
 /// Three masses in X (2, 1, 1.5 kg at grids 1, 2, 3; PS 23456 leaves X only), springs
 /// 4e4 N/m grid 1 to ground, 1.5e4 N/m 1–2, 1e4 N/m 2–3.

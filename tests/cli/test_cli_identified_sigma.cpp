@@ -13,21 +13,16 @@
 #include <nlohmann/json.hpp>
 #include <sstream>
 
+#include "cli/chain_frf.hpp"
 #include "cli/cli_run.hpp"
 #include "formats/uff.hpp"
 
 namespace fs = std::filesystem;
-namespace uff = ssid::formats::uff;
-using cd = std::complex<double>;
 using json = nlohmann::json;
 
 namespace {
 
-fs::path scratch(const std::string& name) {
-  const fs::path dir = fs::temp_directory_path() / ("ssid_idsigma_cli_" + std::to_string(::getpid()));
-  fs::create_directories(dir);
-  return dir / name;
-}
+fs::path scratch(const std::string& name) { return cli_scratch("idsigma_cli") / name; }
 
 /// Three unit masses on three springs of 1e5 N/m (ground–2–3–4 along X), one
 /// parameter KSPR designing all: 22.4, 62.7 and 90.7 Hz.
@@ -43,32 +38,9 @@ const char* const kChainDeck =
 /// Receptance FRFs of the chain (C = M + 2e-5 K: 0.4 … 0.9 % damping) from node 2
 /// to nodes 2, 3 and 4, 0 … 500 Hz every 0.25 Hz, as dataset 58.
 fs::path chain_frf_file() {
-  Eigen::Matrix3d K, M = Eigen::Matrix3d::Identity();
-  K << 2e5, -1e5, 0, -1e5, 2e5, -1e5, 0, -1e5, 1e5;
-  const Eigen::Matrix3d C = M + 2e-5 * K;
-  uff::UffFile f;
-  for (int o = 0; o < 3; ++o) {
-    uff::Function58 fn;
-    fn.function_type = 4;
-    fn.function_id = o + 1;
-    fn.response_node = o + 2;
-    fn.response_direction = 1;
-    fn.reference_node = 2;
-    fn.reference_direction = 1;
-    fn.ordinate_type = 6;
-    fn.even = true;
-    fn.abscissa_min = 0;
-    fn.abscissa_increment = 0.25;
-    for (int k = 0; k <= 2000; ++k) {
-      const double w = 2 * M_PI * 0.25 * k;
-      const Eigen::Matrix3cd H = (K.cast<cd>() - w * w * M.cast<cd>() + cd(0, w) * C.cast<cd>()).inverse();
-      fn.x.push_back(0.25 * k);
-      fn.y.push_back(H(o, 0));
-    }
-    f.datasets.emplace_back(fn);
-  }
+  const Eigen::MatrixXd K = ident_test::chain({1e5, 1e5, 1e5}), M = Eigen::MatrixXd::Identity(3, 3);
   const fs::path p = scratch("chain_frf.unv");
-  uff::write_uff(f, p.string(), uff::Precision::Extended);
+  write_chain_frf(ident_test::ChainModel(M, M + 2e-5 * K, K, {0}), p.string(), 2);
   return p;
 }
 

@@ -24,11 +24,7 @@ using cd = std::complex<double>;
 
 namespace {
 
-fs::path scratch(const std::string& name) {
-  const fs::path dir = fs::temp_directory_path() / ("ssid_check_" + std::to_string(::getpid()));
-  fs::create_directories(dir);
-  return dir / name;
-}
+fs::path scratch(const std::string& name) { return cli_scratch("check") / name; }
 
 uff::Function58 spectrum(int type, std::int64_t node, std::int64_t ref, double df, const std::vector<cd>& y) {
   uff::Function58 fn;

@@ -22,11 +22,7 @@ using cd = std::complex<double>;
 
 namespace {
 
-fs::path scratch(const std::string& name) {
-  const fs::path dir = fs::temp_directory_path() / ("ssid_idfrf_" + std::to_string(::getpid()));
-  fs::create_directories(dir);
-  return dir / name;
-}
+fs::path scratch(const std::string& name) { return cli_scratch("idfrf") / name; }
 
 uff::Function58 time_record(std::int64_t id, std::int64_t node, int direction, int ordinate, const char* unit,
                             const Eigen::VectorXd& samples, double dt) {

@@ -15,11 +15,7 @@ namespace fs = std::filesystem;
 
 namespace {
 
-fs::path scratch() {
-  fs::path p = fs::temp_directory_path() / ("ssid_cli_modes_" + std::to_string(::getpid()));
-  fs::create_directories(p);
-  return p;
-}
+fs::path scratch() { return cli_scratch("modes"); }
 
 /// Fixed-free chain of n CRODs of length L/n along X (no J: AUTOSPC takes the torsion).
 std::string rod_chain(int n, double L, const std::string& eig, const std::string& extra = "",
@@ -301,7 +297,7 @@ TEST_CASE("ssid modes --method multilevel: a free 3D frame gives the direct solv
   CHECK(bad.err.find("--method") != std::string::npos);
 }
 
-TEST_CASE("ssid modes --method multilevel on the MPI truss beam sample agrees with the direct solver", "[cli][modes]") {
+TEST_CASE("ssid modes --method multilevel on the MPI truss beam sample agrees with the direct solver", "[cli][modes][slow]") {
   // A real model: RBE2 spiders at the balls, CONM2s, suspension springs (modes at
   // 0.3-0.6 Hz), 8.5k a-set DOFs. Seen: 3.5e-9 relative at most over 35 modes.
   const std::string deck = std::string(SSID_SOURCE_DIR) + "/samples/mpi_beam.bdf";

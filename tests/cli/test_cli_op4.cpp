@@ -15,11 +15,7 @@ namespace {
 const std::string kOp4 = std::string(SSID_SOURCE_DIR) + "/samples/two_matrices.op4";
 const std::string kDmig = std::string(SSID_SOURCE_DIR) + "/samples/dmig_sample.bdf";
 
-fs::path scratch() {
-  fs::path p = fs::temp_directory_path() / ("ssid_cli_op4_" + std::to_string(::getpid()));
-  fs::create_directories(p);
-  return p;
-}
+fs::path scratch() { return cli_scratch("op4"); }
 
 json read_json(const fs::path& p) { return json::parse(cli_slurp(p)); }
 

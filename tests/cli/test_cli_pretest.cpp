@@ -21,11 +21,7 @@ namespace fs = std::filesystem;
 
 namespace {
 
-fs::path scratch() {
-  fs::path p = fs::temp_directory_path() / ("ssid_cli_pretest_" + std::to_string(::getpid()));
-  fs::create_directories(p);
-  return p;
-}
+fs::path scratch() { return cli_scratch("pretest"); }
 
 nlohmann::json read_json(const fs::path& p) {
   std::ifstream in(p);

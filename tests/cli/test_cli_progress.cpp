@@ -19,11 +19,7 @@ using ssid::estimator::ProgressEvent;
 
 namespace {
 
-fs::path scratch() {
-  fs::path p = fs::temp_directory_path() / ("ssid_cli_progress_" + std::to_string(::getpid()));
-  fs::create_directories(p);
-  return p;
-}
+fs::path scratch() { return cli_scratch("progress"); }
 
 const std::string kDeck = std::string(SSID_SOURCE_DIR) + "/samples/mpi_rod.bdf";
 const std::string kMeasured = std::string(SSID_SOURCE_DIR) + "/samples/estimate/measured.unv";

@@ -8,11 +8,7 @@
 namespace fs = std::filesystem;
 
 namespace {
-fs::path scratch() {
-  fs::path p = fs::temp_directory_path() / ("ssid_cli_truss_" + std::to_string(::getpid()));
-  fs::create_directories(p);
-  return p;
-}
+fs::path scratch() { return cli_scratch("truss"); }
 }  // namespace
 
 TEST_CASE("ssid truss list-configs names the report's configurations", "[cli][truss]") {

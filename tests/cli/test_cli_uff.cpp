@@ -14,11 +14,7 @@ namespace uff = ssid::formats::uff;
 
 namespace {
 
-fs::path scratch() {
-  fs::path p = fs::temp_directory_path() / ("ssid_cli_uff_" + std::to_string(::getpid()));
-  fs::create_directories(p);
-  return p;
-}
+fs::path scratch() { return cli_scratch("uff"); }
 
 const std::string kMixed = std::string(SSID_SOURCE_DIR) + "/tests/data/uff/testlab_mixed.unv";
 

@@ -11,9 +11,7 @@ namespace fs = std::filesystem;
 namespace {
 
 fs::path scratch_file(const std::string& name, const std::string& content) {
-  const fs::path dir = fs::temp_directory_path() / ("ssid_cli_uff_errors_" + std::to_string(::getpid()));
-  fs::create_directories(dir);
-  const fs::path p = dir / name;
+  const fs::path p = cli_scratch("uff_errors") / name;
   std::ofstream(p, std::ios::binary) << content;
   return p;
 }

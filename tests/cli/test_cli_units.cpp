@@ -21,11 +21,7 @@ using json = nlohmann::json;
 
 namespace {
 
-fs::path scratch() {
-  fs::path p = fs::temp_directory_path() / ("ssid_cli_units_" + std::to_string(::getpid()));
-  fs::create_directories(p);
-  return p;
-}
+fs::path scratch() { return cli_scratch("units"); }
 
 const std::string kSamples = std::string(SSID_SOURCE_DIR) + "/samples/";
 

@@ -111,7 +111,8 @@ TEST_CASE("import: bad specs are named with the parameter and key", "[import][er
   nlohmann::json base = {{"K", "K.op4"}, {"M", "M.op4"}};
   auto with = [&](nlohmann::json p) {
     nlohmann::json j = base;
-    j["parameters"] = {p};
+    // array(), not {p}: GCC reads {p} as a one-element array, clang as a copy of p.
+    j["parameters"] = nlohmann::json::array({p});
     return j;
   };
   CHECK_THROWS_WITH(run(with({{"label", "A"}, {"value", 1.0}, {"plus", {{"value", 1.0}, {"K", "K.op4"}}}})),

@@ -29,7 +29,7 @@ translators::ModeSet measure(const Case& truth, const Case& nominal, unsigned se
 
 }  // namespace
 
-TEST_CASE("diagnosis finds rotationally flexible joints at one ball of a frame", "[estimator][diagnosis][frame]") {
+TEST_CASE("diagnosis finds rotationally flexible joints at one ball of a frame", "[estimator][diagnosis][frame][slow]") {
   const Case nominal = frame_case();
   Case truth = frame_case();
   perturb(truth.fe, "TUBEI", 1.05);
@@ -54,7 +54,7 @@ TEST_CASE("diagnosis finds rotationally flexible joints at one ball of a frame",
   CHECK(d.updated_deck.find("XJ" + std::to_string(ball)) != std::string::npos);
 }
 
-TEST_CASE("diagnosis of the frame with parameter errors only invents no joint", "[estimator][diagnosis][frame]") {
+TEST_CASE("diagnosis of the frame with parameter errors only invents no joint", "[estimator][diagnosis][frame][slow]") {
   const Case nominal = frame_case();
   Case truth = frame_case();
   perturb(truth.fe, "TUBEI", 0.92);

@@ -27,7 +27,7 @@ bool has(const std::vector<std::int64_t>& v, std::int64_t x) { return std::find(
 
 }  // namespace
 
-TEST_CASE("diagnosis finds a missing mass on the rod truss", "[estimator][diagnosis][rod]") {
+TEST_CASE("diagnosis finds a missing mass on the rod truss", "[estimator][diagnosis][rod][slow]") {
   const Case nominal = rod_case();
   Case truth = rod_case();
   perturb(truth.fe, "STRUTA", 1.05);  // plus an ordinary parameter error
@@ -49,7 +49,7 @@ TEST_CASE("diagnosis finds a missing mass on the rod truss", "[estimator][diagno
   CHECK(d.updated_deck.find("XM29") != std::string::npos);
 }
 
-TEST_CASE("diagnosis finds a softened strut on the rod truss", "[estimator][diagnosis][rod]") {
+TEST_CASE("diagnosis finds a softened strut on the rod truss", "[estimator][diagnosis][rod][slow]") {
   const Case nominal = rod_case();
   Case truth = rod_case();
   perturb(truth.fe, "JOINTM", 0.95);
@@ -80,7 +80,7 @@ TEST_CASE("diagnosis finds a softened strut on the rod truss", "[estimator][diag
   CHECK(h.after.freq_rms_pct < h.before.freq_rms_pct);
 }
 
-TEST_CASE("diagnosis finds suspension springs with mass (surge modes)", "[estimator][diagnosis][rod]") {
+TEST_CASE("diagnosis finds suspension springs with mass (surge modes)", "[estimator][diagnosis][rod][slow]") {
   const Case nominal = rod_case();
   Case truth;
   truth.t = tr::build_configured({});
@@ -110,7 +110,7 @@ TEST_CASE("diagnosis finds suspension springs with mass (surge modes)", "[estima
   CHECK(h.after.freq_rms_pct < 0.5);
 }
 
-TEST_CASE("diagnosis with parameter errors only names no model-form cause", "[estimator][diagnosis][rod]") {
+TEST_CASE("diagnosis with parameter errors only names no model-form cause", "[estimator][diagnosis][rod][slow]") {
   const Case nominal = rod_case();
   Case truth = rod_case();
   perturb(truth.fe, "STRUTA", 1.08);
@@ -124,7 +124,7 @@ TEST_CASE("diagnosis with parameter errors only names no model-form cause", "[es
 }
 
 TEST_CASE("a wrongly assumed noise level raises no false alarm and the implied noise is reported",
-          "[estimator][diagnosis][rod][calibration]") {
+          "[estimator][diagnosis][rod][calibration][slow]") {
   // Parameter errors only (three DESVARs at once); the test's noise is 0.2 % in
   // the frequencies and 2 % of the RMS component in the shapes, and the
   // diagnosis assumes 0.3 × or 3 × that. The noise is estimated: the answer
@@ -230,7 +230,7 @@ TEST_CASE("the cause predicts held-back modes better than the ordinary update", 
   CHECK(cause(d).prediction_rms_pct < param->prediction_rms_pct);
 }
 
-TEST_CASE("diagnosis finds local strut modes the rod model lacks", "[estimator][diagnosis][rod]") {
+TEST_CASE("diagnosis finds local strut modes the rod model lacks", "[estimator][diagnosis][rod][slow]") {
   // Strut 101 (a metrology-boom section diagonal, balls 49-51, 0.96 m) is a tube whose first bending
   // mode (clamped-clamped) sits at 45.5 Hz, next to the global mode at 44.4 Hz:
   // the test shows three modes where the rod model has one.

@@ -56,7 +56,7 @@ EigenOptions lowest(int nd, EigenMethod method = EigenMethod::Auto) {
 
 }  // namespace
 
-TEST_CASE("Eigen-solver matches the dense generalised solver on random SPD pencils", "[eigen]") {
+TEST_CASE("Eigen-solver matches the dense generalised solver on random SPD pencils", "[eigen][slow]") {
   BOTH_METHODS();
   for (int n : {30, 80, 150}) {
     for (unsigned seed : {11u, 12u}) {

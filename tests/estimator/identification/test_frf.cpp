@@ -222,7 +222,7 @@ void random_records(Eigen::Index samples, Eigen::Index ni, Eigen::Index no, Eige
 
 }  // namespace
 
-TEST_CASE("Welch spectra, H1, H2 and coherences agree with scipy.signal", "[identification][frf][scipy]") {
+TEST_CASE("Welch spectra, H1, H2 and coherences agree with scipy.signal", "[identification][frf][scipy][slow]") {
   if (!python_has_scipy()) {
     WARN("/usr/bin/python3 lacks scipy.signal: the comparison with scipy is skipped");
     SUCCEED();

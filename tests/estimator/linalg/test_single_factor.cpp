@@ -103,7 +103,7 @@ void check_single_solves(const SpMat& A, long min_updating_supernodes) {
 
 }  // namespace
 
-TEST_CASE("Single-precision supernodal solves: backward stable, any block width, in place", "[cholmod]") {
+TEST_CASE("Single-precision supernodal solves: backward stable, any block width, in place", "[cholmod][slow]") {
   for (int n : {40, 200}) {
     const auto [K, M] = random_pencil(n, 3u + static_cast<unsigned>(n));
     check_single_solves(K, 0);  // dense: one or a few supernodes

@@ -182,7 +182,7 @@ TEST_CASE("noise-free modes of a perturbed truth deck: the nominal rod deck is u
 }
 
 TEST_CASE("with noisy data the truth lies within the posterior ±2σ in about 95 % of the cases",
-          "[estimator][deck_study]") {
+          "[estimator][deck_study][slow]") {
   // Calibration: truth drawn from the prior, data with Gaussian noise of the
   // stated σ; for a nearly linear problem the ±2σ interval holds the truth with
   // probability 95.4 %.

@@ -191,7 +191,7 @@ TEST_CASE("every kernel version agrees with plain loops at every tile width (spa
   }
 }
 
-TEST_CASE("every kernel version agrees with plain loops: Gram products and block updates", "[multilevel][isa]") {
+TEST_CASE("every kernel version agrees with plain loops: Gram products and block updates", "[multilevel][isa][slow]") {
   // p, q: every remainder of the row groups (4) and of the column tiles (AVX-512
   // 32 + 8; AVX2 12 + 4; SSE2 6 + 2 values) and the padding of Y to 8 values; n:
   // fewer rows than a group, several Gram chunks (up to 256 rows each), and the

@@ -107,7 +107,7 @@ TEST_CASE("multilevel block kernels agree with Eigen's products", "[multilevel]"
   CHECK((dense(XC) - 2.0 * dense(X) * C).norm() <= 1e-13 * (dense(X) * C).norm());
 }
 
-TEST_CASE("multilevel kernels split over the cores agree with Eigen's products", "[multilevel]") {
+TEST_CASE("multilevel kernels split over the cores agree with Eigen's products", "[multilevel][slow]") {
   // Large enough that the dense products are split by rows (one serial BLAS call
   // per thread, partial Gram matrices summed), the sparse product by columns and
   // the transposed product by rows (scattered into a copy per thread).
@@ -278,7 +278,7 @@ TEST_CASE("multilevel kernels agree with Eigen at every register-tile width", "[
 }
 
 TEST_CASE("aggregation preconditioner: symmetric, positive definite, and conjugate gradients converge fast",
-          "[multilevel]") {
+          "[multilevel][slow]") {
   const Frame f = frame(9, 8, 7);
   const double sigma = automatic_shift(f.op.K, f.op.M);
   Eigen::SparseMatrix<double> A = f.op.K - sigma * f.op.M;
@@ -630,7 +630,7 @@ TEST_CASE("LOBPCG on a pencil whose eigenvalues all come in triples, clusters lo
   }
 }
 
-TEST_CASE("multilevel eigen-solver agrees with the direct solver on an irregular free 3D frame", "[multilevel]") {
+TEST_CASE("multilevel eigen-solver agrees with the direct solver on an irregular free 3D frame", "[multilevel][slow]") {
   const Frame f = frame(9, 9, 9);  // 4374 DOFs: the threaded kernels (4096 rows and more) run
   EigenOptions o;
   o.nd = 24;
@@ -781,7 +781,7 @@ TEST_CASE("multilevel method: a DOF with neither stiffness nor mass is reported,
   CHECK(r.size() == 0);
 }
 
-TEST_CASE("dense block kernels (Gram products, block updates) agree with Eigen at every width", "[multilevel]") {
+TEST_CASE("dense block kernels (Gram products, block updates) agree with Eigen at every width", "[multilevel][slow]") {
   // Gram products take rows in chunks, Y padded to whole vectors and rows of G in
   // groups of four; updates take rows in fours and columns in tiles. Widths that
   // leave every remainder, on one thread (300 rows, several chunks) and split over
