@@ -102,7 +102,7 @@ TEST_CASE("ssid diagnose: bad input is refused with a clear message", "[cli][dia
   const auto kind = run_ssid("diagnose a.bdf b.unv --kinds gravity");
   CHECK(kind.code == 2);
   CHECK(kind.err.find("unknown extension kind") != std::string::npos);
-  const fs::path study = fs::temp_directory_path() / ("ssid_diag_study_" + std::to_string(::getpid()) + ".json");
+  const fs::path study = cli_scratch("diag_study") / "study.json";
   // One study file for estimate and diagnose: errors by key path.
   std::ofstream(study) << R"({"diagnosis": {"kinds": ["missing_mass"], "shortlist": 2}, "frequency_std": 0.3})";
   const auto bad = run_ssid("diagnose a.bdf b.unv --study " + study.string());

@@ -7,7 +7,6 @@
 
 #include <Eigen/Dense>
 #include <cmath>
-#include <complex>
 #include <filesystem>
 #include <fstream>
 #include <nlohmann/json.hpp>
@@ -15,7 +14,6 @@
 
 #include "cli/chain_frf.hpp"
 #include "cli/cli_run.hpp"
-#include "formats/uff.hpp"
 
 namespace fs = std::filesystem;
 using json = nlohmann::json;
