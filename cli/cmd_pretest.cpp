@@ -26,6 +26,7 @@
 #include "estimator/correlation/measures.hpp"
 #include "estimator/pretest/evaluation.hpp"
 #include "estimator/pretest/exciter_placement.hpp"
+#include "estimator/pretest/measurement_coordinates.hpp"
 #include "estimator/pretest/model_error.hpp"
 #include "estimator/pretest/sensor_placement.hpp"
 #include "estimator/pretest/tam.hpp"
@@ -49,10 +50,10 @@ pt::PlacementMethod parse_method(const std::string& s) {
   throw formats::InputError("--method: expected ei, ke, ake, evp or evp-sum, got \"" + s + "\"");
 }
 
-/// "GRID:X,Y,Z" → an exciter on that grid (direction normalised).
-pt::Exciter parse_exciter(const std::string& text, const std::map<std::int64_t, int>& group_of) {
+/// "GRID:X,Y,Z" → the grid and the vector (not normalised, not zero), for `option`.
+std::pair<std::int64_t, Eigen::Vector3d> parse_grid_direction(const std::string& text, const std::string& option) {
   const auto colon = text.find(':');
-  const std::string what = "--exciter-at \"" + text + "\": ";
+  const std::string what = option + " \"" + text + "\": ";
   if (colon == std::string::npos) throw formats::InputError(what + "expected GRID:X,Y,Z");
   std::int64_t grid = 0;
   Eigen::Vector3d d;
@@ -74,8 +75,15 @@ pt::Exciter parse_exciter(const std::string& text, const std::map<std::int64_t, 
     throw formats::InputError(what + "expected GRID:X,Y,Z (a grid id and three direction cosines)");
   }
   if (d.norm() == 0) throw formats::InputError(what + "the direction is the zero vector");
+  return {grid, d};
+}
+
+/// "GRID:X,Y,Z" → an exciter on that grid (direction normalised).
+pt::Exciter parse_exciter(const std::string& text, const std::map<std::int64_t, int>& group_of) {
+  const auto [grid, d] = parse_grid_direction(text, "--exciter-at");
   const auto it = group_of.find(grid);
-  if (it == group_of.end()) throw formats::InputError(what + "grid " + std::to_string(grid) + " is not a candidate grid");
+  if (it == group_of.end())
+    throw formats::InputError("--exciter-at \"" + text + "\": grid " + std::to_string(grid) + " is not a candidate grid");
   return {it->second, d.normalized()};
 }
 
@@ -179,6 +187,10 @@ int cmd_pretest(const Args& args) {
       "triax", po::bool_switch(), "place S/3 triaxes (the three translations of a grid) instead of single DOFs")(
       "grids", po::value<std::string>(),
       "candidate grids, e.g. \"1:80\" (default: every grid with a translational DOF)")(
+      "sensor-direction", po::value<std::vector<std::string>>()->composing(),
+      "GRID:X,Y,Z: at GRID the candidate sensors measure along the given direction (in the grid's displacement "
+      "frame) instead of along T1, T2, T3; repeat for up to three independent directions at a grid (with --triax: "
+      "exactly three, a skewed triax); the grid joins the candidates")(
       "ke-mass", po::value<std::string>()->default_value("fe"),
       "ke/ake: the mass of the kinetic energy, fe (the FE mass) or guyan (reduced to the candidate DOFs)")(
       "exciters", po::value<int>()->default_value(0), "E: place E exciters with the GA over MIF drop-offs (0: none)")(
@@ -218,7 +230,7 @@ int cmd_pretest(const Args& args) {
   int rc = 0;
   if (!parse_options(args,
                      "ssid pretest DECK --target-modes N [--min-hz F] --sensors S --method ei|ke|ake|evp|evp-sum "
-                     "[--triax] [--exciters E] [--evaluate] [--perturb-areas SEED] [--json OUT] [--uff OUT.unv] [--svg OUT.svg] "
+                     "[--triax] [--grids LIST] [--sensor-direction GRID:X,Y,Z ...] [--exciters E] [--evaluate] [--perturb-areas SEED] [--json OUT] [--uff OUT.unv] [--svg OUT.svg] "
                      "[--view iso|x|y|z] [--report OUT.html]",
                      desc, pos, vm, rc))
     return rc;
@@ -271,15 +283,40 @@ int cmd_pretest(const Args& args) {
   const auto grids = grid_positions(model);
   std::vector<std::int64_t> grid_list;
   if (vm.count("grids")) grid_list = translators::parse_sensor_list(vm["grids"].as<std::string>(), grids, "--grids");
+  std::vector<pt::SensorDirection> sensor_dirs;
+  if (vm.count("sensor-direction"))
+    for (const auto& text : vm["sensor-direction"].as<std::vector<std::string>>()) {
+      const auto [grid, d] = parse_grid_direction(text, "--sensor-direction");
+      sensor_dirs.push_back({grid, d});
+      if (!grid_list.empty() && std::find(grid_list.begin(), grid_list.end(), grid) == grid_list.end())
+        grid_list.push_back(grid);
+    }
+  // `cand`/`groups`: every translation of the candidate grids, where exciters act.
+  // `scand`/`sgroups`: the sensor candidates, rows of the measurement
+  // coordinates q (measurement_coordinates.hpp; q = u without --sensor-direction),
+  // in which the placement, the TAMs and the simulated test work.
   const auto cand = pt::translational_candidates(dofs, grid_list);
   const auto groups = pt::group_by_grid(cand);
+  const pt::MeasurementCoordinates mc = pt::measurement_coordinates(dofs, cand, sensor_dirs);
+  const auto& scand = mc.candidates;
+  const auto sgroups = pt::group_by_grid(scand);
+  if (triax)
+    for (const auto& g : sgroups)
+      if (g.size() != 3)
+        throw formats::InputError("--triax: grid " + std::to_string(scand[static_cast<std::size_t>(g[0])].dof.point) +
+                                  " has " + std::to_string(g.size()) +
+                                  " sensor direction(s); a triax needs three (give three --sensor-direction at it)");
   std::vector<Eigen::Index> cand_rows;
-  for (const auto& c : cand) cand_rows.push_back(c.row);
+  for (const auto& c : scand) cand_rows.push_back(c.row);
+  const bool directed = !sensor_dirs.empty();
+  const Eigen::SparseMatrix<double> Kq = directed ? mc.congruent(op.K) : op.K;
+  const Eigen::SparseMatrix<double> Mq = directed ? mc.congruent(op.M) : op.M;
+  const Eigen::MatrixXd Phi_q = directed ? mc.displacements(Phi) : Phi;
 
   // --- sensor placement
   const int keep = triax ? n_sensors / 3 : n_sensors;
   const std::vector<std::vector<Eigen::Index>> no_groups;
-  const auto& place_groups = triax ? groups : no_groups;
+  const auto& place_groups = triax ? sgroups : no_groups;
   // One placement of the targets `Phi_t` of a model (K, M): the run's, and the perturbed model's.
   auto place = [&](const Eigen::SparseMatrix<double>& K_, const Eigen::SparseMatrix<double>& M_,
                    const Eigen::MatrixXd& Phi_t, pt::PlacementMethod method) {
@@ -305,9 +342,9 @@ int cmd_pretest(const Args& args) {
     }
     return placement;
   };
-  const pt::Placement placement = place(op.K, op.M, Phi, method);
+  const pt::Placement placement = place(Kq, Mq, Phi_q, method);
   std::vector<Eigen::Index> sensor_rows;
-  for (auto s : placement.selected) sensor_rows.push_back(cand[static_cast<std::size_t>(s)].row);
+  for (auto s : placement.selected) sensor_rows.push_back(scand[static_cast<std::size_t>(s)].row);
 
   // --- model error: the same placement on the perturbed model
   struct ModelError {
@@ -330,14 +367,15 @@ int cmd_pretest(const Args& args) {
       Phi_p.col(t) = per.modes.col(ptargets[static_cast<std::size_t>(t)]);
       me.hz(t) = per.cycles(static_cast<int>(ptargets[static_cast<std::size_t>(t)]));
     }
-    me.placement = place(pop.K, pop.M, Phi_p, method);
+    me.placement = directed ? place(mc.congruent(pop.K), mc.congruent(pop.M), mc.displacements(Phi_p), method)
+                            : place(pop.K, pop.M, Phi_p, method);
     model_error = std::move(me);
   }
 
   // --- TAMs on the sensor set
   std::vector<pt::TamCheck> tams;
   for (auto k : {pt::TamKind::Guyan, pt::TamKind::Irs, pt::TamKind::Serep})
-    tams.push_back(pt::tam_check(k, op.K, op.M, Phi, hz, sensor_rows));
+    tams.push_back(pt::tam_check(k, Kq, Mq, Phi_q, hz, sensor_rows));
 
   // --- exciters
   std::map<std::int64_t, int> group_of;
@@ -348,7 +386,8 @@ int cmd_pretest(const Args& args) {
   std::optional<pt::ExciterPlacement> xp;
   std::optional<Eigen::MatrixXd> given_drop;
   if (n_exciters > 0 || !given.empty()) {
-    const pt::DropoffModel dm(er.modes, er.eigenvalues, sensor_rows, cand, groups, target_cols, zeta);
+    const Eigen::MatrixXd Phi_o = pt::take_rows(directed ? mc.displacements(er.modes) : er.modes, sensor_rows);
+    const pt::DropoffModel dm(er.modes, er.eigenvalues, Phi_o, cand, groups, target_cols, zeta);
     if (!given.empty()) given_drop = dm.dropoffs(given);
     if (n_exciters > 0) {
       pt::GeneticOptions go;
@@ -378,9 +417,11 @@ int cmd_pretest(const Args& args) {
       full = solve_model(op, eigen_options(model, n_full, n, src), dofs);
     }
     const auto full_targets = pt::select_target_modes(full.eigenvalues, n_targets, min_hz);
+    const Eigen::MatrixXd full_q = directed ? mc.displacements(full.modes) : full.modes;
     auto run = [&](const std::vector<pt::Exciter>& ex) {
-      return pt::evaluate_placement(op.K, op.M, full.modes, full.eigenvalues, full_targets, sensor_rows,
-                                    pt::exciter_inputs(n, cand, groups, ex), so);
+      const Eigen::MatrixXd B = pt::exciter_inputs(n, cand, groups, ex);
+      return pt::evaluate_placement(Kq, Mq, full_q, full.eigenvalues, full_targets, sensor_rows,
+                                    directed ? mc.loads(B) : B, so);
     };
     if (xp) evaluation = run(xp->exciters);
     if (!given.empty()) (xp ? given_evaluation : evaluation) = run(given);
@@ -392,7 +433,14 @@ int cmd_pretest(const Args& args) {
   j["dof"] = n;
   j["method"] = pt::method_name(method);
   j["triax"] = triax;
-  j["candidates"] = cand.size();
+  j["candidates"] = scand.size();
+  if (directed) {
+    j["sensor_directions"] = nlohmann::json::array();
+    for (const auto& sd : sensor_dirs) {
+      const Eigen::Vector3d u = sd.direction.normalized();
+      j["sensor_directions"].push_back({{"grid", sd.grid}, {"direction", {u(0), u(1), u(2)}}});
+    }
+  }
   j["target_modes"] = nlohmann::json::array();
   for (int t = 0; t < n_targets; ++t)
     j["target_modes"].push_back({{"mode", target_cols[static_cast<std::size_t>(t)] + 1}, {"hz", hz(t)}});
@@ -404,13 +452,19 @@ int cmd_pretest(const Args& args) {
     const Eigen::Vector3d b = frame_of.at(grid) * d;
     return nlohmann::json{b.x(), b.y(), b.z()};
   };
+  // A sensor's record: "component" is null for one along a given direction.
+  auto sensor_json = [&](const pt::CandidateDof& c) {
+    return nlohmann::json{{"grid", c.dof.point},
+                          {"component", c.directed ? nlohmann::json(nullptr) : nlohmann::json(c.dof.component)},
+                          {"label", pt::sensor_label(c)},
+                          {"direction", {c.direction(0), c.direction(1), c.direction(2)}},
+                          {"direction_basic", basic(c.dof.point, c.direction)}};
+  };
   j["sensors"] = nlohmann::json::array();
   for (std::size_t i = 0; i < placement.selected.size(); ++i) {
-    const auto& c = cand[static_cast<std::size_t>(placement.selected[i])];
-    j["sensors"].push_back({{"grid", c.dof.point},
-                            {"component", c.dof.component},
-                            {"score", placement.score(static_cast<Eigen::Index>(i))},
-                            {"direction_basic", basic(c.dof.point, Eigen::Vector3d::Unit(c.dof.component - 1))}});
+    nlohmann::json x = sensor_json(scand[static_cast<std::size_t>(placement.selected[i])]);
+    x["score"] = placement.score(static_cast<Eigen::Index>(i));
+    j["sensors"].push_back(x);
   }
   auto finite_or_null = [](double v) { return std::isfinite(v) ? nlohmann::json(v) : nlohmann::json(nullptr); };
   j["fisher_determinant"] = placement.fisher.determinant;
@@ -459,13 +513,10 @@ int cmd_pretest(const Args& args) {
   j["damping_ratio"] = zeta;
   if (evaluation) j["evaluation"] = evaluation_json(*evaluation, target_cols, hz, so);
   // Model error: the sensors (triaxes: grids) of the nominal set missing from the perturbed one, and those added.
-  using Key = std::pair<std::int64_t, int>;
+  using Key = std::pair<std::int64_t, Eigen::Index>;  // grid, position in scand (-1 for a triax)
   auto keys = [&](const pt::Placement& pl) {
     std::set<Key> k;
-    for (auto s : pl.selected) {
-      const auto& c = cand[static_cast<std::size_t>(s)];
-      k.insert({c.dof.point, triax ? 0 : c.dof.component});
-    }
+    for (auto s : pl.selected) k.insert({scand[static_cast<std::size_t>(s)].dof.point, triax ? Eigen::Index{-1} : s});
     return k;
   };
   std::vector<Key> removed, added;
@@ -475,7 +526,7 @@ int cmd_pretest(const Args& args) {
     std::set_difference(b.begin(), b.end(), a.begin(), a.end(), std::back_inserter(added));
     auto list = [&](const std::vector<Key>& v) {
       nlohmann::json l = nlohmann::json::array();
-      for (const auto& [g, c] : v) l.push_back(triax ? nlohmann::json{{"grid", g}} : nlohmann::json{{"grid", g}, {"component", c}});
+      for (const auto& [g, c] : v) l.push_back(triax ? nlohmann::json{{"grid", g}} : sensor_json(scand[static_cast<std::size_t>(c)]));
       return l;
     };
     nlohmann::json m;
@@ -489,10 +540,7 @@ int cmd_pretest(const Args& args) {
     m["target_hz"] = std::vector<double>(model_error->hz.data(), model_error->hz.data() + n_targets);
     m["frequency_change_pct"] = change;
     m["sensors"] = nlohmann::json::array();
-    for (auto s : model_error->placement.selected) {
-      const auto& c = cand[static_cast<std::size_t>(s)];
-      m["sensors"].push_back({{"grid", c.dof.point}, {"component", c.dof.component}});
-    }
+    for (auto s : model_error->placement.selected) m["sensors"].push_back(sensor_json(scand[static_cast<std::size_t>(s)]));
     m["changed"] = removed.size();
     m["of"] = a.size();
     m["unit"] = triax ? "triaxes" : "sensors";
@@ -509,7 +557,7 @@ int cmd_pretest(const Args& args) {
                    pt::PlacementMethod::EigenvectorSum}) {
       pt::Placement pm;
       try {
-        pm = m == method ? placement : place(op.K, op.M, Phi, m);
+        pm = m == method ? placement : place(Kq, Mq, Phi_q, m);
       } catch (const formats::InputError& e) {  // e.g. EI with fewer sensors than targets: that method has no set
         j["methods"].push_back({{"method", pt::method_name(m)}, {"error", e.what()}});
         continue;
@@ -520,17 +568,14 @@ int cmd_pretest(const Args& args) {
                        {"condition_number", finite_or_null(pm.fisher.condition_number)},
                        {"fisher_rank", pm.fisher.rank},
                        {"sensors", nlohmann::json::array()}};
-      for (auto sel : pm.selected) {
-        const auto& c = cand[static_cast<std::size_t>(sel)];
-        x["sensors"].push_back({{"grid", c.dof.point}, {"component", c.dof.component}});
-      }
+      for (auto sel : pm.selected) x["sensors"].push_back(sensor_json(scand[static_cast<std::size_t>(sel)]));
       j["methods"].push_back(x);
     }
   }
   // The sensor grids and the test wire frame joining them (report_data.hpp test_wire_frame).
   std::vector<std::int64_t> sensor_grids;
   for (auto sel : placement.selected) {
-    const auto g = cand[static_cast<std::size_t>(sel)].dof.point;
+    const auto g = scand[static_cast<std::size_t>(sel)].dof.point;
     if (std::find(sensor_grids.begin(), sensor_grids.end(), g) == sensor_grids.end()) sensor_grids.push_back(g);
   }
   if (vm.count("svg") || vm.count("report")) j["geometry"] = report::geometry_json(model, grids, sensor_grids);
@@ -540,17 +585,22 @@ int cmd_pretest(const Args& args) {
   const std::string json_path = vm.count("json") ? vm["json"].as<std::string>() : "";
   if (json_path != "-") {
     std::ostream& o = std::cout;
-    o << lm.path << ": " << n << " analysis-set DOF(s), " << er.size() << " mode(s) solved, " << cand.size()
-      << " candidate sensor DOF(s) on " << groups.size() << " grid(s)\n\n";
+    o << lm.path << ": " << n << " analysis-set DOF(s), " << er.size() << " mode(s) solved, " << scand.size()
+      << " candidate sensor DOF(s) on " << sgroups.size() << " grid(s)";
+    if (directed) o << ", " << sensor_dirs.size() << " of them along given directions";
+    o << "\n\n";
     o << "target modes (" << n_targets << " lowest above " << min_hz << " Hz):";
     for (int t = 0; t < n_targets; ++t) o << (t % 6 == 0 ? "\n  " : "  ") << "#" << target_cols[static_cast<std::size_t>(t)] + 1 << " " << std::fixed << std::setprecision(3) << hz(t) << " Hz";
     o << std::defaultfloat << "\n\n";
     o << "sensors: " << pt::method_name(method) << (triax ? ", triaxial (" + std::to_string(keep) + " grids)" : "")
       << ", " << placement.selected.size() << " DOF(s)\n";
-    o << "  grid  component  score\n";
+    std::size_t width = 8;
+    for (auto sel : placement.selected) width = std::max(width, pt::sensor_label(scand[static_cast<std::size_t>(sel)]).size());
+    o << "  grid  " << std::left << std::setw(static_cast<int>(width)) << "measures" << std::right << "  score\n";
     for (std::size_t i = 0; i < placement.selected.size(); ++i) {
-      const auto& c = cand[static_cast<std::size_t>(placement.selected[i])];
-      o << "  " << std::setw(4) << c.dof.point << "  T" << c.dof.component << "         " << fmt(placement.score(static_cast<Eigen::Index>(i))) << "\n";
+      const auto& c = scand[static_cast<std::size_t>(placement.selected[i])];
+      o << "  " << std::setw(4) << c.dof.point << "  " << std::left << std::setw(static_cast<int>(width))
+        << pt::sensor_label(c) << std::right << "  " << fmt(placement.score(static_cast<Eigen::Index>(i))) << "\n";
     }
     o << "Fisher information (unit noise, mass-normalised modes): det " << fmt(placement.fisher.determinant)
       << " (log10 " << fmt(placement.fisher.log10_determinant) << "), condition number "
@@ -597,7 +647,9 @@ int cmd_pretest(const Args& args) {
         o << (t % 6 == 0 ? "\n  " : "  ") << std::fixed << std::setprecision(2) << 100 * (model_error->hz(t) - hz(t)) / hz(t);
       o << std::defaultfloat << "\n  " << removed.size() << " of " << keys(placement).size()
         << (triax ? " triax(es)" : " sensor(s)") << " changed";
-      auto name = [&](const Key& k) { return std::to_string(k.first) + (triax ? "" : " T" + std::to_string(k.second)); };
+      auto name = [&](const Key& k) {
+        return std::to_string(k.first) + (triax ? "" : " " + pt::sensor_label(scand[static_cast<std::size_t>(k.second)]));
+      };
       if (!removed.empty()) {
         o << "; dropped:";
         for (const auto& k : removed) o << " " << name(k);
@@ -611,7 +663,7 @@ int cmd_pretest(const Args& args) {
 
   if (vm.count("uff")) {
     std::set<std::int64_t> ids;
-    for (auto s : placement.selected) ids.insert(cand[static_cast<std::size_t>(s)].dof.point);
+    for (auto s : placement.selected) ids.insert(scand[static_cast<std::size_t>(s)].dof.point);
     if (xp)
       for (const auto& e : xp->exciters) ids.insert(grid_of_group(e.group));
     formats::uff::NodeSet ns;

@@ -17,6 +17,7 @@
 
 #include "cli/report/pretest_picture.hpp"
 #include "cli/report/projection.hpp"
+#include "cli/report/report_data.hpp"
 #include "cli/report/svg.hpp"
 #include "estimator/reporting/number_text.hpp"
 
@@ -908,14 +909,14 @@ std::string pretest_sections(const json& j) {
                 "exciters as red arrows along their force directions (given exciters orange), and the sensors' wire frame "
                 "(dashed; the trace lines of the UFF output).");
   }
-  s += "<table class=\"sensors\">\n<tr><th>#</th><th>grid</th><th>component</th><th>score</th><th>direction (basic)</th></tr>\n";
+  s += "<table class=\"sensors\">\n<tr><th>#</th><th>grid</th><th>measures</th><th>score</th><th>direction (basic)</th></tr>\n";
   for (std::size_t k = 0; k < sensors.size(); ++k) {
     const auto& x = sensors[k];
     const auto& d = x["direction_basic"];
     s += fmt::format("<tr class=\"sensor\" data-grid=\"{}\" data-component=\"{}\"><td class=\"n\">{}</td><td class=\"n\">{}</td>"
-                     "<td>T{}</td><td class=\"n\">{}</td><td class=\"n\">({}, {}, {})</td></tr>\n",
-                     x["grid"].get<std::int64_t>(), x["component"].get<int>(), k + 1, x["grid"].get<std::int64_t>(),
-                     x["component"].get<int>(), significant(x["score"], 4), fixed(d[0], 3), fixed(d[1], 3), fixed(d[2], 3));
+                     "<td>{}</td><td class=\"n\">{}</td><td class=\"n\">({}, {}, {})</td></tr>\n",
+                     x["grid"].get<std::int64_t>(), sensor_component(x), k + 1, x["grid"].get<std::int64_t>(),
+                     esc(sensor_label(x)), significant(x["score"], 4), fixed(d[0], 3), fixed(d[1], 3), fixed(d[2], 3));
   }
   s += "</table>\n</section>\n";
 
@@ -1035,7 +1036,7 @@ std::string pretest_sections(const json& j) {
     auto list = [&](const json& l) {
       std::string t;
       for (const auto& x : l)
-        t += " " + std::to_string(x["grid"].get<std::int64_t>()) + (x.contains("component") ? " T" + std::to_string(x["component"].get<int>()) : "");
+        t += " " + std::to_string(x["grid"].get<std::int64_t>()) + (x.contains("component") ? " " + esc(sensor_label(x)) : "");
       return t.empty() ? std::string(" —") : t;
     };
     s += fmt::format("<p>Seed {}: of {} strut(s), {} area(s) −20 % and {} +20 %. {} of {} {} changed; dropped:{}; added:{}.</p>\n",

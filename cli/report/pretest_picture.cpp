@@ -6,6 +6,7 @@
 #include <cmath>
 #include <map>
 
+#include "cli/report/report_data.hpp"
 #include "cli/report/svg.hpp"
 #include "formats/parse_error.hpp"
 
@@ -74,12 +75,11 @@ std::string view_marks(const json& j, const Points& grids, const Lines& lines, c
       continue;
     }
     for (const json* x : at[g]) {
-      const int c = (*x)["component"];
       const Eigen::Vector3d d = vec3((*x)["direction_basic"]);
       s += fmt::format("<g class=\"sensor\" data-grid=\"{}\" data-component=\"{}\">{}<circle cx=\"{}\" cy=\"{}\" r=\"2.2\" "
-                       "fill=\"{}\"/><title>sensor at grid {}, T{}, direction {} (basic)</title></g>\n",
-                       g, c, arrow(p, d, pl, 20, 1.6, kSensorColour), px(p.x()), px(p.y()), kSensorColour, g, c,
-                       direction_text(d));
+                       "fill=\"{}\"/><title>sensor at grid {}, {}, direction {} (basic)</title></g>\n",
+                       g, sensor_component(*x), arrow(p, d, pl, 20, 1.6, kSensorColour), px(p.x()), px(p.y()),
+                       kSensorColour, g, esc(sensor_label(*x)), direction_text(d));
     }
   }
   auto exciters = [&](const json& list, const char* cls, const char* colour, const char* letter, const std::string& name) {

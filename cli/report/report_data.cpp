@@ -67,6 +67,16 @@ std::vector<std::pair<std::int64_t, std::int64_t>> element_lines(const formats::
 
 }  // namespace
 
+std::string sensor_component(const nlohmann::json& sensor) {
+  const auto it = sensor.find("component");
+  return it == sensor.end() || it->is_null() ? std::string() : std::to_string(it->get<int>());
+}
+
+std::string sensor_label(const nlohmann::json& sensor) {
+  if (sensor.contains("label")) return sensor["label"].get<std::string>();
+  return "T" + sensor_component(sensor);
+}
+
 Lines test_wire_frame(const Lines& lines, const Points& grids, const std::vector<std::int64_t>& test_grids) {
   std::map<std::int64_t, std::vector<std::int64_t>> adjacent;
   for (const auto& [a, b] : lines) {

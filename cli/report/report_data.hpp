@@ -22,6 +22,12 @@ namespace ssid::cli::report {
 /// that is set (reproducible reports).
 nlohmann::json run_json(const std::string& subcommand, const Args& args, const std::vector<std::string>& inputs);
 
+/// A pretest sensor record ({"grid", "component", "label", ...}, cmd_pretest):
+/// how it is named ("T2", or a given direction's cosines) and its component as
+/// text ("" for a sensor along a given direction, whose "component" is null).
+std::string sensor_label(const nlohmann::json& sensor);
+std::string sensor_component(const nlohmann::json& sensor);
+
 /// The test's wire frame on `test_grids`: each test grid joined to the (at most
 /// three) nearest test grids (straight distance) that a path along `lines`
 /// through non-test grids reaches, each line (smaller id, larger id) once, sorted.

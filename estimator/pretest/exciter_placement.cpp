@@ -12,13 +12,19 @@ DropoffModel::DropoffModel(const Eigen::Ref<const Eigen::MatrixXd>& Phi, const E
                            const std::vector<Eigen::Index>& sensors, const std::vector<CandidateDof>& candidates,
                            const std::vector<std::vector<Eigen::Index>>& groups, const std::vector<Eigen::Index>& targets,
                            double zeta)
+    : DropoffModel(Phi, eigenvalues, take_rows(Phi, sensors), candidates, groups, targets, zeta) {}
+
+DropoffModel::DropoffModel(const Eigen::Ref<const Eigen::MatrixXd>& Phi, const Eigen::Ref<const Eigen::VectorXd>& eigenvalues,
+                           const Eigen::Ref<const Eigen::MatrixXd>& Phi_o, const std::vector<CandidateDof>& candidates,
+                           const std::vector<std::vector<Eigen::Index>>& groups, const std::vector<Eigen::Index>& targets,
+                           double zeta)
     : m_candidates(candidates), m_groups(groups) {
-  if (eigenvalues.size() != Phi.cols()) throw std::invalid_argument("DropoffModel: eigenvalues and modes differ in count");
+  if (eigenvalues.size() != Phi.cols() || Phi_o.cols() != Phi.cols())
+    throw std::invalid_argument("DropoffModel: eigenvalues, modes and output rows differ in mode count");
   if (zeta <= 0) throw formats::InputError("damping ratio: expected > 0, got " + std::to_string(zeta));
   std::vector<Eigen::Index> rows;
   for (const auto& c : candidates) rows.push_back(c.row);
   m_Phi_in = take_rows(Phi, rows);
-  const Eigen::MatrixXd Phi_o = take_rows(Phi, sensors);
   for (auto t : targets) {
     const double w = std::sqrt(std::max(eigenvalues(t), 0.0));
     // Columns of A_t are the modes' contributions at ω_t: H = A_t Γ for any input.

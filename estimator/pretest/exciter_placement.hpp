@@ -32,6 +32,13 @@ public:
                const std::vector<Eigen::Index>& sensors, const std::vector<CandidateDof>& candidates,
                const std::vector<std::vector<Eigen::Index>>& groups, const std::vector<Eigen::Index>& targets,
                double zeta);
+  /// The same with the outputs given as rows, `Phi_outputs` (o x r): the modes
+  /// at the sensors, which may be measurement coordinates
+  /// (measurement_coordinates.hpp) while the excitation stays on `Phi`'s a-set.
+  DropoffModel(const Eigen::Ref<const Eigen::MatrixXd>& Phi, const Eigen::Ref<const Eigen::VectorXd>& eigenvalues,
+               const Eigen::Ref<const Eigen::MatrixXd>& Phi_outputs, const std::vector<CandidateDof>& candidates,
+               const std::vector<std::vector<Eigen::Index>>& groups, const std::vector<Eigen::Index>& targets,
+               double zeta);
   int groups() const { return static_cast<int>(m_groups.size()); }
   int targets() const { return static_cast<int>(m_A.size()); }
   /// Drop-off (single-input MIF at ω_t) of each target for one exciter.

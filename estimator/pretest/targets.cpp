@@ -1,8 +1,10 @@
 #include "estimator/pretest/targets.hpp"
 
 #include <cmath>
+#include <iomanip>
 #include <map>
 #include <set>
+#include <sstream>
 #include <string>
 
 #include "formats/parse_error.hpp"
@@ -32,7 +34,7 @@ std::vector<CandidateDof> translational_candidates(const std::vector<translators
     const auto& d = a_set[i];
     if (d.component < 1 || d.component > 3) continue;
     if (!wanted.empty() && !wanted.count(d.point)) continue;
-    out.push_back({static_cast<Eigen::Index>(i), d});
+    out.push_back({static_cast<Eigen::Index>(i), d, Eigen::Vector3d::Unit(d.component - 1), false});
     seen.insert(d.point);
   }
   for (auto g : grids)
@@ -41,6 +43,13 @@ std::vector<CandidateDof> translational_candidates(const std::vector<translators
                                 ": no translational DOF in the analysis set (no such grid, or all its "
                                 "translations constrained)");
   return out;
+}
+
+std::string sensor_label(const CandidateDof& c) {
+  if (!c.directed) return "T" + std::to_string(c.dof.component);
+  std::ostringstream o;
+  o << std::setprecision(4) << "(" << c.direction(0) << ", " << c.direction(1) << ", " << c.direction(2) << ")";
+  return o.str();
 }
 
 std::vector<std::vector<Eigen::Index>> group_by_grid(const std::vector<CandidateDof>& candidates) {

@@ -8,6 +8,7 @@
 /// not depend on how the model was assembled.
 #include <Eigen/Core>
 #include <cstdint>
+#include <string>
 #include <vector>
 
 #include "translators/dof_map.hpp"
@@ -22,11 +23,20 @@ std::vector<Eigen::Index> select_target_modes(const Eigen::Ref<const Eigen::Vect
                                               double min_hz);
 
 /// A candidate sensor: one translational DOF of a grid, measured along the
-/// grid's displacement frame (component 1, 2, 3 = T1, T2, T3 in CD).
+/// grid's displacement frame (component 1, 2, 3 = T1, T2, T3 in CD), or, made
+/// by measurement_coordinates (measurement_coordinates.hpp), along a given
+/// direction (`directed`; its row is then a row of the measurement coordinates q).
 struct CandidateDof {
   Eigen::Index row = 0;  ///< row of the a-set (of K, M and the modes)
-  translators::Dof dof;  ///< grid and component
+  translators::Dof dof;  ///< grid and component (for a directed sensor: the a-set row's own)
+  /// The measured direction, a unit vector in the grid's displacement frame:
+  /// the component's axis, or the given direction of a directed sensor.
+  Eigen::Vector3d direction = Eigen::Vector3d::Zero();
+  bool directed = false;  ///< measures along a given direction, not along a component
 };
+
+/// How a sensor is named in reports: "T2", or the direction cosines "(0.6, 0.8, 0)".
+std::string sensor_label(const CandidateDof& c);
 
 /// The candidates: every translational DOF (components 1-3) of the a-set, or
 /// only those of `grids` when it is not empty, in a-set order. Throws

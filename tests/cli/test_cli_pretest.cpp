@@ -30,38 +30,59 @@ nlohmann::json read_json(const fs::path& p) {
 
 std::string rod() { return (fs::path(SSID_SOURCE_DIR) / "samples" / "mpi_rod.bdf").string(); }
 
+/// `ssid pretest` on the rod model with `options`, its JSON written to `json`;
+/// requires success and returns the JSON (and stdout in `out`).
+nlohmann::json pretest_rod(const std::string& options, const fs::path& json, std::string& out) {
+  auto r = run_ssid("pretest " + rod() + " " + options + " --json " + json.string());
+  INFO(r.err);
+  REQUIRE(r.code == 0);
+  out = r.out;
+  return read_json(json);
+}
+
+/// The rod model's g-set mode shapes as `ssid modes --shapes` writes them: an
+/// independent route to the rows the pretest works on.
+struct RodShapes {
+  nlohmann::json modes;
+  std::map<std::pair<long, int>, std::size_t> where;  ///< (grid, component) → position in a shape
+  /// Mode `mode` (1-based) at (grid, component).
+  double at(int mode, long grid, int component) const {
+    return modes["modes"][static_cast<std::size_t>(mode - 1)]["shape"][where.at({grid, component})].get<double>();
+  }
+};
+
+RodShapes rod_shapes(const fs::path& json) {
+  auto m = run_ssid("modes " + rod() + " --nmodes 24 --shapes --json " + json.string());
+  REQUIRE(m.code == 0);
+  RodShapes s{read_json(json), {}};
+  for (std::size_t i = 0; i < s.modes["shape_dofs"].size(); ++i)
+    s.where[{s.modes["shape_dofs"][i][0].get<long>(), s.modes["shape_dofs"][i][1].get<int>()}] = i;
+  return s;
+}
+
 }  // namespace
 
 TEST_CASE("ssid pretest: EI on the MPI rod model; its Fisher determinant from ssid modes' shapes", "[cli][pretest]") {
   const fs::path dir = scratch();
   const fs::path pj = dir / "ei.json", mj = dir / "modes.json", unv = dir / "sensors.unv";
-  auto r = run_ssid("pretest " + rod() + " --target-modes 12 --min-hz 1 --sensors 18 --method ei --json " + pj.string() +
-                    " --uff " + unv.string());
-  INFO(r.err);
-  REQUIRE(r.code == 0);
-  CHECK_THAT(r.out, Catch::Contains("sensors: ei, 18 DOF(s)"));
-  const auto j = read_json(pj);
+  std::string out;
+  const auto j = pretest_rod("--target-modes 12 --min-hz 1 --sensors 18 --method ei --uff " + unv.string(), pj, out);
+  CHECK_THAT(out, Catch::Contains("sensors: ei, 18 DOF(s)"));
   REQUIRE(j["sensors"].size() == 18);
   REQUIRE(j["target_modes"].size() == 12);
   CHECK(j["exciters"].empty());
   CHECK(j["tam"]["serep"]["max_offdiagonal_xor"].get<double>() < 1e-8);
 
   // The same 12 modes from `ssid modes --shapes` (g-set), partitioned to the sensors.
-  auto m = run_ssid("modes " + rod() + " --nmodes 24 --shapes --json " + mj.string());
-  REQUIRE(m.code == 0);
-  const auto mo = read_json(mj);
-  std::map<std::pair<long, int>, std::size_t> where;
-  for (std::size_t i = 0; i < mo["shape_dofs"].size(); ++i)
-    where[{mo["shape_dofs"][i][0].get<long>(), mo["shape_dofs"][i][1].get<int>()}] = i;
+  const RodShapes mo = rod_shapes(mj);
   Eigen::MatrixXd S(18, 12);
   for (int t = 0; t < 12; ++t) {
     const int mode = j["target_modes"][static_cast<std::size_t>(t)]["mode"].get<int>();
-    const auto& shape = mo["modes"][static_cast<std::size_t>(mode - 1)]["shape"];
-    CHECK(mo["modes"][static_cast<std::size_t>(mode - 1)]["cycles"].get<double>() ==
+    CHECK(mo.modes["modes"][static_cast<std::size_t>(mode - 1)]["cycles"].get<double>() ==
           Approx(j["target_modes"][static_cast<std::size_t>(t)]["hz"].get<double>()).epsilon(1e-8));
     for (int s = 0; s < 18; ++s) {
       const auto& sj = j["sensors"][static_cast<std::size_t>(s)];
-      S(s, t) = shape[where.at({sj["grid"].get<long>(), sj["component"].get<int>()})].get<double>();
+      S(s, t) = mo.at(mode, sj["grid"].get<long>(), sj["component"].get<int>());
     }
   }
   const double det = (S.transpose() * S).determinant();
@@ -73,6 +94,68 @@ TEST_CASE("ssid pretest: EI on the MPI rod model; its Fisher determinant from ss
   for (const auto& s : j["sensors"]) grids.insert(s["grid"].get<long>());
   CHECK(f.nodes().size() == grids.size());
   for (const auto& nd : f.nodes()) CHECK(grids.count(nd.id) == 1);
+}
+
+TEST_CASE("ssid pretest --sensor-direction: skewed sensors' Fisher determinant from ssid modes' shapes",
+          "[cli][pretest][directions]") {
+  // Skewed sensors at the boom tips (where EI puts its sensors), two of them at
+  // grid 79; each one's mode row is its direction's dot product with the grid's
+  // translations in `ssid modes`' shapes: an independent route to det F.
+  const fs::path dir = scratch();
+  const fs::path pj = dir / "skew.json", mj = dir / "modes.json";
+  const std::string dirs = " --sensor-direction 2:0,1,1 --sensor-direction 4:1,2,-1 --sensor-direction 29:0,-1,1"
+                           " --sensor-direction 31:3,0,1 --sensor-direction 77:0,1,0.5 --sensor-direction 79:1,0,1"
+                           " --sensor-direction 79:1,0,-0.2";
+  std::string out;
+  const auto j = pretest_rod("--target-modes 12 --min-hz 1 --sensors 18 --method ei" + dirs, pj, out);
+  CHECK_THAT(out, Catch::Contains("7 of them along given directions"));
+  REQUIRE(j["sensors"].size() == 18);
+  REQUIRE(j["sensor_directions"].size() == 7);
+  CHECK(j["candidates"].get<int>() == 3 * 80 - 6 * 3 + 7);
+  const RodShapes mo = rod_shapes(mj);
+  int skewed = 0;
+  Eigen::MatrixXd S(18, 12);
+  for (int s = 0; s < 18; ++s) {
+    const auto& sj = j["sensors"][static_cast<std::size_t>(s)];
+    const long grid = sj["grid"].get<long>();
+    Eigen::Vector3d d;
+    for (int k = 0; k < 3; ++k) d(k) = sj["direction"][static_cast<std::size_t>(k)].get<double>();
+    CHECK(d.norm() == Approx(1.0));
+    if (sj["component"].is_null()) {
+      ++skewed;
+      CHECK(std::set<long>{2, 4, 29, 31, 77, 79}.count(grid) == 1);
+      CHECK(sj["label"].get<std::string>().front() == '(');
+    } else {
+      CHECK(d == Eigen::Vector3d::Unit(sj["component"].get<int>() - 1));
+    }
+    for (int t = 0; t < 12; ++t) {
+      const int mode = j["target_modes"][static_cast<std::size_t>(t)]["mode"].get<int>();
+      S(s, t) = 0;
+      for (int k = 0; k < 3; ++k) S(s, t) += d(k) * mo.at(mode, grid, k + 1);
+    }
+  }
+  CHECK(skewed >= 3);
+  const double det = (S.transpose() * S).determinant();
+  CHECK(j["fisher_determinant"].get<double>() == Approx(det).epsilon(1e-6));
+  CHECK(j["tam"]["serep"]["max_offdiagonal_xor"].get<double>() < 1e-8);
+
+  // Refusals: a triax needs three directions; directions must be independent; a
+  // grid that is not in the model.
+  auto r = run_ssid("pretest " + rod() + " --target-modes 12 --min-hz 1 --sensors 18 --triax" + dirs);
+  CHECK(r.code == 2);
+  CHECK_THAT(r.err, Catch::EndsWith("ssid: error: --triax: grid 2 has 1 sensor direction(s); a triax needs three (give "
+                                    "three --sensor-direction at it)\n"));
+  r = run_ssid("pretest " + rod() + " --target-modes 12 --min-hz 1 --sensors 18 --sensor-direction 5:1,1,0 "
+               "--sensor-direction 5:2,2,0");
+  CHECK(r.code == 2);
+  CHECK_THAT(r.err, Catch::Contains("sensor directions at grid 5: the 2 directions are linearly dependent"));
+  r = run_ssid("pretest " + rod() + " --target-modes 12 --min-hz 1 --sensors 18 --sensor-direction 5000:1,0,0");
+  CHECK(r.code == 2);
+  CHECK_THAT(r.err, Catch::Contains("sensor direction at grid 5000: not a candidate grid"));
+  r = run_ssid("pretest " + rod() + " --target-modes 12 --min-hz 1 --sensors 18 --sensor-direction 5:1,0");
+  CHECK(r.code == 2);
+  CHECK_THAT(r.err, Catch::EndsWith("ssid: error: --sensor-direction \"5:1,0\": expected GRID:X,Y,Z (a grid id and three "
+                                    "direction cosines)\n"));
 }
 
 TEST_CASE("ssid pretest: triaxes, KE and the GA's exciters are reproducible", "[cli][pretest]") {
