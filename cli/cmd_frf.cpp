@@ -17,6 +17,7 @@
 #include "cli/cli_util.hpp"
 #include "cli/exit_codes.hpp"
 #include "cli/model_load.hpp"
+#include "cli/report/frf_chart.hpp"
 #include "cli/report/svg.hpp"
 #include "estimator/identification/frf_synthesis.hpp"
 #include "estimator/reporting/number_text.hpp"
@@ -147,56 +148,6 @@ std::vector<double> abscissa(const uff::Function58& f) {
   std::vector<double> x;
   for (std::size_t k = 0; k < f.y.size(); ++k) x.push_back(f.abscissa_min + static_cast<double>(k) * f.abscissa_increment);
   return x;
-}
-
-struct Curve {
-  std::string cls, colour, name;
-  std::vector<double> f;
-  std::vector<cd> h;
-};
-
-/// Magnitude (logarithmic) and phase charts of the curves of one response, stacked.
-std::string overlay_charts(const std::vector<Curve>& curves, const std::string& title, const std::string& unit,
-                           const std::string& id, double& height) {
-  using namespace report;
-  std::vector<double> fs, mags;
-  for (const auto& c : curves)
-    for (std::size_t k = 0; k < c.f.size(); ++k) {
-      fs.push_back(c.f[k]);
-      if (std::abs(c.h[k]) > 0) mags.push_back(std::abs(c.h[k]));
-    }
-  if (mags.empty()) mags.push_back(1.0);  // all zero: any axis will do
-  Axis fx{*std::min_element(fs.begin(), fs.end()), *std::max_element(fs.begin(), fs.end()), "frequency [Hz]"};
-  if (!(fx.hi > fx.lo)) fx.hi = fx.lo + 1;
-  Chart mag(720, 300, fx, log_axis_around(mags, "|H| [" + unit + "]"));
-  Chart ph(720, 220, fx, Axis{-180, 180, "phase [deg]"});
-  for (const auto& c : curves) {
-    std::string pm, pp;
-    for (std::size_t k = 0; k < c.f.size(); ++k) {
-      const double a = std::abs(c.h[k]);
-      if (a > 0) pm += px(mag.x(c.f[k])) + "," + px(mag.y(a)) + " ";
-      pp += px(ph.x(c.f[k])) + "," + px(ph.y(std::arg(c.h[k]) * 180 / M_PI)) + " ";
-    }
-    mag.add(fmt::format("<polyline class=\"{}\" points=\"{}\" fill=\"none\" stroke=\"{}\" stroke-width=\"1.3\"><title>{}</title></polyline>\n",
-                        c.cls, pm, c.colour, esc(c.name)));
-    ph.add(fmt::format("<polyline class=\"{}\" points=\"{}\" fill=\"none\" stroke=\"{}\" stroke-width=\"1\"><title>{}</title></polyline>\n",
-                       c.cls, pp, c.colour, esc(c.name)));
-  }
-  std::string legend;
-  double lx = 80;
-  for (const auto& c : curves) {
-    legend += fmt::format("<line x1=\"{0}\" x2=\"{1}\" y1=\"20\" y2=\"20\" stroke=\"{2}\" stroke-width=\"2\"/><text x=\"{3}\" "
-                          "y=\"24\" font-size=\"12\">{4}</text>\n",
-                          px(lx), px(lx + 24), c.colour, px(lx + 30), esc(c.name));
-    lx += 40 + 7.0 * static_cast<double>(c.name.size());
-  }
-  std::string s = fmt::format("<g transform=\"translate(0 {})\">\n<text x=\"10\" y=\"4\" font-size=\"13\" "
-                              "font-weight=\"bold\">{}</text>\n{}<g transform=\"translate(0 30)\">{}</g>\n"
-                              "<g transform=\"translate(0 330)\">{}</g>\n</g>\n",
-                              px(height + 14), esc(title), legend, mag.svg(id + "-mag", title + ": magnitude"),
-                              ph.svg(id + "-phase", title + ": phase"));
-  height += 14 + 330 + 220 + 20;
-  return s;
 }
 
 }  // namespace
@@ -450,7 +401,7 @@ int cmd_frf(const Args& args) {
     for (Eigen::Index k = 0; k < H.rows(); ++k) re.push_back(H(k, oi).real()), im.push_back(H(k, oi).imag());
     jr["re"] = re;
     jr["im"] = im;
-    std::vector<Curve> curves{{"analysis", "#1f5fa8", "analysis (Eq. 2)", f, {}}};
+    std::vector<report::FrfCurve> curves{{"analysis", "#1f5fa8", "analysis (Eq. 2)", f, {}, ""}};
     for (Eigen::Index k = 0; k < H.rows(); ++k) curves[0].h.push_back(H(k, oi));
     if (const uff::Function58* m = meas[o]) {
       const double sign = (m->response_direction < 0 ? -1.0 : 1.0) * (m->reference_direction < 0 ? -1.0 : 1.0);
@@ -466,13 +417,13 @@ int cmd_frf(const Args& args) {
       std::vector<double> mre, mim;
       for (Eigen::Index k = 0; k < hm.size(); ++k) mre.push_back(hm(k).real()), mim.push_back(hm(k).imag());
       jr["measured"] = {{"re", mre}, {"im", mim}, {"frac", frac}, {"at", m->where.str()}};
-      curves.push_back({"measured", "#c0392b", "measured (" + m->where.str() + ")", f, {}});
+      curves.push_back({"measured", "#c0392b", "measured (" + m->where.str() + ")", f, {}, ""});
       for (Eigen::Index k = 0; k < hm.size(); ++k) curves.back().h.push_back(hm(k));
     }
     text << line << "\n";
     j["responses"].push_back(jr);
     if (vm.count("svg"))
-      svg_body += overlay_charts(curves,
+      svg_body += report::frf_overlay_charts(curves,
                                  fmt::format("response {},{} / drive {},{}", responses[o].point, responses[o].component,
                                              drive.point, drive.component),
                                  unit, fmt::format("frf-{}-{}", responses[o].point, responses[o].component), svg_height);

@@ -30,6 +30,7 @@
 #include "estimator/identification/era.hpp"
 #include "estimator/identification/frf.hpp"
 #include "estimator/identification/modal_indicators.hpp"
+#include "estimator/identification/frf_synthesis.hpp"
 #include "estimator/identification/plscf.hpp"
 #include "estimator/identification/stabilisation.hpp"
 #include "formats/parse_error.hpp"
@@ -48,7 +49,14 @@ struct FrfSet {
   std::vector<Dof> responses, references;
   std::vector<Eigen::MatrixXcd> lines;
   double df = 0;
+  std::string unit;  ///< the ordinate's unit as the records' axis labels it ("" when they do not)
 };
+
+/// A record's ordinate unit as its axis labels it ("" when it does not).
+std::string record_unit(const uff::Function58& f) {
+  const std::string& u = f.axes[1].units;
+  return u.empty() || u == "NONE" ? "" : u;
+}
 
 FrfSet read_frfs(const uff::UffFile& file, const std::vector<const uff::Function58*>& frfs) {
   FrfSet s;
@@ -70,6 +78,7 @@ FrfSet read_frfs(const uff::UffFile& file, const std::vector<const uff::Function
     throw formats::InputError(fmt::format("{}: dataset 58: frequency increment {} Hz (expected > 0)",
                                           first->where.str(), first->abscissa_increment));
   s.df = first->abscissa_increment;
+  s.unit = record_unit(*first);
   const auto no = static_cast<Eigen::Index>(s.responses.size()), ni = static_cast<Eigen::Index>(s.references.size());
   s.lines.assign(first->y.size(), Eigen::MatrixXcd::Zero(no, ni));
   std::vector<std::vector<bool>> seen(static_cast<std::size_t>(no), std::vector<bool>(static_cast<std::size_t>(ni)));
@@ -195,6 +204,10 @@ struct Identified {
   std::vector<std::string> notes;                     ///< for stderr
   /// ERA's or pLSCF's stabilisation diagram (stabilisation_json), null for ARMAX.
   nlohmann::json stabilisation;
+  /// ERA, pLSCF: LSFD with the modes' poles over the band, the modal model whose FRFs
+  /// the report lays over the measured ones (absent when LSFD could not be made: `fit_note`).
+  std::optional<id::LsfdResult> fit;
+  std::string fit_note;
 };
 
 /// The diagram of `st` over `orders` as JSON: {"criteria", "orders", "poles": [{"order",
@@ -229,7 +242,7 @@ nlohmann::json stabilisation_json(const id::StabilisationResult& st, const std::
           {"frf_sum", {{"hz", hz}, {"magnitude", mag}}}};
 }
 
-Identified era_modes(const FrfSet& s, int max_order, const id::StabilisationOptions& so) {
+Identified era_modes(const FrfSet& s, int max_order, const id::PlscfOptions& band, const id::StabilisationOptions& so) {
   // The impulse response over one period; its first half carries the least wrap-around.
   const auto Y = id::markov_from_frf(s.lines, s.df);
   const double dt = 1.0 / (static_cast<double>(Y.size()) * s.df);
@@ -238,7 +251,8 @@ Identified era_modes(const FrfSet& s, int max_order, const id::StabilisationOpti
   eo.dt = dt;
   std::vector<Eigen::Index> orders;
   for (int n = 2; n <= max_order; n += 2) orders.push_back(n);
-  const id::StabilisationResult st = id::stabilise(id::order_poles(id::era_orders(head, eo, orders)), so);
+  const std::vector<id::OrderPoles> poles = id::order_poles(id::era_orders(head, eo, orders));
+  const id::StabilisationResult st = id::stabilise(poles, so);
   Identified r;
   r.columns_header = "     MPC  orders";
   for (const auto& d : st.diagram)
@@ -252,6 +266,17 @@ Identified era_modes(const FrfSet& s, int max_order, const id::StabilisationOpti
           md.shape_std.norm() / std::sqrt(static_cast<double>(md.shape_std.size())) / md.shape.norm();
   }
   r.stabilisation = stabilisation_json(st, orders, so, s);
+  // The FRFs of the identified modes: ERA's poles and participation factors, their
+  // residues and the residual terms by LSFD over the band (the table keeps ERA's shapes).
+  if (!st.modes.empty()) {
+    try {
+      Eigen::VectorXd hz(static_cast<Eigen::Index>(s.lines.size()));
+      for (Eigen::Index k = 0; k < hz.size(); ++k) hz(k) = static_cast<double>(k) * s.df;
+      r.fit = id::lsfd(hz, s.lines, id::mode_poles(st, poles), band);
+    } catch (const formats::InputError& e) {
+      r.fit_note = e.what();
+    }
+  }
   return r;
 }
 
@@ -286,10 +311,73 @@ Identified plscf_modes(const FrfSet& s, int max_order, const id::PlscfOptions& b
           md.shape_std.norm() / std::sqrt(static_cast<double>(md.shape_std.size())) / md.shape.norm();
   }
   r.summary["lsfd_fit_error"] = fit.fit_error;
-  r.notes.push_back(fmt::format("LSFD (lower and upper residuals) leaves {:.3g} of the FRFs in the band unexplained "
-                                "(relative Frobenius norm)",
-                                fit.fit_error));
+  r.fit = fit;
   return r;
+}
+
+/// The measured FRFs against those of the identified modal model (LSFD, lsfd_synthesis)
+/// over the band's lines (above 0 Hz): {"model", "fit_error", "band_hz": [first, last line],
+/// "unit", "records": [{"response": [node, dir], "reference": [node, dir], "frac"}]}, and
+/// with `curves` the lines ("hz") and each record's "measured" and "synthesized" {"re", "im"}.
+nlohmann::json frf_fit_json(const FrfSet& s, const id::LsfdResult& fit, const id::PlscfOptions& band, bool curves) {
+  std::vector<Eigen::Index> lines;
+  for (std::size_t k = 0; k < s.lines.size(); ++k) {
+    const double f = static_cast<double>(k) * s.df;
+    if (f > 0 && f >= band.hz_min && f <= band.hz_max) lines.push_back(static_cast<Eigen::Index>(k));
+  }
+  Eigen::VectorXd hz(static_cast<Eigen::Index>(lines.size()));
+  for (std::size_t k = 0; k < lines.size(); ++k) hz(static_cast<Eigen::Index>(k)) = static_cast<double>(lines[k]) * s.df;
+  const std::vector<Eigen::MatrixXcd> model = id::lsfd_synthesis(hz, fit);
+  nlohmann::json j{{"model", "LSFD on the identified poles with lower and upper residuals"},
+                   {"fit_error", fit.fit_error},
+                   {"band_hz", {hz(0), hz(hz.size() - 1)}},
+                   {"unit", s.unit},
+                   {"records", nlohmann::json::array()}};
+  if (curves) j["hz"] = std::vector<double>(hz.data(), hz.data() + hz.size());
+  for (std::size_t o = 0; o < s.responses.size(); ++o)
+    for (std::size_t i = 0; i < s.references.size(); ++i) {
+      const auto oi = static_cast<Eigen::Index>(o), ii = static_cast<Eigen::Index>(i);
+      Eigen::VectorXcd measured(hz.size()), synthesized(hz.size());
+      for (std::size_t k = 0; k < lines.size(); ++k) {
+        measured(static_cast<Eigen::Index>(k)) = s.lines[static_cast<std::size_t>(lines[k])](oi, ii);
+        synthesized(static_cast<Eigen::Index>(k)) = model[k](oi, ii);
+      }
+      const double frac = id::frf_assurance(measured, synthesized);
+      nlohmann::json rec{{"response", {s.responses[o].first, s.responses[o].second}},
+                         {"reference", {s.references[i].first, s.references[i].second}},
+                         {"frac", std::isfinite(frac) ? nlohmann::json(frac) : nlohmann::json(nullptr)}};
+      if (curves) {
+        auto parts = [](const Eigen::VectorXcd& v) {
+          std::vector<double> re(static_cast<std::size_t>(v.size())), im(re.size());
+          for (Eigen::Index k = 0; k < v.size(); ++k) re[static_cast<std::size_t>(k)] = v(k).real(), im[static_cast<std::size_t>(k)] = v(k).imag();
+          return nlohmann::json{{"re", re}, {"im", im}};
+        };
+        rec["measured"] = parts(measured);
+        rec["synthesized"] = parts(synthesized);
+      }
+      j["records"].push_back(rec);
+    }
+  return j;
+}
+
+/// One line on the FRFs of the identified modes: the worst and mean FRAC.
+void print_frf_fit(std::ostream& o, const nlohmann::json& fit) {
+  double worst = 2, sum = 0;
+  int n = 0;
+  const nlohmann::json* at = nullptr;
+  for (const auto& r : fit["records"]) {
+    if (r["frac"].is_null()) continue;
+    const double v = r["frac"];
+    sum += v;
+    ++n;
+    if (v < worst) worst = v, at = &r;
+  }
+  if (!at) return;
+  o << fmt::format("FRFs of the identified modes (LSFD with residuals, {:g}…{:g} Hz): FRAC mean {:.4f}, lowest {:.4f} "
+                   "(response {}:{}, reference {}:{}); {:.3g} of the FRFs unexplained (relative Frobenius norm)\n",
+                   fit["band_hz"][0].get<double>(), fit["band_hz"][1].get<double>(), sum / n, worst,
+                   (*at)["response"][0].get<long>(), (*at)["response"][1].get<int>(), (*at)["reference"][0].get<long>(),
+                   (*at)["reference"][1].get<int>(), fit["fit_error"].get<double>());
 }
 
 /// The multistage ARMAX at orders (s, m) on all responses, then on each alone at
@@ -391,7 +479,7 @@ int identify_modes(const Args& args) {
       return plscf_modes(s, max_order, band, so, progress_lines.callback());
     }
     text << fmt::format("ERA orders 2…{}\n", max_order);
-    return era_modes(s, max_order, so);
+    return era_modes(s, max_order, band, so);
   };
 
   const uff::UffFile file = uff::read_uff(vm["file"].as<std::string>());
@@ -414,8 +502,9 @@ int identify_modes(const Args& args) {
   Identified r;
   std::vector<Dof> responses;
   std::vector<std::string> warnings;
+  std::optional<FrfSet> frfs;  // the FRFs ERA or pLSCF identified from
   if (time_records.empty()) {
-    const FrfSet s = read_frfs(file, frf_records);
+    const FrfSet& s = frfs.emplace(read_frfs(file, frf_records));
     text << fmt::format("{} FRF(s): {} response(s) × {} reference(s), {} lines every {} Hz; ",
                              s.responses.size() * s.references.size(), s.responses.size(), s.references.size(),
                              s.lines.size(), s.df);
@@ -428,7 +517,7 @@ int identify_modes(const Args& args) {
     text << fmt::format("{} time histories: {} response(s), {} force(s), {} samples every {} s; ",
                              time_records.size(), p, t.forces.size(), t.y.rows(), t.dt);
     if (method != "armax") {
-      const FrfSet s = h1_frfs(file, t, segment);
+      const FrfSet& s = frfs.emplace(h1_frfs(file, t, segment));
       text << fmt::format("H1 by Welch ({} samples, Hann, half overlap): {} lines every {} Hz; ", segment,
                                s.lines.size(), s.df);
       r = frf_method(s);
@@ -499,6 +588,12 @@ int identify_modes(const Args& args) {
   j["rejected"] = r.rejected;
   j.update(r.summary);
   if (!r.stabilisation.is_null()) j["stabilisation"] = r.stabilisation;
+  if (frfs && r.fit) {
+    j["frf_fit"] = frf_fit_json(*frfs, *r.fit, band, vm.count("report") > 0);
+    print_frf_fit(text, j["frf_fit"]);
+  } else if (frfs && !r.fit_note.empty()) {
+    std::cerr << "note: no FRFs of the identified modes: " << r.fit_note << "\n";
+  }
   if (vm.count("report")) j["run"] = report::run_json("identify modes", args, {vm["file"].as<std::string>()});
   if (vm.count("json")) write_json(vm["json"].as<std::string>(), j);
   if (vm.count("svg")) {
@@ -513,12 +608,6 @@ int identify_modes(const Args& args) {
     uff::write_uff(out, out.path);
   }
   return 0;
-}
-
-/// A record's ordinate unit as its axis labels it ("" when it does not).
-std::string record_unit(const uff::Function58& f) {
-  const std::string& u = f.axes[1].units;
-  return u.empty() || u == "NONE" ? "" : u;
 }
 
 /// `ssid identify frf`: FRFs, coherence and multiple coherence from time histories.

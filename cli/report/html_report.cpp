@@ -12,9 +12,11 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <complex>
 #include <map>
 #include <set>
 
+#include "cli/report/frf_chart.hpp"
 #include "cli/report/pretest_picture.hpp"
 #include "cli/report/projection.hpp"
 #include "cli/report/report_data.hpp"
@@ -68,7 +70,7 @@ svg .cause{fill:#e15759;stroke:#7a1f1f}svg .misfit{fill:#f28e2b;fill-opacity:.75
 .controls{margin:6px 0;padding:6px;background:#f6f6f6;border:1px solid #e0e0e0}
 .partial{background:#fdecea;border:1px solid #e15759;padding:6px}
 .note{color:#555;font-size:12px}
-@media print{.controls{display:none}figure[data-pair]{display:inline-block!important}body{max-width:none}h2{break-after:avoid}}
+@media print{.controls{display:none}figure[data-pair],figure[data-frf]{display:inline-block!important}body{max-width:none}h2{break-after:avoid}}
 )";
 
 std::string page_head(const std::string& title) {
@@ -95,6 +97,9 @@ const char* kScript = R"(<script>
   function showPair(k){document.querySelectorAll('figure[data-pair]').forEach(function(f){f.style.display=k==='all'||f.getAttribute('data-pair')===k?'':'none';});}
   if(pair){pair.addEventListener('change',function(){showPair(pair.value);});
     window.addEventListener('hashchange',function(){var m=/^#(shape|mems)-([0-9]+)$/.exec(location.hash);if(m){pair.value=m[2];showPair(m[2]);}});}
+  // The FRF shown (all by default; print shows all).
+  var frf=document.getElementById('frf');
+  if(frf){frf.addEventListener('change',function(){var k=frf.value;document.querySelectorAll('figure[data-frf]').forEach(function(f){f.style.display=k==='all'||f.getAttribute('data-frf')===k?'':'none';});});}
   // Animation: each visible deformed drawing swings between +1 and -1 times its
   // deflection about its undeformed base (path data-base); print shows the static +1.
   var anim=document.getElementById('animate'),cache=new Map(),t0=performance.now();
@@ -1069,6 +1074,50 @@ std::vector<int> mode_numbers(const json& modes) {
   return v;
 }
 
+/// "a:b" of a [node, direction] pair.
+std::string dof_pair(const json& d) { return fmt::format("{}:{}", d[0].get<long>(), d[1].get<int>()); }
+
+/// The measured FRFs against those of the identified modal model (the seed's Figure 4:
+/// the synthesized FRFs laid over the measured ones), one figure per FRF with its FRAC,
+/// a menu to show one.
+std::string frf_fit_section(const json& fit) {
+  using cd = std::complex<double>;
+  const std::vector<double> hz = fit["hz"].get<std::vector<double>>();
+  auto values = [](const json& p) {
+    const auto re = p["re"].get<std::vector<double>>(), im = p["im"].get<std::vector<double>>();
+    std::vector<cd> v(re.size());
+    for (std::size_t k = 0; k < re.size(); ++k) v[k] = cd(re[k], im[k]);
+    return v;
+  };
+  const std::string unit = fit.value("unit", "");
+  std::string s = "<section id=\"frf-fit\">\n<h2>FRFs: measured and of the identified modes</h2>\n";
+  s += fmt::format("<p>Each measured FRF against the FRF of the identified modes ({}, {}…{} Hz; {} of the FRFs "
+                   "unexplained, relative Frobenius norm). FRAC = |Σ H<sub>x</sub> Ĥ*|² / (Σ|H<sub>x</sub>|² Σ|Ĥ|²) over "
+                   "the lines: 1 when the two have the same shape.</p>\n",
+                   esc(fit["model"].get<std::string>()), significant(fit["band_hz"][0], 4), significant(fit["band_hz"][1], 4),
+                   significant(fit["fit_error"], 3));
+  s += "<div class=\"controls\">FRF <select id=\"frf\"><option value=\"all\">all</option>";
+  std::size_t k = 0;
+  for (const auto& r : fit["records"])
+    s += fmt::format("<option value=\"{}\">response {} / reference {}</option>", k++, dof_pair(r["response"]),
+                     dof_pair(r["reference"]));
+  s += "</select></div>\n";
+  k = 0;
+  for (const auto& r : fit["records"]) {
+    const std::string title = "response " + dof_pair(r["response"]) + " / reference " + dof_pair(r["reference"]);
+    const std::vector<FrfCurve> curves{{"measured", "#c0392b", "measured", hz, values(r["measured"]), ""},
+                                       {"synthesized", "#1f5fa8", "identified modes", hz, values(r["synthesized"]), "6 4"}};
+    const std::string frac = r["frac"].is_null() ? std::string("—") : fixed(r["frac"].get<double>(), 4);
+    s += fmt::format("<figure id=\"fig-frf-{0}\" class=\"frf\" data-frf=\"{0}\" data-frac=\"{1}\">\n{2}<figcaption>{3}: "
+                     "FRAC {4}.</figcaption>\n</figure>\n",
+                     k, r["frac"].is_null() ? std::string() : exact(r["frac"].get<double>()),
+                     frf_overlay_svg(curves, title, unit.empty() ? "the file's unit" : unit, fmt::format("frf-{}", k)),
+                     esc(title), frac);
+    ++k;
+  }
+  return s + "</section>\n";
+}
+
 /// The identified modes' table: frequency, damping, their σ, MPC, MPD.
 std::string identification_sections(const json& j) {
   std::string s = "<section id=\"stabilisation\">\n<h2>Stabilisation diagram</h2>\n";
@@ -1108,7 +1157,9 @@ std::string identification_sections(const json& j) {
     for (const auto& [reason, n] : j["rejected"].items()) s += fmt::format(" {} {};", esc(reason), n.get<int>());
     s += "</p>\n";
   }
-  return s + "</section>\n";
+  s += "</section>\n";
+  if (j.contains("frf_fit") && j["frf_fit"].contains("hz")) s += frf_fit_section(j["frf_fit"]);
+  return s;
 }
 
 }  // namespace

@@ -33,6 +33,7 @@ shot estimate estimate_shapes 900 "#run,#correlation,#frequencies,#parameters,#c
 shot correlate correlate_xor 1050 "#run,#fig-mac,h1,#frequencies,#shapes,table.xor-pairs"
 shot correlate correlate_mems 950 "#run,#correlation,#frequencies,h1,#shape-0,#shape-1,#mems-0,#mems-1,.shape:not(#shape-2),.mems:not(#mems-2)"
 shot identify identify 900 ".none"
+shot identify identify_frf 1050 "#run,#stabilisation,#modes,h1,#fig-frf-1,#fig-frf-2"
 shot diagnosis diagnosis 1400 ".none"
 shot diagnosis diagnosis_cause 1000 "#run,#residuals,#ranking,h1"
 shot pretest pretest 1250 "#run,h1,table.sensors"

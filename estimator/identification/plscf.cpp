@@ -325,4 +325,21 @@ LsfdResult lsfd(const Eigen::Ref<const Eigen::VectorXd>& frequency_hz, const std
   return res;
 }
 
+std::vector<Eigen::MatrixXcd> lsfd_synthesis(const Eigen::Ref<const Eigen::VectorXd>& frequency_hz, const LsfdResult& fit) {
+  std::vector<Eigen::MatrixXcd> out;
+  out.reserve(static_cast<std::size_t>(frequency_hz.size()));
+  for (Eigen::Index k = 0; k < frequency_hz.size(); ++k) {
+    const double f = frequency_hz(k);
+    if (!(f > 0)) throw InputError(fmt::format("LSFD synthesis: line {} at {} Hz (expected > 0 Hz)", k, f));
+    const double w = 2 * M_PI * f;
+    const cd iw(0, w);
+    Eigen::MatrixXcd h = fit.upper_residual.cast<cd>() - fit.lower_residual.cast<cd>() / (w * w);
+    for (const IdentifiedPole& p : fit.modes)
+      h += p.shape * p.participation.transpose() / (iw - p.lambda) +
+           p.shape.conjugate() * p.participation.adjoint() / (iw - std::conj(p.lambda));
+    out.push_back(std::move(h));
+  }
+  return out;
+}
+
 }  // namespace ssid::estimator::identification

@@ -76,4 +76,12 @@ struct LsfdResult {
 LsfdResult lsfd(const Eigen::Ref<const Eigen::VectorXd>& frequency_hz, const std::vector<Eigen::MatrixXcd>& frf,
                 const std::vector<IdentifiedPole>& poles, const PlscfOptions& options);
 
+/// The FRFs of LSFD's modal model at the frequencies f (Hz, each > 0), one no × ni matrix
+/// per line:
+///   Ĥ(ω) = Σ_r [ψ_r l_rᵀ/(iω − λ_r) + ψ_r* l_rᴴ/(iω − λ_r*)] − LR/ω² + UR,  ω = 2πf,
+/// the model whose misfit over the band is `fit.fit_error`: what the identified modes
+/// (and the residuals standing for the modes outside the band) say the FRFs are. Throws
+/// formats::InputError for a frequency ≤ 0 (the lower residual is infinite at 0 Hz).
+std::vector<Eigen::MatrixXcd> lsfd_synthesis(const Eigen::Ref<const Eigen::VectorXd>& frequency_hz, const LsfdResult& fit);
+
 }  // namespace ssid::estimator::identification

@@ -222,7 +222,7 @@ TEST_CASE("ssid identify modes --method plscf: the chain's three modes from FRFs
   CHECK_THAT(table.out, Catch::StartsWith("6 FRF(s): 3 response(s) × 2 reference(s), 2001 lines every 0.25 Hz; "
                                           "pLSCF orders 1…40\nmode   frequency (Hz)      ± (Hz)   damping (%)     ± (%)"
                                           "     MPC     MPD  orders\n"));
-  CHECK_THAT(table.err, Catch::Contains("note: LSFD (lower and upper residuals) leaves "));
+  CHECK_THAT(table.out, Catch::Contains("\nFRFs of the identified modes (LSFD with residuals, 0.25…60 Hz): FRAC mean "));
   const fs::path out55 = scratch("plscf_modes.unv");
   const auto r = run_ssid("identify modes " + in.string() + " --method plscf --max-hz 60 --json - --uff " +
                           out55.string());
@@ -230,6 +230,15 @@ TEST_CASE("ssid identify modes --method plscf: the chain's three modes from FRFs
   REQUIRE(r.code == 0);
   const nlohmann::json j = nlohmann::json::parse(r.out);  // stdout holds the JSON alone
   CHECK(j["method"] == "plscf");
+  // Every FRF (3 responses × 2 references) against the identified modes' FRF; without
+  // --report the JSON holds each one's FRAC, not the curves.
+  REQUIRE(j["frf_fit"]["records"].size() == 6);
+  CHECK(!j["frf_fit"].contains("hz"));
+  CHECK(j["frf_fit"]["fit_error"].get<double>() == j["lsfd_fit_error"].get<double>());
+  for (const auto& rec : j["frf_fit"]["records"]) {
+    CHECK(rec["frac"].get<double>() > 0.99999);
+    CHECK(!rec.contains("measured"));
+  }
   CHECK(j["lsfd_fit_error"].get<double>() < 1e-6);
   REQUIRE(j["modes"].size() == 3);
   for (const auto& mode : j["modes"]) {

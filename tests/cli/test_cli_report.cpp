@@ -462,6 +462,42 @@ TEST_CASE("ssid identify modes --report and --svg: the stabilisation diagram and
     const Eigen::MatrixXcd H = (model.K.cast<cd>() - w * w * model.M.cast<cd>() + cd(0, w) * model.C.cast<cd>()).inverse();
     CHECK(st["frf_sum"]["magnitude"][40].get<double>() == Approx(H.col(0).cwiseAbs().sum()).epsilon(1e-12));
   }
+  // The FRFs of the identified modes (LSFD on ERA's poles) against the measured ones:
+  // at 10 Hz both equal the chain's exact receptance (K − ω²M + iωC)⁻¹, a dense solve
+  // here; the figure of each FRF carries the JSON's FRAC and one point per line.
+  {
+    const json& fit = j["frf_fit"];
+    REQUIRE(fit["records"].size() == 3);
+    const auto hz = fit["hz"].get<std::vector<double>>();
+    CHECK(hz.size() == 2000);  // the lines above 0 Hz
+    const auto at10 = static_cast<std::size_t>(std::find(hz.begin(), hz.end(), 10.0) - hz.begin());
+    REQUIRE(at10 < hz.size());
+    const auto model = ident_test::chain_model(true, {0});
+    const double w = 2 * M_PI * 10.0;
+    using cd = std::complex<double>;
+    const Eigen::MatrixXcd H = (model.K.cast<cd>() - w * w * model.M.cast<cd>() + cd(0, w) * model.C.cast<cd>()).inverse();
+    const auto figures = marks(r.html, "figure", "frf");
+    REQUIRE(figures.size() == 3);
+    for (std::size_t o = 0; o < 3; ++o) {
+      const json& rec = fit["records"][o];
+      CHECK(rec["response"][0].get<int>() == static_cast<int>(o) + 1);
+      const cd exact = H(static_cast<Eigen::Index>(o), 0);
+      for (const char* which : {"measured", "synthesized"}) {
+        const cd v(rec[which]["re"][at10].get<double>(), rec[which]["im"][at10].get<double>());
+        INFO(which << ", response " << o + 1);
+        CHECK(std::abs(v - exact) < 1e-6 * std::abs(exact));
+      }
+      CHECK(rec["frac"].get<double>() > 0.99999);
+      CHECK(num(figures[o], "data-frac") == rec["frac"].get<double>());
+      const std::string fig = figure(r.html, "fig-frf-" + std::to_string(o));
+      for (const char* cls : {"measured", "synthesized"}) {
+        const auto lines = marks(fig, "polyline", cls);
+        REQUIRE(lines.size() == 2);  // magnitude and phase
+        const std::string pts = lines[1].at("points");
+        CHECK(static_cast<std::size_t>(std::count(pts.begin(), pts.end(), ',')) == hz.size());
+      }
+    }
+  }
   // Each chosen mode's poles: stable ones, as many as the mode's "orders".
   for (std::size_t m = 0; m < 3; ++m) {
     std::size_t n = 0;
