@@ -14,10 +14,10 @@
 #include <fmt/format.h>
 #include <fstream>
 #include <iostream>
-#include <fstream>
 #include <limits>
 #include <map>
 #include <optional>
+#include <unsupported/Eigen/FFT>
 #include <sstream>
 #include <utility>
 
@@ -123,7 +123,9 @@ bool is_force_record(const std::vector<const uff::Function58*>& records, const u
                : f.response_node == f.reference_node && f.response_direction == f.reference_direction;
 }
 
-TimeSet read_time_histories(const uff::UffFile& file, const std::vector<const uff::Function58*>& records) {
+/// With `free_decays`, a file without a force record is read too (TimeSet::forces empty).
+TimeSet read_time_histories(const uff::UffFile& file, const std::vector<const uff::Function58*>& records,
+                            bool free_decays = false) {
   TimeSet s;
   std::vector<const uff::Function58*> in, out;
   const auto* first = records.front();
@@ -147,7 +149,7 @@ TimeSet read_time_histories(const uff::UffFile& file, const std::vector<const uf
   if (!(first->abscissa_increment > 0))
     throw formats::InputError(fmt::format("{}: dataset 58: time increment {} s (expected > 0)", first->where.str(),
                                           first->abscissa_increment));
-  if (in.empty())
+  if (in.empty() && !free_decays)
     throw formats::InputError(file.path +
                               ": no force record among the time histories (expected dataset 58 of ordinate type 13, "
                               "excitation force, or one whose response DOF is its reference DOF)");
@@ -215,7 +217,7 @@ struct Identified {
 /// null when in none)}]}, and "frf_sum" {"hz", "magnitude"}: Σ |H_ij| over every FRF
 /// at each line, the curve drawn behind the diagram.
 nlohmann::json stabilisation_json(const id::StabilisationResult& st, const std::vector<Eigen::Index>& orders,
-                                  const id::StabilisationOptions& so, const FrfSet& s) {
+                                  const id::StabilisationOptions& so, const nlohmann::json& background) {
   nlohmann::json poles = nlohmann::json::array();
   for (const auto& d : st.diagram)
     poles.push_back({{"order", d.order},
@@ -224,11 +226,6 @@ nlohmann::json stabilisation_json(const id::StabilisationResult& st, const std::
                      {"class", std::string(1, id::pole_class_symbol(d.cls))},
                      {"reason", id::reject_reason_text(d.reason)},
                      {"mode", d.mode >= 0 ? nlohmann::json(d.mode + 1) : nlohmann::json(nullptr)}});
-  nlohmann::json hz = nlohmann::json::array(), mag = nlohmann::json::array();
-  for (std::size_t k = 0; k < s.lines.size(); ++k) {
-    hz.push_back(static_cast<double>(k) * s.df);
-    mag.push_back(s.lines[k].cwiseAbs().sum());
-  }
   return {{"criteria",
            {{"freq_tol", so.freq_tol},
             {"damping_tol", so.damping_tol},
@@ -239,21 +236,63 @@ nlohmann::json stabilisation_json(const id::StabilisationResult& st, const std::
             {"min_fraction", so.min_fraction}}},
           {"orders", orders},
           {"poles", poles},
-          {"frf_sum", {{"hz", hz}, {"magnitude", mag}}}};
+          {"frf_sum", background}};
 }
 
-Identified era_modes(const FrfSet& s, int max_order, const id::PlscfOptions& band, const id::StabilisationOptions& so) {
-  // The impulse response over one period; its first half carries the least wrap-around.
-  const auto Y = id::markov_from_frf(s.lines, s.df);
-  const double dt = 1.0 / (static_cast<double>(Y.size()) * s.df);
-  const std::vector<Eigen::MatrixXd> head(Y.begin(), Y.begin() + static_cast<std::ptrdiff_t>(Y.size() / 2));
+/// Σ|H_ij| over every FRF at each line: the curve behind the diagram.
+nlohmann::json frf_sum(const FrfSet& s) {
+  nlohmann::json hz = nlohmann::json::array(), mag = nlohmann::json::array();
+  for (std::size_t k = 0; k < s.lines.size(); ++k) {
+    hz.push_back(static_cast<double>(k) * s.df);
+    mag.push_back(s.lines[k].cwiseAbs().sum());
+  }
+  return {{"hz", hz}, {"magnitude", mag}, {"of", "FRFs"}};
+}
+
+/// For free decays: Σ|Y_i(f)| over the records' discrete Fourier transforms (times dt,
+/// lines 0 … N/2), which peak at the modes as FRFs do.
+nlohmann::json decay_spectrum_sum(const TimeSet& t) {
+  const Eigen::Index n = t.y.rows(), lines = n / 2 + 1;
+  Eigen::FFT<double> fft;
+  Eigen::VectorXd sum = Eigen::VectorXd::Zero(lines);
+  for (Eigen::Index c = 0; c < t.y.cols(); ++c) {
+    const Eigen::VectorXd in = t.y.col(c);
+    Eigen::VectorXcd spec;
+    fft.fwd(spec, in);
+    sum += spec.head(lines).cwiseAbs() * t.dt;
+  }
+  nlohmann::json hz = nlohmann::json::array(), mag = nlohmann::json::array();
+  for (Eigen::Index k = 0; k < lines; ++k) {
+    hz.push_back(static_cast<double>(k) / (static_cast<double>(n) * t.dt));
+    mag.push_back(sum(k));
+  }
+  return {{"hz", hz}, {"magnitude", mag}, {"of", "free-decay spectra"}};
+}
+
+/// ERA at the orders 2, 4, … max_order of Markov parameters `Y` sampled every `dt`, the
+/// stabilisation diagram's modes, and the diagram drawn over `background`.
+Identified era_identified(const std::vector<Eigen::MatrixXd>& Y, double dt, int max_order,
+                          const id::StabilisationOptions& so, const nlohmann::json& background,
+                          std::vector<id::OrderPoles>& poles, id::StabilisationResult& st) {
   id::EraOptions eo;
   eo.dt = dt;
   std::vector<Eigen::Index> orders;
   for (int n = 2; n <= max_order; n += 2) orders.push_back(n);
-  const std::vector<id::OrderPoles> poles = id::order_poles(id::era_orders(head, eo, orders));
-  const id::StabilisationResult st = id::stabilise(poles, so);
+  const std::vector<id::EraResult> realizations = id::era_orders(Y, eo, orders);
+  poles = id::order_poles(realizations);
+  st = id::stabilise(poles, so);
   Identified r;
+  // Exact (noise-free) data of a model of order n give no realization above n, so no pole
+  // can recur across orders: say so rather than leave "no mode" unexplained.
+  if (st.modes.empty() && !realizations.empty()) {
+    const Eigen::VectorXd& sv = realizations.front().singular_values;
+    const auto rank = (sv.array() > sv(0) * 1e-13).count();
+    if (rank < max_order)
+      r.notes.push_back(fmt::format(
+          "the records' Hankel matrix has numerical rank {} (below the largest order {}): data without noise of a "
+          "model of order {}; no pole recurs across orders above it, which the stabilisation diagram needs",
+          rank, max_order, rank));
+  }
   r.columns_header = "     MPC  orders";
   for (const auto& d : st.diagram)
     if (d.reason != id::RejectReason::None) ++r.rejected[id::reject_reason_text(d.reason)];
@@ -265,7 +304,19 @@ Identified era_modes(const FrfSet& s, int max_order, const id::PlscfOptions& ban
       r.modes.back().shape_std =
           md.shape_std.norm() / std::sqrt(static_cast<double>(md.shape_std.size())) / md.shape.norm();
   }
-  r.stabilisation = stabilisation_json(st, orders, so, s);
+  r.stabilisation = stabilisation_json(st, orders, so, background);
+  return r;
+}
+
+/// ERA on FRFs: the impulse response over one period (markov_from_frf), its first half
+/// (the least wrap-around); then LSFD with the modes' poles for their FRFs.
+Identified era_modes(const FrfSet& s, int max_order, const id::PlscfOptions& band, const id::StabilisationOptions& so) {
+  const auto Y = id::markov_from_frf(s.lines, s.df);
+  const double dt = 1.0 / (static_cast<double>(Y.size()) * s.df);
+  const std::vector<Eigen::MatrixXd> head(Y.begin(), Y.begin() + static_cast<std::ptrdiff_t>(Y.size() / 2));
+  std::vector<id::OrderPoles> poles;
+  id::StabilisationResult st;
+  Identified r = era_identified(head, dt, max_order, so, frf_sum(s), poles, st);
   // The FRFs of the identified modes: ERA's poles and participation factors, their
   // residues and the residual terms by LSFD over the band (the table keeps ERA's shapes).
   if (!st.modes.empty()) {
@@ -278,6 +329,14 @@ Identified era_modes(const FrfSet& s, int max_order, const id::PlscfOptions& ban
     }
   }
   return r;
+}
+
+/// ERA on free decays: every response record together as one decay, Markov parameters
+/// Y[k] = y(k·dt) (no × 1; markov_from_records), the diagram over the records' spectra.
+Identified era_decay_modes(const TimeSet& t, int max_order, const id::StabilisationOptions& so) {
+  std::vector<id::OrderPoles> poles;
+  id::StabilisationResult st;
+  return era_identified(id::markov_from_records(t.y), t.dt, max_order, so, decay_spectrum_sum(t), poles, st);
 }
 
 /// pLSCF at the polynomial orders 1 … max_order over the band, the stabilisation diagram's
@@ -296,7 +355,7 @@ Identified plscf_modes(const FrfSet& s, int max_order, const id::PlscfOptions& b
   r.columns_header = "     MPC     MPD  orders";
   for (const auto& d : st.diagram)
     if (d.reason != id::RejectReason::None) ++r.rejected[id::reject_reason_text(d.reason)];
-  r.stabilisation = stabilisation_json(st, orders, so, s);
+  r.stabilisation = stabilisation_json(st, orders, so, frf_sum(s));
   if (st.modes.empty()) return r;
   const id::LsfdResult fit = id::lsfd(hz, s.lines, id::mode_poles(st, poles), band);
   for (std::size_t m = 0; m < st.modes.size(); ++m) {
@@ -511,17 +570,30 @@ int identify_modes(const Args& args) {
     r = frf_method(s);
     responses = s.responses;
   } else {
-    const TimeSet t = read_time_histories(file, time_records);
+    const TimeSet t = read_time_histories(file, time_records, true);
     responses = t.responses;
     const auto p = static_cast<int>(t.responses.size());
-    text << fmt::format("{} time histories: {} response(s), {} force(s), {} samples every {} s; ",
-                             time_records.size(), p, t.forces.size(), t.y.rows(), t.dt);
-    if (method != "armax") {
+    if (t.forces.empty()) {
+      // Free decays (no record is a force): ERA on the records themselves.
+      if (method != "era")
+        throw formats::InputError(fmt::format(
+            "{}: no force record among the time histories (expected dataset 58 of ordinate type 13, excitation force, "
+            "or one whose response DOF is its reference DOF): free decays, which --method {} cannot use without the "
+            "forces; --method era identifies free decays",
+            file.path, method));
+      text << fmt::format("{} time histories: {} response(s), no force: free decays, {} samples every {} s; ERA orders 2…{}\n",
+                          time_records.size(), p, t.y.rows(), t.dt, max_order);
+      r = era_decay_modes(t, max_order, so);
+    } else if (method != "armax") {
+      text << fmt::format("{} time histories: {} response(s), {} force(s), {} samples every {} s; ",
+                          time_records.size(), p, t.forces.size(), t.y.rows(), t.dt);
       const FrfSet& s = frfs.emplace(h1_frfs(file, t, segment));
       text << fmt::format("H1 by Welch ({} samples, Hann, half overlap): {} lines every {} Hz; ", segment,
                                s.lines.size(), s.df);
       r = frf_method(s);
     } else {
+      text << fmt::format("{} time histories: {} response(s), {} force(s), {} samples every {} s; ",
+                          time_records.size(), p, t.forces.size(), t.y.rows(), t.dt);
       if (p < 2)
         throw formats::InputError(file.path + ": --method armax needs at least two response records (the order rule "
                                               "compares the identification from all of them with each one's)");

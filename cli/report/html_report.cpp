@@ -1125,16 +1125,20 @@ std::string identification_sections(const json& j) {
     const json& st = j["stabilisation"];
     const json& c = st["criteria"];
     s += figure("fig-stabilisation", stabilisation_svg(j, false),
-                fmt::format("ERA poles at model orders {}…{}, classed against the previous order: stable in frequency within "
+                fmt::format("{} poles at model orders {}…{}, classed against the previous order: stable in frequency within "
                             "{} %, in damping within {} %, in shape at complex MAC ≥ {}; screened out (×): damping ≤ 0 or > {}, "
                             "MPC < {}, MPD > {}°. A cluster of stable poles recurring at {} % of the orders or more is a mode "
-                            "(red lines). Grey curve: Σ|H| over every FRF (log scale, fitted to the order range).",
+                            "(red lines). Grey curve: {} (log scale, fitted to the order range).",
+                            j.value("method", "era") == "plscf" ? "pLSCF" : "ERA",
                             st["orders"].empty() ? 0 : st["orders"].front().get<long>(),
                             st["orders"].empty() ? 0 : st["orders"].back().get<long>(),
                             significant(100 * c["freq_tol"].get<double>(), 3),
                             significant(100 * c["damping_tol"].get<double>(), 3), significant(c["mac_min"], 3),
                             significant(c["zeta_max"], 3), significant(c["mpc_min"], 3), significant(c["mpd_max_deg"], 3),
-                            significant(100 * c["min_fraction"].get<double>(), 3)));
+                            significant(100 * c["min_fraction"].get<double>(), 3),
+                            st["frf_sum"].value("of", "FRFs") == "free-decay spectra"
+                                ? "Σ|Y(f)| over the free decays' spectra"
+                                : "Σ|H| over every FRF"));
   } else {
     s += "<p class=\"note\">No diagram: ARMAX's modes come from runs over response subsets, not from model orders.</p>\n";
   }

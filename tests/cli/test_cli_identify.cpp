@@ -30,6 +30,20 @@ fs::path chain_frf_file(const ident_test::ChainModel& model, const std::string& 
   return p;
 }
 
+/// `ssid identify modes ARGS --json JSON`, required to succeed: its stdout, stderr and JSON.
+struct IdentifyRun {
+  std::string out, err;
+  nlohmann::json j;
+};
+IdentifyRun identify_json(const std::string& args, const fs::path& json) {
+  const auto r = run_ssid("identify modes " + args + " --json " + json.string());
+  INFO(r.out << r.err);
+  REQUIRE(r.code == 0);
+  IdentifyRun run{r.out, r.err, {}};
+  std::ifstream(json) >> run.j;
+  return run;
+}
+
 /// One time history as dataset 58 (function type 1, real double, evenly sampled from 0 s):
 /// `ordinate` is its ordinate's specific data type (8 displacement, 13 excitation force).
 uff::Function58 time_record(std::int64_t id, std::int64_t node, int direction, int ordinate,
@@ -80,14 +94,10 @@ TEST_CASE("ssid identify modes --method armax: the paper's 2-DOF modes from its 
   REQUIRE(exact.size() == 2);
   const fs::path in = two_dof_time_file(system, dt);
   const fs::path json = scratch("armax_modes.json"), out55 = scratch("armax_modes.unv");
-  const auto r = run_ssid("identify modes " + in.string() + " --method armax --json " + json.string() + " --uff " +
-                          out55.string());
-  INFO(r.out << r.err);
-  REQUIRE(r.code == 0);
+  const IdentifyRun r = identify_json(in.string() + " --method armax --uff " + out55.string(), json);
   CHECK_THAT(r.out, Catch::StartsWith("3 time histories: 2 response(s), 1 force(s), 2048 samples every 0.000147665 s; "
                                       "ARMAX orders s = 6, m = 45 on all responses, then 12, 90 on each\n"));
-  nlohmann::json j;
-  std::ifstream(json) >> j;
+  const nlohmann::json& j = r.j;
   CHECK(j["method"] == "armax");
   REQUIRE(j["modes"].size() == 2);
   for (std::size_t m = 0; m < 2; ++m) {
@@ -207,6 +217,74 @@ TEST_CASE("ssid identify modes --method era: the chain's three modes from its FR
     CHECK(modes55[m]->is_normal_mode());
     CHECK(modes55[m]->frequency_hz() == Approx(j["modes"][m]["hz"].get<double>()).epsilon(1e-5));
   }
+}
+
+TEST_CASE("ssid identify modes --method era on free decays: the chain's three modes", "[cli][identify]") {
+  // The chain released with a velocity at DOF 0 (its impulse response, sampled exactly by the
+  // matrix exponential: chain_model.hpp), displacements of the three masses for 4 s every
+  // 2 ms, no force record (reference fields 0): free decays. Exact: the state matrix's poles.
+  const auto model = ident_test::chain_model(true, {0});
+  const double dt = 0.002;
+  auto decay_file = [&](const std::string& name, double noise) {
+    auto Y = model.markov(dt, 2048);
+    if (noise > 0) Y = ident_test::with_noise(Y, noise, 5);
+    uff::UffFile f;
+    for (int o = 0; o < 3; ++o) {
+      Eigen::VectorXd y(2048);
+      for (Eigen::Index k = 0; k < 2048; ++k) y(k) = Y[static_cast<std::size_t>(k)](o, 0);
+      uff::Function58 fn = time_record(o + 1, o + 1, 1, 8, y, dt);
+      fn.reference_node = 0;
+      fn.reference_direction = 0;
+      f.datasets.emplace_back(fn);
+    }
+    const fs::path p = scratch(name);
+    uff::write_uff(f, p.string(), uff::Precision::Extended);
+    return p;
+  };
+  const fs::path json = scratch("decay_modes.json"), svg = scratch("decay.svg");
+  // Noise-free records have a Hankel matrix of numerical rank 6: no order above the
+  // model's own, so no mode recurs across orders; the run says why.
+  auto r = run_ssid("identify modes " + decay_file("decay_exact.unv", 0).string() + " --method era");
+  REQUIRE(r.code == 0);
+  CHECK_THAT(r.out, Catch::Contains("(no mode stable across the orders)"));
+  CHECK_THAT(r.err, Catch::Contains("note: the records' Hankel matrix has numerical rank 6"));
+  // 0.5 % noise on every channel (of its RMS): the three modes, close to exact.
+  IdentifyRun decay = identify_json(decay_file("decay.unv", 0.005).string() + " --method era --svg " + svg.string(), json);
+  CHECK_THAT(decay.out, Catch::StartsWith("3 time histories: 3 response(s), no force: free decays, 2048 samples every "
+                                          "0.002 s; ERA orders 2…40\n"));
+  nlohmann::json j = decay.j;
+  REQUIRE(j["modes"].size() == 3);
+  ExactErrors e = errors_vs_exact(model, j);
+  INFO("0.5 % noise vs exact: frequency " << e.frequency << ", damping " << e.damping << ", MAC " << e.mac);
+  CHECK(e.frequency < 1e-3);
+  CHECK(e.damping < 0.05);
+  CHECK(e.mac > 0.9999);
+  // No FRF: no FRF fit; the diagram's curve is the decays' spectra, peaking at the modes.
+  CHECK(!j.contains("frf_fit"));
+  const auto& bg = j["stabilisation"]["frf_sum"];
+  CHECK(bg["of"] == "free-decay spectra");
+  CHECK(bg["hz"].size() == 1025);
+  {
+    const auto hz = bg["hz"].get<std::vector<double>>();
+    const auto mag = bg["magnitude"].get<std::vector<double>>();
+    const auto peak = std::max_element(mag.begin(), mag.end()) - mag.begin();
+    CHECK(std::abs(hz[static_cast<std::size_t>(peak)] - j["modes"][0]["hz"].get<double>()) <= hz[1]);
+  }
+  CHECK(cli_slurp(svg).find("<polyline class=\"frf-sum\"") != std::string::npos);
+
+  // 2 % noise on every channel: still the three modes, close to exact.
+  j = identify_json(decay_file("decay_noisy.unv", 0.02).string() + " --method era", json).j;
+  REQUIRE(j["modes"].size() == 3);
+  e = errors_vs_exact(model, j);
+  INFO("2 % noise vs exact: frequency " << e.frequency << ", damping " << e.damping << ", MAC " << e.mac);
+  CHECK(e.frequency < 1e-3);
+  CHECK(e.damping < 0.1);
+  CHECK(e.mac > 0.999);
+  // pLSCF needs FRFs: free decays are refused with the way out.
+  r = run_ssid("identify modes " + scratch("decay.unv").string() + " --method plscf");
+  CHECK(r.code == 2);
+  CHECK_THAT(r.err, Catch::EndsWith("free decays, which --method plscf cannot use without the forces; --method era "
+                                    "identifies free decays\n"));
 }
 
 TEST_CASE("ssid identify modes --method plscf: the chain's three modes from FRFs of two references",
@@ -332,7 +410,8 @@ TEST_CASE("ssid identify: time histories it cannot use exit 2 with the cause", "
   CHECK(f.code == 2);
   CHECK(f.err == "ssid: error: " + no_force.string() +
                      ": no force record among the time histories (expected dataset 58 of ordinate type 13, excitation "
-                     "force, or one whose response DOF is its reference DOF)\n");
+                     "force, or one whose response DOF is its reference DOF): free decays, which --method armax cannot "
+                     "use without the forces; --method era identifies free decays\n");
   // Records sampled differently: located at the second record.
   const fs::path mixed = write("mixed_dt.unv", {time_record(1, 1, 1, 13, samples, 1e-3),
                                                 time_record(2, 2, 1, 8, samples, 2e-3)});
