@@ -20,6 +20,7 @@
 #include <unsupported/Eigen/FFT>
 #include <sstream>
 #include <utility>
+#include <variant>
 
 #include "cli/cli_util.hpp"
 #include "cli/progress_lines.hpp"
@@ -331,6 +332,56 @@ Identified era_modes(const FrfSet& s, int max_order, const id::PlscfOptions& ban
   return r;
 }
 
+/// For the report: the test geometry of `g` (nodes in global, trace lines of dataset 82)
+/// as j["geometry"] {"grids", "lines": [], "test_lines"}, and each identified mode's shape
+/// (the real part of the unit shape, each measured direction turned to global by its
+/// node's displacement system) at the measured nodes as j["identified_shapes"]
+/// [{"mode", "hz", "points": [[node, dx, dy, dz]]}]; j["geometry_note"] says why not, when
+/// the geometry has no nodes or no trace lines.
+void add_test_geometry(nlohmann::json& j, const uff::UffFile& g, const Identified& r, const std::vector<Dof>& responses) {
+  const std::vector<uff::Node> nodes = g.nodes_in_global();
+  std::vector<const uff::TraceLine82*> traces;
+  for (const auto& d : g.datasets)
+    if (const auto* t = std::get_if<uff::TraceLine82>(&d)) traces.push_back(t);
+  if (nodes.empty() || traces.empty()) {
+    j["geometry_note"] = fmt::format("{}: {}; the identified shapes are not drawn (--geometry FILE.unv names a "
+                                     "universal file with the test's nodes, dataset 15 or 2411, and trace lines, 82)",
+                                     g.path, nodes.empty() ? "no nodes" : "no trace lines");
+    return;
+  }
+  std::map<std::int64_t, const uff::Node*> by_id;
+  nlohmann::json grids = nlohmann::json::array(), lines = nlohmann::json::array();
+  for (const auto& n : nodes) {
+    by_id[n.id] = &n;
+    grids.push_back({n.id, n.xyz[0], n.xyz[1], n.xyz[2]});
+  }
+  // Nodes of the originals (displacement systems), for direction_in_global.
+  std::map<std::int64_t, uff::Node> original;
+  for (const auto& n : g.nodes()) original[n.id] = n;
+  for (const auto* t : traces)
+    for (std::size_t k = 1; k < t->nodes.size(); ++k)
+      if (t->nodes[k - 1] != 0 && t->nodes[k] != 0 && by_id.count(t->nodes[k - 1]) && by_id.count(t->nodes[k]))
+        lines.push_back({t->nodes[k - 1], t->nodes[k]});
+  j["geometry"] = {{"grids", grids}, {"lines", nlohmann::json::array()}, {"test_lines", lines}};
+  nlohmann::json shapes = nlohmann::json::array();
+  for (std::size_t m = 0; m < r.modes.size(); ++m) {
+    std::map<std::int64_t, Eigen::Vector3d> at;
+    for (std::size_t o = 0; o < responses.size(); ++o) {
+      const auto [node, dir] = responses[o];
+      const auto it = original.find(node);
+      if (it == original.end() || std::abs(dir) < 1 || std::abs(dir) > 3) continue;
+      const auto e = g.direction_in_global(it->second, dir);  // a −X response counts along −X
+      const double v = r.modes[m].shape(static_cast<Eigen::Index>(o)).real();
+      auto& p = at.try_emplace(node, Eigen::Vector3d::Zero()).first->second;
+      p += v * Eigen::Vector3d(e[0], e[1], e[2]);
+    }
+    nlohmann::json points = nlohmann::json::array();
+    for (const auto& [node, p] : at) points.push_back({node, p.x(), p.y(), p.z()});
+    shapes.push_back({{"mode", m + 1}, {"hz", r.modes[m].hz}, {"points", points}});
+  }
+  j["identified_shapes"] = shapes;
+}
+
 /// ERA on free decays: every response record together as one decay, Markov parameters
 /// Y[k] = y(k·dt) (no × 1; markov_from_records), the diagram over the records' spectra.
 Identified era_decay_modes(const TimeSet& t, int max_order, const id::StabilisationOptions& so) {
@@ -476,7 +527,11 @@ int identify_modes(const Args& args) {
       "uff", po::value<std::string>(), "write the modes as real normal modes, UFF dataset 55")(
       "svg", po::value<std::string>(), "era, plscf: write the stabilisation diagram as SVG to this file")(
       "report", po::value<std::string>(),
-      "write an HTML report (stabilisation diagram, the modes' table) to this file (docs/report.md)")(
+      "write an HTML report (stabilisation diagram, the modes' table, the FRF overlays, the shapes on the test "
+      "geometry) to this file (docs/report.md)")(
+      "geometry", po::value<std::string>(),
+      "--report: universal file with the test geometry (nodes: 15/2411, trace lines: 82, coordinate systems: "
+      "18/2420) to draw the identified shapes on (default: the input file's own)")(
       "max-order", po::value<int>()->default_value(40),
       "largest model order: era: state dimension, even; plscf: polynomial order")(
       "segment", po::value<int>()->default_value(1024), "era, plscf on time histories: Welch segment, samples")(
@@ -492,7 +547,7 @@ int identify_modes(const Args& args) {
   int rc = 0;
   if (!parse_options(args,
                      "ssid identify modes FILE.unv [--method armax|era|plscf] [--json OUT] [--uff OUT] [--svg OUT.svg] "
-                     "[--report OUT.html] [--max-order N] [--segment N] [--ar-order S] [--arx-order M] [--min-hz F] [--max-hz F]",
+                     "[--report OUT.html] [--geometry GEOMETRY.unv] [--max-order N] [--segment N] [--ar-order S] [--arx-order M] [--min-hz F] [--max-hz F]",
                      desc, pos, vm, rc))
     return rc;
   const std::string method = vm["method"].as<std::string>();
@@ -666,7 +721,18 @@ int identify_modes(const Args& args) {
   } else if (frfs && !r.fit_note.empty()) {
     std::cerr << "note: no FRFs of the identified modes: " << r.fit_note << "\n";
   }
-  if (vm.count("report")) j["run"] = report::run_json("identify modes", args, {vm["file"].as<std::string>()});
+  if (vm.count("report")) {
+    std::vector<std::string> inputs{vm["file"].as<std::string>()};
+    const uff::UffFile* geometry = &file;
+    uff::UffFile other;
+    if (vm.count("geometry")) {
+      other = uff::read_uff(vm["geometry"].as<std::string>());
+      geometry = &other;
+      inputs.push_back(other.path);
+    }
+    add_test_geometry(j, *geometry, r, responses);
+    j["run"] = report::run_json("identify modes", args, inputs);
+  }
   if (vm.count("json")) write_json(vm["json"].as<std::string>(), j);
   if (vm.count("svg")) {
     const std::string path = vm["svg"].as<std::string>();

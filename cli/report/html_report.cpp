@@ -482,6 +482,30 @@ double largest(const Points& s) {
   return m;
 }
 
+/// One shape drawn alone, a panel per view (the page's view menu shows one): the frame,
+/// the defs of `behind` drawn first (pairs of a defs prefix, "<prefix>-<view>", and the
+/// class it is drawn with), the shape at its largest deflection as a path of class
+/// "deformed `cls`" that the animation swings about "wire-<view>", and `title`.
+std::string single_shape_svg(const std::string& id, const std::string& label, double w, double h,
+                             const std::vector<View>& vs, const std::vector<Placement>& pl,
+                             const std::vector<std::pair<std::string, std::string>>& behind, const std::string& cls,
+                             const Lines& lines, const Points& grids, const Points& shape, double amp,
+                             const std::string& title) {
+  std::string svg = fmt::format("<svg id=\"{}\" class=\"shapes\" xmlns=\"http://www.w3.org/2000/svg\" viewBox=\"0 0 {} {}\" "
+                                "width=\"{}\" height=\"{}\" role=\"img\" aria-label=\"{}\">\n",
+                                id, px(w), px(h), px(w), px(h), esc(label));
+  for (std::size_t v = 0; v < vs.size(); ++v) {
+    svg += fmt::format("<g class=\"view\" data-view=\"{}\"{}>\n<g transform=\"translate(0 0)\"><rect x=\"0.5\" y=\"0.5\" "
+                       "width=\"{}\" height=\"{}\" fill=\"none\" stroke=\"#ddd\"/>",
+                       vs[v].name, v ? " style=\"display:none\"" : "", px(w - 1), px(h - 1));
+    for (const auto& [prefix, c] : behind) svg += fmt::format("<use href=\"#{}-{}\" class=\"{}\"/>\n", prefix, vs[v].name, c);
+    svg += fmt::format("<path class=\"deformed {}\" data-base=\"wire-{}\" d=\"{}\"/>\n<text x=\"8\" y=\"16\" "
+                       "font-size=\"12\">{}</text></g>\n</g>\n",
+                       cls, vs[v].name, lines_d(lines, grids, &shape, amp, pl[v]), esc(title));
+  }
+  return svg + "</svg>\n";
+}
+
 /// The seed's Figure 4 for one pair: the error mode ê of MEMS (Eqs. 2–3) drawn on the
 /// test's wire frame at the analysis shape's amplitude `amp` (so its size reads against
 /// the analysis panel's), beside the MEMS coefficients α of every test mode.
@@ -491,18 +515,10 @@ std::string mems_figure(const json& sh, std::size_t k, const Points& grids,
   const json& m = sh["mems"];
   const Points err = read_points(m["error"]);
   const int fm = sh["fe_mode"], tm = sh["test_mode"];
-  std::string svg = fmt::format(
-      "<svg id=\"mems-{}-svg\" class=\"shapes\" xmlns=\"http://www.w3.org/2000/svg\" viewBox=\"0 0 {} {}\" width=\"{}\" "
-      "height=\"{}\" role=\"img\" aria-label=\"error mode of analysis mode {}\">\n",
-      k, px(w), px(h), px(w), px(h), fm);
-  for (std::size_t v = 0; v < vs.size(); ++v)
-    svg += fmt::format("<g class=\"view\" data-view=\"{0}\"{1}>\n<g transform=\"translate(0 0)\"><rect x=\"0.5\" y=\"0.5\" "
-                       "width=\"{2}\" height=\"{3}\" fill=\"none\" stroke=\"#ddd\"/><use href=\"#undeformed-{0}\" "
-                       "class=\"undeformed\"/>\n<use href=\"#wire-{0}\" class=\"wire0\"/>\n<path class=\"deformed error\" "
-                       "data-base=\"wire-{0}\" d=\"{4}\"/>\n<text x=\"8\" y=\"16\" font-size=\"12\">error mode ê, e² = {5}</text></g>\n</g>\n",
-                       vs[v].name, v ? " style=\"display:none\"" : "", px(w - 1), px(h - 1),
-                       lines_d(test_lines, grids, &err, amp, pl[v]), significant(m["error_squared"], 4));
-  svg += "</svg>\n";
+  const std::string svg =
+      single_shape_svg(fmt::format("mems-{}-svg", k), fmt::format("error mode of analysis mode {}", fm), w, h, vs, pl,
+                       {{"undeformed", "undeformed"}, {"wire", "wire0"}}, "error", test_lines, grids, err, amp,
+                       fmt::format("error mode ê, e² = {}", significant(m["error_squared"], 4)));
   // The coefficients α_i of the unit-norm test shapes.
   std::vector<double> a{0.0};
   for (const auto& r : m["alpha"]) a.push_back(r[1]);
@@ -1118,6 +1134,50 @@ std::string frf_fit_section(const json& fit) {
   return s + "</section>\n";
 }
 
+/// The identified modes drawn on the test's geometry (its nodes and trace lines): one
+/// figure per mode, the undeformed wire frame grey, the shape red at 8 % of the
+/// structure's size, the views and the animation as the analysis shapes'.
+std::string identified_shapes_section(const json& j) {
+  std::string s = "<section id=\"identified-shapes\">\n<h2>Identified mode shapes</h2>\n";
+  if (!j.contains("geometry") || !j.contains("identified_shapes")) {
+    if (j.contains("geometry_note")) s += "<p class=\"note\">" + esc(j["geometry_note"].get<std::string>()) + "</p>\n";
+    return j.contains("geometry_note") ? s + "</section>\n" : "";
+  }
+  const Points grids = read_points(j["geometry"]["grids"]);
+  const Lines wire = read_lines(j["geometry"]["test_lines"]);
+  Eigen::Vector3d lo = grids.begin()->second, hi = lo;
+  for (const auto& [id, p] : grids) lo = lo.cwiseMin(p), hi = hi.cwiseMax(p);
+  // A structure without extent (one node) still gets a scale for its arrows.
+  const double size = std::max((hi - lo).norm(), 1e-300);
+  const double w = 360, h = 270;
+  const auto vs = views();
+  std::vector<Placement> pl;
+  for (const auto& v : vs) pl.push_back(place(v, grids, w, h));
+  s += "<div class=\"controls\">view <select id=\"view\">";
+  for (const auto& v : vs) s += fmt::format("<option value=\"{}\">{}</option>", v.name, esc(v.label));
+  s += "</select> <label><input type=\"checkbox\" id=\"animate\" checked> animate</label></div>\n";
+  s += "<p class=\"note\">Each identified mode (the real part of its unit shape, each measured direction in its node's "
+       "displacement system turned to global) on the test's trace lines; grey: the undeformed wire frame. The largest "
+       "displacement is drawn at 8 % of the structure's size. Nodes without a measured direction do not move.</p>\n";
+  s += "<svg width=\"0\" height=\"0\" style=\"position:absolute\" aria-hidden=\"true\"><defs>\n";
+  for (std::size_t v = 0; v < vs.size(); ++v)
+    s += fmt::format("<path id=\"wire-{}\" d=\"{}\"/>\n", vs[v].name, lines_d(wire, grids, nullptr, 0, pl[v]));
+  s += "</defs></svg>\n";
+  for (const auto& m : j["identified_shapes"]) {
+    const Points shape = read_points(m["points"]);
+    const int mode = m["mode"];
+    const double hz = m["hz"];
+    const double amp = 0.08 * size / std::max(largest(shape), 1e-300);
+    const std::string svg = single_shape_svg(fmt::format("identified-{}-svg", mode), fmt::format("identified mode {}", mode),
+                                             w, h, vs, pl, {{"wire", "undeformed"}}, "test", wire, grids, shape, amp,
+                                             fmt::format("mode {}: {} Hz", mode, significant(hz, 6)));
+    s += fmt::format("<figure id=\"identified-{0}\" class=\"identified-shape\" data-mode=\"{0}\" data-hz=\"{1}\">\n{2}"
+                     "<figcaption>Identified mode {0}: {3} Hz.</figcaption>\n</figure>\n",
+                     mode, exact(hz), svg, significant(hz, 6));
+  }
+  return s + "</section>\n";
+}
+
 /// The identified modes' table: frequency, damping, their σ, MPC, MPD.
 std::string identification_sections(const json& j) {
   std::string s = "<section id=\"stabilisation\">\n<h2>Stabilisation diagram</h2>\n";
@@ -1294,7 +1354,7 @@ std::string html_report(const json& j) {
     s += pair_table(j["pairs"], before) + "</section>\n";
     s += parameter_figures(j) + convergence_figures(j);
   } else if (cmd == "identify") {
-    s += identification_sections(j);
+    s += identification_sections(j) + identified_shapes_section(j);
   } else if (cmd == "diagnose") {
     s += diagnosis_sections(j);
   } else if (cmd == "pretest") {

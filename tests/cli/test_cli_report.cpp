@@ -288,10 +288,43 @@ Report pretest_report() {
                                    "--generations 4 --exciter-at 41:0,1,0 --exciter-at 79:0,0,1 --evaluate");
 }
 
+/// The chain's test geometry as a universal file: nodes 1, 2, 3 at x = 0, 1, 2 m, one
+/// trace line through them, and node 2's displacement system (2420, system 5) turned
+/// 90° about Z, so that its measured +X is the global +Y.
+fs::path chain_geometry() {
+  namespace uff = ssid::formats::uff;
+  uff::UffFile f;
+  uff::CoordinateSystems2420 cs;
+  uff::Cs2420 turned;
+  turned.id = 5;
+  turned.rows = {{{0, 1, 0}, {-1, 0, 0}, {0, 0, 1}}};
+  cs.systems.push_back(turned);
+  f.datasets.emplace_back(cs);
+  uff::NodeSet ns;
+  ns.dataset = 2411;
+  for (int n = 1; n <= 3; ++n) {
+    uff::Node node;
+    node.id = n;
+    node.displacement_cs = n == 2 ? 5 : 0;
+    node.xyz = {static_cast<double>(n - 1), 0, 0};
+    ns.nodes.push_back(node);
+  }
+  f.datasets.emplace_back(ns);
+  uff::TraceLine82 t;
+  t.id = 1;
+  t.label = "chain";
+  t.nodes = {1, 2, 3};
+  f.datasets.emplace_back(t);
+  const fs::path p = scratch() / "chain_geometry.unv";
+  uff::write_uff(f, p.string());
+  return p;
+}
+
 Report identify_report() {
   const fs::path in = scratch() / "chain_frf.unv";
   write_chain_frf(ident_test::chain_model(true, {0}), in.string());
-  return run_report("identify", "identify modes " + in.string() + " --svg " + (scratch() / "stabilisation.svg").string());
+  return run_report("identify", "identify modes " + in.string() + " --svg " + (scratch() / "stabilisation.svg").string() +
+                                    " --geometry " + chain_geometry().string());
 }
 
 }  // namespace
@@ -428,7 +461,7 @@ TEST_CASE("ssid identify modes --report and --svg: the stabilisation diagram and
           "[cli][report][identify]") {
   const Report r = identify_report();
   const json& j = r.j;
-  check_run(j, r.html, {(scratch() / "chain_frf.unv").string()});
+  check_run(j, r.html, {(scratch() / "chain_frf.unv").string(), (scratch() / "chain_geometry.unv").string()});
   REQUIRE(j["modes"].size() == 3);
   const json& st = j["stabilisation"];
   // One symbol per pole of the diagram, at its frequency and order, of its class.
@@ -523,6 +556,44 @@ TEST_CASE("ssid identify modes --report and --svg: the stabilisation diagram and
     CHECK(md["mpc"].get<double>() > 0.9999);
     CHECK(md["mpd_deg"].get<double>() < 0.01);
   }
+}
+
+TEST_CASE("ssid identify modes --report --geometry: the identified shapes on the test's trace lines",
+          "[cli][report][identify]") {
+  const Report r = identify_report();
+  const json& j = r.j;
+  const json& g = j["geometry"];
+  CHECK(g["grids"] == json::parse("[[1, 0.0, 0.0, 0.0], [2, 1.0, 0.0, 0.0], [3, 2.0, 0.0, 0.0]]"));
+  CHECK(g["test_lines"] == json::parse("[[1, 2], [2, 3]]"));
+  REQUIRE(j["identified_shapes"].size() == 3);
+  const auto figures = marks(r.html, "figure", "identified-shape");
+  REQUIRE(figures.size() == 3);
+  for (std::size_t m = 0; m < 3; ++m) {
+    const json& sh = j["identified_shapes"][m];
+    const json& mode = j["modes"][m];
+    CHECK(sh["mode"] == static_cast<int>(m) + 1);
+    CHECK(sh["hz"] == mode["hz"]);
+    CHECK(num(figures[m], "data-hz") == mode["hz"].get<double>());
+    // Each node moves by the shape's real part along its measured direction in global:
+    // +X at nodes 1 and 3, +Y at node 2 (its displacement system turned 90° about Z).
+    REQUIRE(sh["points"].size() == 3);
+    for (std::size_t o = 0; o < 3; ++o) {
+      const double v = mode["shape"][o][2].get<double>();
+      const json& p = sh["points"][o];
+      CHECK(p[0] == static_cast<int>(o) + 1);
+      const Eigen::Vector3d expected = o == 1 ? Eigen::Vector3d(0, v, 0) : Eigen::Vector3d(v, 0, 0);
+      for (int k = 0; k < 3; ++k) CHECK(p[static_cast<std::size_t>(k) + 1].get<double>() == Approx(expected(k)).margin(1e-15));
+    }
+    // The drawing: one deformed wire frame per view, the undeformed one behind.
+    const std::string fig = figure(r.html, "identified-" + std::to_string(m + 1));
+    CHECK(marks(fig, "path", "deformed test").size() == 4);
+  }
+  // Without a geometry (the FRF file has no nodes) the report says why there are no shapes.
+  const fs::path in = scratch() / "chain_frf.unv";
+  const Report bare = run_report("identify_bare", "identify modes " + in.string());
+  CHECK(!bare.j.contains("identified_shapes"));
+  CHECK_THAT(bare.j["geometry_note"].get<std::string>(), Catch::Contains("no nodes; the identified shapes are not drawn"));
+  CHECK(bare.html.find("no nodes; the identified shapes are not drawn") != std::string::npos);
 }
 
 TEST_CASE("ssid identify modes --svg needs ERA", "[cli][identify]") {
