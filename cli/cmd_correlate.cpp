@@ -3,14 +3,22 @@
 /// Tables 4–6 layout), MAC, auto-MAC, with --json. From a deck, the modes are
 /// solved and sampled at the grids the test nodes map to (in basic X, Y, Z, and
 /// rotations when the test has them).
+#include <Eigen/SparseCore>
+#include <algorithm>
+#include <fmt/format.h>
 #include <fstream>
 #include <iostream>
+#include <map>
+#include <optional>
 #include <set>
+#include <sstream>
 
 #include "cli/cli_util.hpp"
 #include "cli/model_load.hpp"
 #include "cli/report/report_data.hpp"
 #include "estimator/correlation/correlate.hpp"
+#include "estimator/correlation/measures.hpp"
+#include "estimator/pretest/measurement_coordinates.hpp"
 #include "formats/parse_error.hpp"
 #include "formats/uff.hpp"
 #include "translators/synthetic_modes.hpp"
@@ -43,6 +51,49 @@ nlohmann::json matrix_json(const Eigen::MatrixXd& m) {
   return j;
 }
 
+/// The reduced mass of a test-analysis model ("guyan" or "irs") of the deck's model on
+/// the test DOFs `dofs` (grids, measured directions ±1..±3 in basic), in their order.
+/// Each measured direction becomes one coordinate of the analysis set
+/// (measurement_coordinates.hpp: a direction not along the grid's displacement frame is
+/// a combination of its translations), the rest is condensed. Throws InputError saying
+/// why not: a rotational test DOF, a test grid whose translations are not in the
+/// analysis set (dependent or constrained), a reduction that fails.
+Eigen::MatrixXd tam_mass(const std::string& kind, const translators::FeModel& model, const translators::FeOperators& op,
+                         const std::vector<translators::MeasuredDof>& dofs) {
+  namespace pt = estimator::pretest;
+  std::map<std::int64_t, Eigen::Matrix3d> frame;
+  for (const auto& g : grid_positions(model)) frame[g.id] = g.frame;
+  std::vector<pt::SensorDirection> dirs;
+  std::vector<std::int64_t> test_grids;
+  for (const auto& d : dofs) {
+    const int axis = std::abs(d.direction);
+    if (axis < 1 || axis > 3)
+      throw formats::InputError(fmt::format("test DOF {}:{} is a rotation (the TAMs reduce onto translations)", d.node,
+                                            d.direction));
+    const auto f = frame.find(d.node);
+    if (f == frame.end()) throw formats::InputError(fmt::format("test DOF {}:{}: no grid {}", d.node, d.direction, d.node));
+    // The basic direction in the grid's displacement frame (the frame's columns are its axes in basic).
+    const Eigen::Vector3d e = (d.direction < 0 ? -1.0 : 1.0) * Eigen::Vector3d::Unit(axis - 1);
+    dirs.push_back({d.node, f->second.transpose() * e});
+    if (std::find(test_grids.begin(), test_grids.end(), d.node) == test_grids.end()) test_grids.push_back(d.node);
+  }
+  const auto a_set = a_set_dofs(model);
+  const pt::MeasurementCoordinates mc =
+      pt::measurement_coordinates(a_set, pt::translational_candidates(a_set, test_grids), dirs);
+  // The i-th direction given at a grid is its i-th directed candidate.
+  std::map<std::int64_t, std::vector<Eigen::Index>> rows_of;
+  for (const auto& c : mc.candidates)
+    if (c.directed) rows_of[c.dof.point].push_back(c.row);
+  std::map<std::int64_t, std::size_t> used;
+  std::vector<Eigen::Index> rows;
+  for (const auto& d : dofs) rows.push_back(rows_of.at(d.node).at(used[d.node]++));
+  const Eigen::SparseMatrix<double> Kq = mc.congruent(op.K), Mq = mc.congruent(op.M);
+  const estimator::ReducedModel r =
+      kind == "guyan" ? estimator::guyan_reduce(Kq, Mq, rows) : estimator::irs_reduce(Kq, Mq, rows);
+  if (r.status != estimator::ReductionStatus::Ok) throw formats::InputError(r.message);
+  return r.M;
+}
+
 }  // namespace
 
 int cmd_correlate(const Args& args) {
@@ -62,14 +113,17 @@ int cmd_correlate(const Args& args) {
       "map", po::value<std::string>()->default_value("id"),
       "test node to analysis node: id, position, or id-then-position (positions from 15/2411 in both files)")(
       "tol", po::value<double>()->default_value(0.0, "0"), "distance tolerance for position mapping (model units)")(
-      "nmodes", po::value<int>(), "deck: solve the lowest N modes (default: the deck's EIGRL/EIGR)");
+      "nmodes", po::value<int>(), "deck: solve the lowest N modes (default: the deck's EIGRL/EIGR)")(
+      "tam", po::value<std::string>(),
+      "deck: cross-orthogonality also with these test-analysis models' masses on the test DOFs, guyan and/or irs "
+      "(comma-separated; SEREP's is always computed)");
   po::positional_options_description pos;
   pos.add("fe", 1).add("test", 1);
   po::variables_map vm;
   int rc = 0;
   if (!parse_options(args,
                      "ssid correlate DECK|FE.unv TEST.unv [--json FILE] [--report FILE.html] [--nmodes N] [--mac squared|ns] [--min-mac X] "
-                     "[--max-freq-error PCT] [--map id|position|id-then-position --tol D]",
+                     "[--max-freq-error PCT] [--map id|position|id-then-position --tol D] [--tam guyan,irs]",
                      desc, pos, vm, rc))
     return rc;
   const std::string fe_path = vm["fe"].as<std::string>(), test_path = vm["test"].as<std::string>();
@@ -77,6 +131,21 @@ int cmd_correlate(const Args& args) {
   if (!from_deck && vm.count("nmodes")) {
     print_error("--nmodes applies when the first argument is a deck");
     return 2;
+  }
+  std::vector<std::string> tams;
+  if (vm.count("tam")) {
+    std::stringstream ss(vm["tam"].as<std::string>());
+    for (std::string t; std::getline(ss, t, ',');) {
+      if (t != "guyan" && t != "irs") {
+        print_error("--tam: expected guyan and/or irs (comma-separated), got \"" + t + "\"");
+        return 2;
+      }
+      if (std::find(tams.begin(), tams.end(), t) == tams.end()) tams.push_back(t);
+    }
+    if (!from_deck) {
+      print_error("--tam needs the deck's stiffness and mass: give a deck as the first argument");
+      return 2;
+    }
   }
 
   estimator::PairingOptions opt;
@@ -94,10 +163,11 @@ int cmd_correlate(const Args& args) {
   LoadedModel lm;
   estimator::EigenResult fe_modes;
   uff::UffFile fe_file;
+  std::optional<translators::FeOperators> op_kept;  // the deck's K and M, for --tam
   if (from_deck) {
     lm = load_model(fe_path);
     print_model_notes(lm);
-    const auto op = lm.model->operators(lm.model->initial_parameters(), false);
+    const auto& op = op_kept.emplace(lm.model->operators(lm.model->initial_parameters(), false));
     std::string source;
     std::optional<int> nmodes;
     if (vm.count("nmodes")) nmodes = vm["nmodes"].as<int>();
@@ -230,6 +300,21 @@ int cmd_correlate(const Args& args) {
       if (mp.accepted) accepted.emplace_back(fe_no(mp.fe), test_no(mp.test));
     j["cross_orthogonality"] = report::cross_orthogonality_json(c.fe.shapes, c.fe.modal_mass, c.fe.numbers,
                                                                 c.test.shapes, c.test.numbers, accepted);
+    // Guyan and IRS need K and M: the analysis shapes at the test DOFs are those of
+    // synthetic_test (each basic direction's component), the same coordinates tam_mass reduces onto.
+    for (const auto& t : tams) {
+      nlohmann::json x;
+      try {
+        x = report::cross_orthogonality_json(c.fe.shapes, tam_mass(t, *lm.model, *op_kept, c.dofs), c.fe.numbers,
+                                             c.test.shapes, c.test.numbers, accepted,
+                                             t == "guyan" ? "Guyan (static condensation of the deck's K, M onto the test DOFs)"
+                                                          : "IRS (Guyan corrected for the omitted DOFs' inertia, O'Callahan)");
+      } catch (const formats::InputError& e) {
+        x = {{"unavailable", e.what()}};
+        problems.push_back("--tam " + t + ": " + e.what());
+      }
+      j["cross_orthogonality_tam"][t] = x;
+    }
   }
   j["problems"] = problems;
 

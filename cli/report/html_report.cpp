@@ -188,9 +188,10 @@ std::string mac_figure(const json& mac, const std::vector<int>& row_modes, const
 /// The cross-orthogonality heat map (|X|; rows the analysis modes, or with `rows_are_test`
 /// the test modes, as the MAC beside it), the pairs outlined, and the pairs' acceptance
 /// (diagonal > min_diagonal, off-diagonal < max_off_diagonal).
-std::string xor_figure(const json& x, bool rows_are_test) {
+std::string xor_figure(const json& x, bool rows_are_test, const std::string& id = "fig-xor") {
   if (x.contains("unavailable"))
-    return fmt::format("<p class=\"note\" id=\"xor-unavailable\">Cross-orthogonality: not available ({}).</p>\n",
+    return fmt::format("<p class=\"note\" id=\"{}\">Cross-orthogonality: not available ({}).</p>\n",
+                       id == "fig-xor" ? std::string("xor-unavailable") : id + "-unavailable",
                        esc(x["unavailable"].get<std::string>()));
   HeatMap h;
   for (const auto& row : x["matrix"]) h.values.push_back(row.get<std::vector<double>>());
@@ -222,7 +223,7 @@ std::string xor_figure(const json& x, bool rows_are_test) {
                          fixed(p["largest_off_diagonal"], 3), p["accepted"].get<bool>() ? "yes" : "<b>no</b>");
   }
   table += "</table>\n";
-  return figure("fig-xor", heat_map_svg(h, "fig-xor-svg", "cross-orthogonality matrix"),
+  return figure(id, heat_map_svg(h, id + "-svg", "cross-orthogonality matrix"),
                 fmt::format("Cross-orthogonality |φ_aᵀ M_r φ_e| (cell values as in the JSON's matrix, here {}) of {} with every test mode, each mode at unit generalised "
                             "mass under M_r; M_r: {}. Outlined: the pairs. The usual acceptance: the pair's value above {} and "
                             "every other value in its row and column below {}.",
@@ -1330,6 +1331,8 @@ std::string html_report(const json& j) {
     s += mac_figure(j["mac"], mode_numbers(j["fe_modes"]), mode_numbers(j["test_modes"]), true, accepted, "fig-mac",
                     "MAC of every analysis mode with every test mode; outlined: the accepted pairs.", form);
     if (j.contains("cross_orthogonality")) s += xor_figure(j["cross_orthogonality"], false);
+    if (j.contains("cross_orthogonality_tam"))
+      for (const auto& [tam, x] : j["cross_orthogonality_tam"].items()) s += xor_figure(x, false, "fig-xor-" + tam);
     s += "</section>\n<section id=\"frequencies\">\n<h2>Frequencies</h2>\n";
     s += frequency_figure(accepted, nullptr, j.value("max_frequency_error_pct", 10.0), "accepted pairs");
     s += error_figure(accepted, nullptr, "accepted pairs");

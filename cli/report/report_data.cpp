@@ -172,6 +172,47 @@ double scale_onto(const Eigen::VectorXd& fe, const Eigen::VectorXd& test) {
   return tt > 0 ? fe.dot(test) / tt : 0.0;
 }
 
+namespace {
+
+/// |X| = |normalised φ_aᵀ M_r φ_t| of the analysis shapes `fe` (columns, modes `rows`)
+/// and the test shapes, with the pairs' acceptance: cross_orthogonality_json's object.
+nlohmann::json xor_of_mass(const Eigen::MatrixXd& fe, const Eigen::MatrixXd& Mr, const std::vector<int>& rows,
+                           const Eigen::MatrixXd& test, const std::vector<int>& test_numbers,
+                           const std::vector<std::pair<int, int>>& pairs, const std::string& reduction,
+                           const std::string& basis_text) {
+  const Eigen::MatrixXd X = estimator::cross_orthogonality(fe, Mr, test, true).cwiseAbs();
+  nlohmann::json matrix = nlohmann::json::array();
+  for (Eigen::Index i = 0; i < X.rows(); ++i) {
+    std::vector<double> r;
+    for (Eigen::Index k = 0; k < X.cols(); ++k) r.push_back(X(i, k));
+    matrix.push_back(r);
+  }
+  const double min_diagonal = 0.9, max_off = 0.1;
+  nlohmann::json pj = nlohmann::json::array();
+  for (const auto& [f, t] : pairs) {
+    const auto i = std::find(rows.begin(), rows.end(), f) - rows.begin();
+    const auto k = std::find(test_numbers.begin(), test_numbers.end(), t) - test_numbers.begin();
+    if (i >= static_cast<long>(rows.size()) || k >= static_cast<long>(test_numbers.size())) continue;
+    double off = 0;
+    for (Eigen::Index c = 0; c < X.cols(); ++c)
+      if (c != k) off = std::max(off, X(i, c));
+    for (Eigen::Index r = 0; r < X.rows(); ++r)
+      if (r != i) off = std::max(off, X(r, k));
+    pj.push_back({{"fe_mode", f}, {"test_mode", t}, {"xor", X(i, k)}, {"largest_off_diagonal", off},
+                  {"accepted", X(i, k) > min_diagonal && off < max_off}});
+  }
+  return {{"reduction", reduction},
+          {"basis", basis_text},
+          {"fe_modes", rows},
+          {"test_modes", test_numbers},
+          {"matrix", matrix},
+          {"min_diagonal", min_diagonal},
+          {"max_off_diagonal", max_off},
+          {"pairs", pj}};
+}
+
+}  // namespace
+
 nlohmann::json cross_orthogonality_json(const Eigen::MatrixXd& fe, const std::vector<double>& modal_mass,
                                         const std::vector<int>& fe_numbers, const Eigen::MatrixXd& test,
                                         const std::vector<int>& test_numbers,
@@ -212,37 +253,17 @@ nlohmann::json cross_orthogonality_json(const Eigen::MatrixXd& fe, const std::ve
   Eigen::VectorXd m(static_cast<Eigen::Index>(basis.size()));
   for (std::size_t k = 0; k < basis.size(); ++k) m(static_cast<Eigen::Index>(k)) = modal_mass[static_cast<std::size_t>(basis[k])];
   const Eigen::MatrixXd Mr = pinv->transpose() * m.asDiagonal() * *pinv;
-  const Eigen::MatrixXd X = estimator::cross_orthogonality(take(basis), Mr, test, true).cwiseAbs();
   std::vector<int> rows;
   for (auto i : basis) rows.push_back(fe_numbers[static_cast<std::size_t>(i)]);
-  nlohmann::json matrix = nlohmann::json::array();
-  for (Eigen::Index i = 0; i < X.rows(); ++i) {
-    std::vector<double> r;
-    for (Eigen::Index k = 0; k < X.cols(); ++k) r.push_back(X(i, k));
-    matrix.push_back(r);
-  }
-  const double min_diagonal = 0.9, max_off = 0.1;
-  nlohmann::json pj = nlohmann::json::array();
-  for (const auto& [f, t] : pairs) {
-    const auto i = std::find(rows.begin(), rows.end(), f) - rows.begin();
-    const auto k = std::find(test_numbers.begin(), test_numbers.end(), t) - test_numbers.begin();
-    if (i >= static_cast<long>(rows.size()) || k >= static_cast<long>(test_numbers.size())) continue;
-    double off = 0;
-    for (Eigen::Index c = 0; c < X.cols(); ++c)
-      if (c != k) off = std::max(off, X(i, c));
-    for (Eigen::Index r = 0; r < X.rows(); ++r)
-      if (r != i) off = std::max(off, X(r, k));
-    pj.push_back({{"fe_mode", f}, {"test_mode", t}, {"xor", X(i, k)}, {"largest_off_diagonal", off},
-                  {"accepted", X(i, k) > min_diagonal && off < max_off}});
-  }
-  return {{"reduction", "SEREP from the analysis modes: M_r = pinv(Phi_a)^T diag(generalised mass) pinv(Phi_a)"},
-          {"basis", basis_text},
-          {"fe_modes", rows},
-          {"test_modes", test_numbers},
-          {"matrix", matrix},
-          {"min_diagonal", min_diagonal},
-          {"max_off_diagonal", max_off},
-          {"pairs", pj}};
+  return xor_of_mass(take(basis), Mr, rows, test, test_numbers, pairs,
+                     "SEREP from the analysis modes: M_r = pinv(Phi_a)^T diag(generalised mass) pinv(Phi_a)", basis_text);
+}
+
+nlohmann::json cross_orthogonality_json(const Eigen::MatrixXd& fe, const Eigen::MatrixXd& Mr,
+                                        const std::vector<int>& fe_numbers, const Eigen::MatrixXd& test,
+                                        const std::vector<int>& test_numbers,
+                                        const std::vector<std::pair<int, int>>& pairs, const std::string& reduction) {
+  return xor_of_mass(fe, Mr, fe_numbers, test, test_numbers, pairs, reduction, "every analysis mode");
 }
 
 void write_report(const std::string& path, const nlohmann::json& j) {

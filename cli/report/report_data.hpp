@@ -73,6 +73,15 @@ nlohmann::json cross_orthogonality_json(const Eigen::MatrixXd& fe, const std::ve
                                         const std::vector<int>& test_numbers,
                                         const std::vector<std::pair<int, int>>& pairs);
 
+/// The same object for a test-analysis model's reduced mass `Mr` on the test DOFs (in
+/// the rows' order of `fe` and `test`): every analysis mode of `fe` (its shapes at the
+/// test DOFs) against every test mode, "reduction" saying which TAM, "basis" every
+/// analysis mode.
+nlohmann::json cross_orthogonality_json(const Eigen::MatrixXd& fe, const Eigen::MatrixXd& Mr,
+                                        const std::vector<int>& fe_numbers, const Eigen::MatrixXd& test,
+                                        const std::vector<int>& test_numbers,
+                                        const std::vector<std::pair<int, int>>& pairs, const std::string& reduction);
+
 /// Writes the HTML report of `j` (html_report.hpp) to `path`. Throws InputError when it cannot.
 void write_report(const std::string& path, const nlohmann::json& j);
 
