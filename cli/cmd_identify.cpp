@@ -492,12 +492,65 @@ void print_frf_fit(std::ostream& o, const nlohmann::json& fit) {
 
 /// The multistage ARMAX at orders (s, m) on all responses, then on each alone at
 /// (p·s, p·m): the modes found in every run (armax_model_order), within [hz_min, hz_max].
+/// `--subsets "N:D,N:D;N:D"`: subsets of the response records named by their DOFs
+/// (semicolon between subsets, comma within), as 0-based columns of `responses`.
+std::vector<std::vector<int>> parse_subsets(const std::string& text, const std::vector<Dof>& responses) {
+  std::vector<std::vector<int>> out;
+  std::stringstream all(text);
+  for (std::string item; std::getline(all, item, ';');) {
+    std::vector<int> subset;
+    std::stringstream one(item);
+    for (std::string dof; std::getline(one, dof, ',');) {
+      const auto colon = dof.find(':');
+      long node = 0;
+      int dir = 0;
+      try {
+        std::size_t a = 0, b = 0;
+        if (colon == std::string::npos) throw std::invalid_argument("no colon");
+        node = std::stol(dof.substr(0, colon), &a);
+        dir = std::stoi(dof.substr(colon + 1), &b);
+        if (a != colon || b != dof.size() - colon - 1) throw std::invalid_argument("trailing text");
+      } catch (const std::logic_error&) {
+        throw formats::InputError(fmt::format("--subsets: \"{}\": expected NODE:DIRECTION, e.g. 12:3", dof));
+      }
+      const auto it = std::find(responses.begin(), responses.end(), Dof{node, dir});
+      if (it == responses.end())
+        throw formats::InputError(fmt::format("--subsets: {}:{} is not a response record of the file", node, dir));
+      const int col = static_cast<int>(it - responses.begin());
+      if (std::find(subset.begin(), subset.end(), col) != subset.end())
+        throw formats::InputError(fmt::format("--subsets: {}:{} twice in one subset", node, dir));
+      subset.push_back(col);
+    }
+    if (subset.empty()) throw formats::InputError("--subsets: an empty subset in \"" + text + "\"");
+    out.push_back(subset);
+  }
+  if (out.empty()) throw formats::InputError("--subsets: no subset given");
+  return out;
+}
+
+/// The ARMAX runs: all p responses at (s, m), then each subset of q responses at
+/// (⌈s·p/q⌉, ⌈m·p/q⌉), which keeps the AR parameters per run as the paper's single-response
+/// runs at (p·s, p·m) do; without subsets, each response alone.
+std::vector<id::ArmaxRun> armax_runs(int p, const id::ArmaxOptions& all, const std::vector<std::vector<int>>& subsets) {
+  if (subsets.empty()) return id::single_output_runs(p, all);
+  std::vector<id::ArmaxRun> runs{{{}, all}};
+  for (int j = 0; j < p; ++j) runs[0].outputs.push_back(j);
+  for (const auto& sub : subsets) {
+    const int q = static_cast<int>(sub.size());
+    id::ArmaxRun r{sub, all};
+    r.options.ar_order = (all.ar_order * p + q - 1) / q;
+    r.options.arx_order = (all.arx_order * p + q - 1) / q;
+    runs.push_back(r);
+  }
+  return runs;
+}
+
 Identified armax_modes(const TimeSet& t, int ar_order, int arx_order, const id::StabilisationOptions& so,
-                       std::vector<std::string>& warnings) {
+                       std::vector<std::string>& warnings, const std::vector<std::vector<int>>& subsets) {
   id::ArmaxOptions all;
   all.ar_order = ar_order;
   all.arx_order = arx_order;
-  const auto runs = id::single_output_runs(static_cast<int>(t.responses.size()), all);
+  const auto runs = armax_runs(static_cast<int>(t.responses.size()), all, subsets);
   const id::ArmaxOrderResult res = id::armax_model_order(t.y, t.x, t.dt, runs, {});
   for (std::size_t k = 0; k < res.models.size(); ++k)
     if (!res.models[k].converged)
@@ -505,6 +558,14 @@ Identified armax_modes(const TimeSet& t, int ar_order, int arx_order, const id::
                                      res.models[k].iterations));
   Identified r;
   r.columns_header = "  runs";
+  r.summary["armax_runs"] = nlohmann::json::array();
+  for (const auto& run : res.runs) {
+    nlohmann::json outs = nlohmann::json::array();
+    for (int c : run.outputs)
+      outs.push_back({t.responses[static_cast<std::size_t>(c)].first, t.responses[static_cast<std::size_t>(c)].second});
+    r.summary["armax_runs"].push_back(
+        {{"responses", outs}, {"ar_order", run.options.ar_order}, {"arx_order", run.options.arx_order}});
+  }
   for (const auto& p : res.rejected) ++r.rejected[p.reason];
   for (const id::RecurringMode& md : res.modes) {
     if (md.hz_mean < so.hz_min || md.hz_mean > so.hz_max) {
@@ -537,6 +598,10 @@ int identify_modes(const Args& args) {
       "segment", po::value<int>()->default_value(1024), "era, plscf on time histories: Welch segment, samples")(
       "ar-order", po::value<int>(), "armax: AR order s with all p responses (default ⌈12/p⌉)")(
       "arx-order", po::value<int>(), "armax: prior ARX order m with all p responses (default ⌈90/p⌉)")(
+      "subsets", po::value<std::string>(),
+      "armax: the order rule's runs besides all responses, as subsets of the response records, e.g. "
+      "\"1:1,2:1;2:1,3:1\" (NODE:DIRECTION, ';' between subsets); a subset of q records runs at orders "
+      "⌈s·p/q⌉, ⌈m·p/q⌉ (default: each record alone)")(
       "min-hz", po::value<double>()->default_value(0.0, "0"),
       "keep modes from this frequency, Hz (plscf: also the fitted band's start)")(
       "max-hz", po::value<double>(),
@@ -547,7 +612,7 @@ int identify_modes(const Args& args) {
   int rc = 0;
   if (!parse_options(args,
                      "ssid identify modes FILE.unv [--method armax|era|plscf] [--json OUT] [--uff OUT] [--svg OUT.svg] "
-                     "[--report OUT.html] [--geometry GEOMETRY.unv] [--max-order N] [--segment N] [--ar-order S] [--arx-order M] [--min-hz F] [--max-hz F]",
+                     "[--report OUT.html] [--geometry GEOMETRY.unv] [--max-order N] [--segment N] [--ar-order S] [--arx-order M] [--subsets LIST] [--min-hz F] [--max-hz F]",
                      desc, pos, vm, rc))
     return rc;
   const std::string method = vm["method"].as<std::string>();
@@ -571,6 +636,10 @@ int identify_modes(const Args& args) {
       print_error(fmt::format("--{}: expected an order ≥ 1, got {}", name, vm[name].as<int>()));
       return 2;
     }
+  if (vm.count("subsets") && method != "armax") {
+    print_error("--subsets: the order rule's runs are ARMAX's (--method armax)");
+    return 2;
+  }
   if (vm.count("svg") && method == "armax") {
     print_error("--svg: the stabilisation diagram is ERA's and pLSCF's (--method era|plscf); ARMAX's modes come from "
                 "runs, not orders");
@@ -654,10 +723,24 @@ int identify_modes(const Args& args) {
                                               "compares the identification from all of them with each one's)");
       const int s = vm.count("ar-order") ? vm["ar-order"].as<int>() : (12 + p - 1) / p;
       const int m = vm.count("arx-order") ? vm["arx-order"].as<int>() : (90 + p - 1) / p;
-      text << fmt::format("ARMAX orders s = {}, m = {} on all responses, then {}, {} on each\n", s, m, p * s,
-                               p * m);
+      std::vector<std::vector<int>> subsets;
+      if (vm.count("subsets")) subsets = parse_subsets(vm["subsets"].as<std::string>(), t.responses);
+      if (subsets.empty()) {
+        text << fmt::format("ARMAX orders s = {}, m = {} on all responses, then {}, {} on each\n", s, m, p * s, p * m);
+      } else {
+        text << fmt::format("ARMAX orders s = {}, m = {} on all responses, then on {} subset(s):", s, m, subsets.size());
+        for (const auto& sub : subsets) {
+          std::string names;
+          for (int c : sub)
+            names += (names.empty() ? "" : ",") + fmt::format("{}:{}", t.responses[static_cast<std::size_t>(c)].first,
+                                                             t.responses[static_cast<std::size_t>(c)].second);
+          const int q = static_cast<int>(sub.size());
+          text << fmt::format(" {{{}}} at {}, {};", names, (s * p + q - 1) / q, (m * p + q - 1) / q);
+        }
+        text << "\n";
+      }
       try {
-        r = armax_modes(t, s, m, so, warnings);
+        r = armax_modes(t, s, m, so, warnings, subsets);
       } catch (const formats::InputError& e) {
         // The estimator names the records by column; the file is what the user can act on.
         throw formats::InputError(file.path + ": " + e.what());

@@ -128,6 +128,59 @@ TEST_CASE("ssid identify modes --method armax: the paper's 2-DOF modes from its 
     CHECK(modes55[m]->frequency_hz() == Approx(j["modes"][m]["hz"].get<double>()).epsilon(1e-5));
 }
 
+TEST_CASE("ssid identify modes --method armax --subsets: the order rule over pairs of responses",
+          "[cli][identify][armax]") {
+  // Three masses of the paper's lumped chain (k = k_c between them, k_g to ground, ends
+  // k_c too; Δt as its 6-DOF cases), force on mass 1, all three displacements with 5 %
+  // noise. Runs: all three at (4, 30), then the pairs {1, 2} and {2, 3} at ⌈4·3/2⌉ = 6,
+  // ⌈30·3/2⌉ = 45. Exact: the state matrix's eigenvalues.
+  const armax_test::Lumped system = armax_test::lumped_system(3, armax_test::kCoupling, true, false);
+  const double dt = 1.51224e-4;
+  const armax_test::Records rec = armax_test::simulate(system, dt, {0, 1, 2}, 3);
+  uff::UffFile f;
+  f.datasets.emplace_back(time_record(1, 1, 1, 13, rec.force.col(0), dt));
+  for (int o = 0; o < 3; ++o) f.datasets.emplace_back(time_record(o + 2, o + 1, 1, 8, rec.response.col(o), dt));
+  const fs::path in = scratch("three_dof_time.unv"), json = scratch("armax_pairs.json");
+  uff::write_uff(f, in.string(), uff::Precision::Extended);
+  const IdentifyRun r = identify_json(in.string() + " --method armax --subsets \"1:1,2:1;2:1,3:1\"", json);
+  CHECK_THAT(r.out, Catch::Contains("ARMAX orders s = 4, m = 30 on all responses, then on 2 subset(s): {1:1,2:1} at 6, 45; "
+                                    "{2:1,3:1} at 6, 45;\n"));
+  const auto& runs = r.j["armax_runs"];
+  REQUIRE(runs.size() == 3);
+  CHECK(runs[0]["responses"] == nlohmann::json::parse("[[1, 1], [2, 1], [3, 1]]"));
+  CHECK(runs[1]["responses"] == nlohmann::json::parse("[[1, 1], [2, 1]]"));
+  CHECK(runs[2]["responses"] == nlohmann::json::parse("[[2, 1], [3, 1]]"));
+  CHECK(runs[2]["ar_order"] == 6);
+  CHECK(runs[2]["arx_order"] == 45);
+  const Eigen::VectorXcd lambda = Eigen::EigenSolver<Eigen::MatrixXd>(armax_test::state_matrix(system)).eigenvalues();
+  std::vector<double> exact;
+  for (Eigen::Index i = 0; i < lambda.size(); ++i)
+    if (lambda(i).imag() > 0) exact.push_back(std::abs(lambda(i)) / (2 * M_PI));
+  std::sort(exact.begin(), exact.end());
+  REQUIRE(r.j["modes"].size() == 3);
+  for (std::size_t m = 0; m < 3; ++m) {
+    INFO("exact " << exact[m] << " Hz, identified " << r.j["modes"][m]["hz"]);
+    CHECK(std::abs(r.j["modes"][m]["hz"].get<double>() - exact[m]) <= 5e-4 * exact[m]);  // the paper's 0.05 %
+    CHECK(r.j["modes"][m]["runs"] == 3);
+  }
+  // Each response alone (the default runs): mass 2 sits on the node of the middle mode,
+  // so the run on response 2 cannot see it and the rule drops it.
+  const IdentifyRun single = identify_json(in.string() + " --method armax", json);
+  REQUIRE(single.j["modes"].size() == 2);
+  CHECK(std::abs(single.j["modes"][0]["hz"].get<double>() - exact[0]) <= 5e-4 * exact[0]);
+  CHECK(std::abs(single.j["modes"][1]["hz"].get<double>() - exact[2]) <= 5e-4 * exact[2]);
+  // Refusals: a DOF that is not a response; a subset with a DOF twice; subsets for ERA.
+  auto bad = run_ssid("identify modes " + in.string() + " --method armax --subsets \"1:1,9:1\"");
+  CHECK(bad.code == 2);
+  CHECK_THAT(bad.err, Catch::EndsWith("--subsets: 9:1 is not a response record of the file\n"));
+  bad = run_ssid("identify modes " + in.string() + " --method armax --subsets \"2:1,2:1\"");
+  CHECK(bad.code == 2);
+  CHECK_THAT(bad.err, Catch::EndsWith("--subsets: 2:1 twice in one subset\n"));
+  bad = run_ssid("identify modes " + in.string() + " --method era --subsets \"1:1\"");
+  CHECK(bad.code == 2);
+  CHECK(bad.err == "ssid: error: --subsets: the order rule's runs are ARMAX's (--method armax)\n");
+}
+
 TEST_CASE("ssid identify modes --method era on time histories: H1 by Welch, then ERA", "[cli][identify]") {
   // The same 2-DOF records: 2048 samples give H1 only three Welch averages of 1024 (Hann),
   // so this checks the path (forces as references, H1's orientation, the line spacing),
