@@ -12,6 +12,7 @@
 #include <optional>
 #include <set>
 #include <sstream>
+#include <variant>
 
 #include "cli/cli_util.hpp"
 #include "cli/model_load.hpp"
@@ -92,6 +93,20 @@ Eigen::MatrixXd tam_mass(const std::string& kind, const translators::FeModel& mo
       kind == "guyan" ? estimator::guyan_reduce(Kq, Mq, rows) : estimator::irs_reduce(Kq, Mq, rows);
   if (r.status != estimator::ReductionStatus::Ok) throw formats::InputError(r.message);
   return r.M;
+}
+
+/// The segments of the test file's trace lines (dataset 82; node 0 lifts the pen) whose
+/// two nodes map to grids, as (smaller, larger) grid ids, each once, sorted.
+report::Lines trace_lines_in_grids(const uff::UffFile& f, const translators::NodeMapping& m) {
+  std::set<std::pair<std::int64_t, std::int64_t>> out;
+  for (const auto& d : f.datasets)
+    if (const auto* t = std::get_if<uff::TraceLine82>(&d))
+      for (std::size_t k = 1; k < t->nodes.size(); ++k) {
+        if (t->nodes[k - 1] == 0 || t->nodes[k] == 0) continue;
+        const auto a = m.grid_of(t->nodes[k - 1]), b = m.grid_of(t->nodes[k]);
+        if (a && b && *a != *b) out.insert(std::minmax(*a, *b));
+      }
+  return {out.begin(), out.end()};
 }
 
 }  // namespace
@@ -194,6 +209,7 @@ int cmd_correlate(const Args& args) {
   // Test nodes onto the analysis nodes.
   const std::string map = vm["map"].as<std::string>();
   nlohmann::json mapping_json;
+  report::Lines test_trace;  // the test file's trace lines (82) in grid ids, for the report
   {
     translators::NodeMapOptions mo;
     if (map == "id") mo.by = translators::MapBy::Id;
@@ -229,6 +245,7 @@ int cmd_correlate(const Args& args) {
     if (from_deck) translators::require_mapped(test.dofs, m, test_path, "the deck " + fe_path);
     mapping_json = {{"by", map}, {"mapped", m.matches.size()}, {"unmapped", m.unmapped}};
     test = translators::relabel(test, m);
+    test_trace = trace_lines_in_grids(test_file, m);
     if (from_deck) {
       // The analysis modes at the grids the test nodes map to, in basic directions.
       translators::SyntheticTestOptions so;
@@ -329,7 +346,7 @@ int cmd_correlate(const Args& args) {
         sp.push_back({fe_no(mp.fe), test_no(mp.test), c.fe.frequency_hz[i], c.test.frequency_hz[k], mp.mac,
                       static_cast<Eigen::Index>(mp.fe), c.fe.shapes.col(mp.fe), c.test.shapes.col(mp.test)});
       }
-      report::add_shapes(j, *lm.model, fe_modes.modes, c.dofs, sp, c.test.shapes, c.test.numbers);
+      report::add_shapes(j, *lm.model, fe_modes.modes, c.dofs, sp, c.test.shapes, c.test.numbers, test_trace);
     }
     report::write_report(vm["report"].as<std::string>(), j);
   }

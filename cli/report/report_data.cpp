@@ -294,12 +294,20 @@ nlohmann::json mems_json(const std::vector<translators::MeasuredDof>& dofs, cons
 
 void add_shapes(nlohmann::json& j, const translators::FeModel& model, const Eigen::MatrixXd& a_modes,
                 const std::vector<translators::MeasuredDof>& dofs, const std::vector<ShapePair>& pairs,
-                const Eigen::MatrixXd& test_set, const std::vector<int>& test_numbers) {
+                const Eigen::MatrixXd& test_set, const std::vector<int>& test_numbers, const Lines& test_lines) {
   const std::vector<translators::GridPosition> grids = grid_positions(model);
   std::vector<std::int64_t> test_grids;
   for (const auto& d : dofs)
     if (test_grids.empty() || test_grids.back() != d.node) test_grids.push_back(d.node);
   j["geometry"] = geometry_json(model, grids, test_grids);
+  if (test_lines.empty()) {
+    j["geometry"]["test_lines_from"] = "the deck's elements between the test grids";
+  } else {
+    nlohmann::json t = nlohmann::json::array();
+    for (const auto& [a, b] : test_lines) t.push_back({a, b});
+    j["geometry"]["test_lines"] = t;
+    j["geometry"]["test_lines_from"] = "the test file's trace lines (dataset 82)";
+  }
   Eigen::MatrixXd cols(a_modes.rows(), static_cast<Eigen::Index>(pairs.size()));
   for (std::size_t k = 0; k < pairs.size(); ++k) cols.col(static_cast<Eigen::Index>(k)) = a_modes.col(pairs[k].fe_column);
   const auto fe = grid_shapes_json(model, grids, cols);

@@ -101,10 +101,12 @@ struct ShapePair {
 /// "fe_hz", "test_hz", "mac", "fe" (every grid), "test" (the measured nodes, scaled onto
 /// the analysis shape by scale_onto), "test_scale", "mems" (mems_json of the analysis
 /// shape against `test_set`)}. `test_set` holds every test shape at `dofs` (columns),
-/// numbered `test_numbers`.
+/// numbered `test_numbers`. `test_lines`: the test's own wire frame (a test file's trace
+/// lines, dataset 82, in grid ids), drawn instead of the one derived from the deck when
+/// not empty; "geometry"'s "test_lines_from" says which.
 void add_shapes(nlohmann::json& j, const translators::FeModel& model, const Eigen::MatrixXd& a_modes,
                 const std::vector<translators::MeasuredDof>& dofs, const std::vector<ShapePair>& pairs,
-                const Eigen::MatrixXd& test_set, const std::vector<int>& test_numbers);
+                const Eigen::MatrixXd& test_set, const std::vector<int>& test_numbers, const Lines& test_lines = {});
 
 /// The seed's MEMS and error mode (reconciliation paper Eqs. 2–3, its Figure 4) of
 /// one analysis shape `fe` (the reference φ_a, at `dofs`) against every test shape

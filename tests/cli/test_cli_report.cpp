@@ -17,6 +17,7 @@
 
 #include "chain_frf.hpp"
 #include "cli_run.hpp"
+#include "formats/uff.hpp"
 
 namespace fs = std::filesystem;
 using json = nlohmann::json;
@@ -367,6 +368,34 @@ TEST_CASE("ssid correlate --report: MAC, frequencies and shapes are the JSON's",
     CHECK(r.html.find("<option value=\"" + std::to_string(k) + "\">") != std::string::npos);
     CHECK(r.html.find("href=\"#mems-" + std::to_string(k) + "\"") != std::string::npos);
   }
+}
+
+TEST_CASE("ssid correlate --report: a test file's own trace lines are the test shapes' wire frame", "[cli][report]") {
+  // The sample test with a trace line (dataset 82) through four of its nodes, a pen lift,
+  // and a segment to a node that is not in the test: the segments between mapped nodes,
+  // in grid ids, replace the wire frame derived from the deck.
+  namespace uff = ssid::formats::uff;
+  uff::UffFile f = uff::read_uff(src("samples/estimate/measured.unv"));
+  std::vector<std::int64_t> ids;
+  for (const auto& n : f.nodes()) ids.push_back(n.id);
+  REQUIRE(ids.size() >= 5);
+  uff::TraceLine82 t;
+  t.id = 1;
+  t.label = "lab wire frame";
+  t.nodes = {ids[0], ids[1], ids[2], 0, ids[3], ids[4], 999999};
+  f.datasets.emplace_back(t);
+  const fs::path test = scratch() / "measured_with_trace.unv";
+  uff::write_uff(f, test.string());
+  const Report r = run_report("correlate_trace", "correlate " + src("samples/mpi_rod.bdf") + " " + test.string());
+  const json& g = r.j["geometry"];
+  CHECK(g["test_lines_from"] == "the test file's trace lines (dataset 82)");
+  std::set<std::pair<std::int64_t, std::int64_t>> want{std::minmax(ids[0], ids[1]), std::minmax(ids[1], ids[2]),
+                                                       std::minmax(ids[3], ids[4])};
+  std::set<std::pair<std::int64_t, std::int64_t>> got;
+  for (const auto& l : g["test_lines"]) got.insert({l[0].get<std::int64_t>(), l[1].get<std::int64_t>()});
+  CHECK(got == want);  // the rod's test nodes are its grids' ids (mapped by id)
+  // Without trace lines the report says the wire frame comes from the deck.
+  CHECK(correlate_report().j["geometry"]["test_lines_from"] == "the deck's elements between the test grids");
 }
 
 TEST_CASE("ssid correlate: the cross-orthogonality of a deck's modes with themselves is the identity", "[cli][report]") {
