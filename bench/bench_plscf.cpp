@@ -11,7 +11,8 @@
 ///   dimensions 2 … 2P, and the same stabilisation.
 ///   --min-fraction F: the stabilisation's recurrence rule (StabilisationOptions::min_fraction,
 ///   default 0.5: a mode must be stable at half the orders).
-///   --export DIR: writes DIR/frf.bin (the data, for bench/plscf_reference.py) and
+///   --export DIR: writes DIR/frf.bin (the data, for bench/plscf_reference.py and
+///   bench/era_reference.py; with --era also DIR/era_poles_ssid.txt, ERA's largest order) and
 ///   DIR/poles_ssid.txt (the poles of the largest order: Re λ, Im λ per line, rad/s).
 #include <Eigen/Dense>
 #include <algorithm>
@@ -185,8 +186,14 @@ int main(int argc, char** argv) {
     eo.dt = dt;
     std::vector<Eigen::Index> era_orders;
     for (Eigen::Index n = 2; n <= 2 * max_order; n += 2) era_orders.push_back(n);
-    const id::StabilisationResult est = id::stabilise(id::order_poles(id::era_orders(head, eo, era_orders)), so);
+    const std::vector<id::EraResult> realizations = id::era_orders(head, eo, era_orders);
+    const id::StabilisationResult est = id::stabilise(id::order_poles(realizations), so);
     e.print("ERA, orders 2..2P, and stabilisation");
+    if (!export_dir.empty()) {  // the largest order's poles, for bench/era_reference.py
+      std::ofstream f(export_dir + "/era_poles_ssid.txt");
+      f.precision(17);
+      for (const auto& p : realizations.back().poles) f << p.lambda.real() << " " << p.lambda.imag() << "\n";
+    }
     std::vector<id::IdentifiedPole> modes;
     for (const auto& m : est.modes) {
       id::IdentifiedPole p;

@@ -30,6 +30,10 @@ Eigen::MatrixXd hankel(const std::vector<Eigen::MatrixXd>& Y, Eigen::Index k, Ei
 /// and (ERA/DC) H(0) of the data for B.
 struct Decomposition {
   Eigen::MatrixXd U, V, H1, data_h0;
+  /// U_Nᵀ H1 V_N for the largest order N: order n's A needs its leading n × n block only
+  /// (U_n, V_n are the first n columns of U, V), so the product through the Hankel
+  /// matrix is made once, not once per order.
+  Eigen::MatrixXd G;
   Eigen::VectorXd sigma;
   Eigen::Index r = 0, s = 0, no = 0, ni = 0;
   Eigen::Index last_exponent = 0;  ///< the realized observability's last no rows are C A^this
@@ -92,6 +96,8 @@ Decomposition decompose(const std::vector<Eigen::MatrixXd>& Y, const EraOptions&
   d.U = svd.matrixU();
   d.V = svd.matrixV();
   d.sigma = svd.singularValues();
+  const Eigen::Index N = std::min<Eigen::Index>(max_order, d.sigma.size());
+  d.G = d.U.leftCols(N).transpose() * (d.H1 * d.V.leftCols(N));
   return d;
 }
 
@@ -122,14 +128,16 @@ EraResult realize(const Decomposition& d, Eigen::Index n, double dt) {
   if (!(d.sigma(n - 1) > d.sigma(0) * 1e-13)) return res;  // beyond the numerical rank: no realization
   const Eigen::VectorXd sq = d.sigma.head(n).cwiseSqrt();
   const Eigen::VectorXd isq = sq.cwiseInverse();
-  const Eigen::MatrixXd Un = d.U.leftCols(n), Vn = d.V.leftCols(n);
-  res.A = isq.asDiagonal() * (Un.transpose() * d.H1 * Vn) * isq.asDiagonal();
-  const Eigen::MatrixXd P = Un * sq.asDiagonal();  // observability (block rows of no)
+  if (n > d.G.rows()) throw InputError(fmt::format("ERA: order {} above the decomposition's {}", n, d.G.rows()));
+  res.A = isq.asDiagonal() * d.G.topLeftCorner(n, n) * isq.asDiagonal();
+  const Eigen::MatrixXd P = d.U.leftCols(n) * sq.asDiagonal();  // observability (block rows of no)
   res.C = P.topRows(d.no);
-  Eigen::MatrixXd Q;  // controllability (block columns of ni), plain ERA only
+  // Controllability's first and last block columns (plain ERA only): B, and what EMAC's
+  // input factor compares (the rest of the n × s·ni matrix is never read).
+  Eigen::MatrixXd Q_last;
   if (!d.dc) {
-    Q = sq.asDiagonal() * Vn.transpose();
-    res.B = Q.leftCols(d.ni);
+    res.B = sq.asDiagonal() * d.V.topLeftCorner(d.ni, n).transpose();
+    Q_last = sq.asDiagonal() * d.V.block((d.s - 1) * d.ni, 0, d.ni, n).transpose();
   } else {
     const Eigen::MatrixXd P0 = P.topRows(d.r * d.no);
     res.B = P0.completeOrthogonalDecomposition().solve(d.data_h0).leftCols(d.ni);
@@ -143,8 +151,8 @@ EraResult realize(const Decomposition& d, Eigen::Index n, double dt) {
   const Eigen::MatrixXcd L = lu.solve(res.B.cast<cd>());     // n × ni
   const Eigen::MatrixXcd Cm = res.C.cast<cd>() * Psi;        // no × n
   const Eigen::MatrixXcd Pm = P.cast<cd>() * Psi;            // realized observability, modal
-  Eigen::MatrixXcd Qm;
-  if (!d.dc) Qm = lu.solve(Q.cast<cd>());                    // realized controllability, modal
+  Eigen::MatrixXcd Qm_last;
+  if (!d.dc) Qm_last = lu.solve(Q_last.cast<cd>());          // realized controllability's last block, modal
 
   for (Eigen::Index m = 0; m < n; ++m) {
     if (z(m).imag() < 0) continue;  // one of each conjugate pair
@@ -164,7 +172,7 @@ EraResult realize(const Decomposition& d, Eigen::Index n, double dt) {
     double emac_in = 1.0;
     if (!d.dc) {
       const cd zs = std::pow(z(m), static_cast<double>(d.s - 1));
-      emac_in = amplitude_coherence(p.participation * zs, Qm.block(m, (d.s - 1) * d.ni, 1, d.ni).transpose());
+      emac_in = amplitude_coherence(p.participation * zs, Qm_last.row(m).transpose());
     }
     p.emac = emac_out * emac_in;
     p.mpc = modal_phase_collinearity(p.shape);
