@@ -14,18 +14,14 @@ Prints the time of the poles over the state dimensions and, when
 DIR/era_poles_ssid.txt exists, the largest difference between ssid's and these poles of
 the largest dimension.
 """
+import os
 import sys
 import time
 
 import numpy as np
 
-
-def read_frf(path):
-    raw = np.fromfile(path, dtype="<f8")
-    nf, no, ni = (int(v) for v in raw[:3])
-    hz = raw[3:3 + nf]
-    data = raw[3 + nf:].reshape(nf, no, ni, 2)
-    return hz, data[..., 0] + 1j * data[..., 1]
+sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+from plscf_reference import read_frf  # noqa: E402  (bench_plscf --export's file layout)
 
 
 def era_poles(hz, H, max_state, shared):
