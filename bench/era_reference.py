@@ -48,7 +48,7 @@ def era_poles(hz, H, max_state, shared):
         isq = 1.0 / np.sqrt(sig[:n])
         core = G[:n, :n] if shared else U[:, :n].T @ H1 @ Vt[:n].T
         A = isq[:, None] * core * isq[None, :]
-        z = np.linalg.eigvals(A)
+        z = np.linalg.eigvals(A).astype(complex)
         z = z[(z.imag >= 0) & (np.abs(z) > 0)]
         out[n] = np.log(z) / dt
     return out
