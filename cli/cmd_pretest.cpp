@@ -6,6 +6,7 @@
 /// impulse test of the placement (ERA, issue 23 item 5); the picture (--svg),
 /// the sensors and the test wire frame as UFF 15 + 82 (--uff) and the report
 /// (--report, issue 24).
+#include <Eigen/Geometry>
 #include <Eigen/SparseCore>
 #include <cmath>
 #include <fstream>
@@ -170,6 +171,65 @@ void print_evaluation(std::ostream& o, const char* title, const estimator::prete
     o << "; cross-orthogonality (SEREP mass): min diagonal " << fmt(ev.min_diagonal_xor, 3) << ", max off-diagonal "
       << fmt(ev.max_offdiagonal_xor, 3);
   o << "\n";
+}
+
+/// The displacement systems of the sensor grids for the UFF: per grid of the selected
+/// sensors (`selected`, positions in `cand`) whose measured axes are not the basic ones,
+/// a 2420 system (id = grid id) whose rows are those axes in basic — the grid's
+/// displacement frame, or its selected given directions when they are mutually
+/// orthogonal (completed to a right-handed frame). Sets each sensor record's
+/// "uff_direction" (±1..3 in its node's displacement system; `sensors` in selection
+/// order). Returns the systems and the grids whose given directions no frame holds.
+std::pair<std::vector<formats::uff::Cs2420>, std::vector<std::int64_t>> sensor_systems(
+    const std::vector<pt::CandidateDof>& cand, const std::vector<Eigen::Index>& selected,
+    const std::vector<translators::GridPosition>& grids, nlohmann::json& sensors) {
+  std::map<std::int64_t, Eigen::Matrix3d> frame_of;
+  for (const auto& g : grids) frame_of[g.id] = g.frame;
+  std::map<std::int64_t, std::vector<std::size_t>> at;  // grid → positions in `selected`
+  std::vector<std::int64_t> order;
+  for (std::size_t i = 0; i < selected.size(); ++i) {
+    const auto g = cand[static_cast<std::size_t>(selected[i])].dof.point;
+    if (!at.count(g)) order.push_back(g);
+    at[g].push_back(i);
+  }
+  std::vector<formats::uff::Cs2420> systems;
+  std::vector<std::int64_t> unoriented;
+  for (auto g : order) {
+    const Eigen::Matrix3d& F = frame_of.at(g);
+    Eigen::Matrix3d axes = F.transpose();  // rows: the displacement frame's axes in basic
+    std::vector<int> code;
+    std::vector<Eigen::Vector3d> given;
+    for (auto i : at[g]) {
+      const auto& c = cand[static_cast<std::size_t>(selected[i])];
+      if (c.directed) given.push_back(F * c.direction);
+      code.push_back(c.directed ? static_cast<int>(given.size()) : c.dof.component);
+    }
+    if (!given.empty()) {
+      bool orthogonal = given.size() == at[g].size();  // a grid's sensors are all given or all not
+      for (std::size_t a = 0; a < given.size() && orthogonal; ++a)
+        for (std::size_t b = a + 1; b < given.size(); ++b) orthogonal = orthogonal && std::abs(given[a].dot(given[b])) < 1e-9;
+      if (!orthogonal) {
+        unoriented.push_back(g);
+        for (auto i : at[g]) sensors[i]["uff_direction"] = nullptr;
+        continue;
+      }
+      axes.row(0) = given[0].transpose();
+      axes.row(1) = (given.size() > 1 ? given[1] : given[0].unitOrthogonal()).transpose();
+      const Eigen::Vector3d x = axes.row(0).transpose(), y = axes.row(1).transpose();
+      const Eigen::Vector3d z = x.cross(y);
+      axes.row(2) = z.transpose();
+      if (given.size() == 3 && z.dot(given[2]) < 0) code[2] = -3;  // a left-handed triple: the third along −Z
+    }
+    for (std::size_t k = 0; k < at[g].size(); ++k) sensors[at[g][k]]["uff_direction"] = code[k];
+    if ((axes - Eigen::Matrix3d::Identity()).cwiseAbs().maxCoeff() < 1e-12) continue;  // the basic axes: system 0
+    formats::uff::Cs2420 cs;
+    cs.id = g;
+    cs.name = "grid " + std::to_string(g) + " sensors";
+    for (int r = 0; r < 3; ++r)
+      for (int c = 0; c < 3; ++c) cs.rows[static_cast<std::size_t>(r)][static_cast<std::size_t>(c)] = axes(r, c);
+    systems.push_back(cs);
+  }
+  return {systems, unoriented};
 }
 
 }  // namespace
@@ -466,6 +526,8 @@ int cmd_pretest(const Args& args) {
     x["score"] = placement.score(static_cast<Eigen::Index>(i));
     j["sensors"].push_back(x);
   }
+  // The sensor grids' frames for the UFF (sensor_systems), and each sensor's direction code there.
+  const auto [systems, unoriented] = sensor_systems(scand, placement.selected, grids, j["sensors"]);
   auto finite_or_null = [](double v) { return std::isfinite(v) ? nlohmann::json(v) : nlohmann::json(nullptr); };
   j["fisher_determinant"] = placement.fisher.determinant;
   j["log10_fisher_determinant"] = finite_or_null(placement.fisher.log10_determinant);
@@ -666,6 +728,10 @@ int cmd_pretest(const Args& args) {
     for (auto s : placement.selected) ids.insert(scand[static_cast<std::size_t>(s)].dof.point);
     if (xp)
       for (const auto& e : xp->exciters) ids.insert(grid_of_group(e.group));
+    // Each sensor grid measures along its displacement frame's axes, or along its given
+    // directions: where those are not the basic axes, a coordinate system (2420, id = the
+    // grid's) whose axes they are becomes the node's displacement system, so lab software
+    // knows how to mount the sensors; every sensor record gets its direction code there.
     formats::uff::NodeSet ns;
     ns.dataset = 15;
     for (const auto& g : grids)
@@ -673,10 +739,21 @@ int cmd_pretest(const Args& args) {
         formats::uff::Node nd;
         nd.id = g.id;
         nd.xyz = {g.position(0), g.position(1), g.position(2)};
+        for (const auto& cs : systems)
+          if (cs.id == g.id) nd.displacement_cs = static_cast<int>(cs.id);
         ns.nodes.push_back(nd);
       }
     formats::uff::UffFile f;
+    if (!systems.empty()) {
+      formats::uff::CoordinateSystems2420 cs;
+      cs.part_name = "ssid pretest sensor frames";
+      cs.systems = systems;
+      f.datasets.push_back(cs);
+    }
     f.datasets.push_back(ns);
+    for (auto g : unoriented)
+      std::cerr << "warning: grid " << g << ": its given sensor directions are not mutually orthogonal; no coordinate "
+                << "system carries them to the UFF (they are in the JSON's direction_basic)\n";
     // The test wire frame as one trace line, its segments separated by pen lifts (0).
     const report::Lines wire = j.contains("geometry") ? report::read_lines(j["geometry"]["test_lines"])
                                                       : report::read_lines(report::geometry_json(model, grids, sensor_grids)["test_lines"]);
@@ -695,7 +772,11 @@ int cmd_pretest(const Args& args) {
     const std::string out = vm["uff"].as<std::string>();
     formats::uff::write_uff(f, out, formats::uff::Precision::Standard);
     std::cerr << "wrote " << out << ": " << ns.nodes.size() << " node(s) (dataset 15, positions in the basic system), "
-              << wire.size() << " trace segment(s) between sensor grids (dataset 82)\n";
+              << wire.size() << " trace segment(s) between sensor grids (dataset 82)"
+              << (systems.empty() ? std::string()
+                                  : ", " + std::to_string(systems.size()) +
+                                        " coordinate system(s) orienting sensor grids (dataset 2420)")
+              << "\n";
   }
   if (vm.count("svg")) {
     const std::string out = vm["svg"].as<std::string>();

@@ -139,6 +139,41 @@ TEST_CASE("ssid pretest --sensor-direction: skewed sensors' Fisher determinant f
   CHECK(j["fisher_determinant"].get<double>() == Approx(det).epsilon(1e-6));
   CHECK(j["tam"]["serep"]["max_offdiagonal_xor"].get<double>() < 1e-8);
 
+  // The UFF carries the orientation: each sensor grid whose measured axes are not basic
+  // gets a coordinate system (2420) as its node's displacement system, and each sensor's
+  // uff_direction there is, through the reader's own system algebra, its direction_basic.
+  // Grid 2's two given directions are not orthogonal: no system, a warning, null.
+  {
+    const fs::path unv = dir / "skew.unv", sj = dir / "skew_uff.json";
+    const auto u = run_ssid("pretest " + rod() + " --target-modes 3 --min-hz 1 --sensors 6 --method ei --grids "
+                            "2,40,77,79 --sensor-direction 79:1,1,0 --sensor-direction 77:0,1,1 --sensor-direction "
+                            "77:0,1,-1 --sensor-direction 2:1,1,0 --sensor-direction 2:1,0,0 --uff " + unv.string() +
+                            " --json " + sj.string());
+    INFO(u.err);
+    REQUIRE(u.code == 0);
+    const auto js = read_json(sj);
+    const auto back = ssid::formats::uff::read_uff(unv.string());
+    std::map<long, ssid::formats::uff::Node> node;
+    for (const auto& n : back.nodes()) node[n.id] = n;
+    int oriented = 0;
+    bool grid2 = false;
+    for (const auto& x : js["sensors"]) {
+      const long g = x["grid"].get<long>();
+      if (g == 2) {
+        grid2 = true;
+        CHECK(x["uff_direction"].is_null());
+        continue;
+      }
+      REQUIRE(x["uff_direction"].is_number());
+      const auto e = back.direction_in_global(node.at(g), x["uff_direction"].get<int>());
+      for (int k = 0; k < 3; ++k)
+        CHECK(e[static_cast<std::size_t>(k)] == Approx(x["direction_basic"][static_cast<std::size_t>(k)].get<double>()).margin(1e-6));
+      oriented += node.at(g).displacement_cs != 0;
+    }
+    CHECK(oriented >= 2);  // 77's pair and 79's single direction
+    if (grid2) CHECK_THAT(u.err, Catch::Contains("warning: grid 2: its given sensor directions are not mutually orthogonal"));
+  }
+
   // Refusals: a triax needs three directions; directions must be independent; a
   // grid that is not in the model.
   auto r = run_ssid("pretest " + rod() + " --target-modes 12 --min-hz 1 --sensors 18 --triax" + dirs);
