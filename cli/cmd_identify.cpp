@@ -545,6 +545,49 @@ std::vector<id::ArmaxRun> armax_runs(int p, const id::ArmaxOptions& all, const s
   return runs;
 }
 
+/// The spread of a recurring mode's shape over the runs, on the unit shape (as ERA's and
+/// pLSCF's shape_std): each run of two or more responses gives the shape at its responses,
+/// scaled onto the all-responses run's by least squares over them; per response the
+/// sample standard deviation of the values the runs give it (the all-responses run's
+/// included), RMS over the responses that two or more runs give. NaN when no run but the
+/// first has two responses (single-response runs carry no shape information: their one
+/// component scales onto anything).
+double armax_shape_spread(const id::ArmaxOrderResult& res, const id::RecurringMode& md) {
+  using cd = std::complex<double>;
+  const auto& ref_outputs = res.runs.front().outputs;
+  const Eigen::VectorXcd ref = md.shape / md.shape.norm();
+  std::vector<std::vector<cd>> values(ref_outputs.size());
+  for (std::size_t o = 0; o < ref_outputs.size(); ++o) values[o].push_back(ref(static_cast<Eigen::Index>(o)));
+  for (std::size_t k = 1; k < res.runs.size() && k < md.pole.size(); ++k) {
+    const auto& outs = res.runs[k].outputs;
+    if (outs.size() < 2) continue;
+    const Eigen::VectorXcd& psi = res.models[k].poles.at(md.pole[k]).shape;
+    Eigen::VectorXcd target(static_cast<Eigen::Index>(outs.size()));
+    std::vector<std::size_t> at(outs.size());
+    for (std::size_t i = 0; i < outs.size(); ++i) {
+      at[i] = static_cast<std::size_t>(std::find(ref_outputs.begin(), ref_outputs.end(), outs[i]) - ref_outputs.begin());
+      target(static_cast<Eigen::Index>(i)) = ref(static_cast<Eigen::Index>(at[i]));
+    }
+    const cd den = psi.squaredNorm();
+    if (std::abs(den) == 0) continue;
+    const cd c = psi.dot(target) / den;  // ψᴴ target / ψᴴψ
+    for (std::size_t i = 0; i < outs.size(); ++i) values[at[i]].push_back(c * psi(static_cast<Eigen::Index>(i)));
+  }
+  double sum = 0;
+  int n = 0;
+  for (const auto& v : values) {
+    if (v.size() < 2) continue;
+    cd mean = 0;
+    for (const auto& x : v) mean += x;
+    mean /= static_cast<double>(v.size());
+    double var = 0;
+    for (const auto& x : v) var += std::norm(x - mean);
+    sum += var / static_cast<double>(v.size() - 1);
+    ++n;
+  }
+  return n > 0 ? std::sqrt(sum / n) : std::numeric_limits<double>::quiet_NaN();
+}
+
 Identified armax_modes(const TimeSet& t, int ar_order, int arx_order, const id::StabilisationOptions& so,
                        std::vector<std::string>& warnings, const std::vector<std::vector<int>>& subsets) {
   id::ArmaxOptions all;
@@ -574,6 +617,7 @@ Identified armax_modes(const TimeSet& t, int ar_order, int arx_order, const id::
     }
     r.modes.push_back({md.hz_mean, md.zeta_mean, md.hz_std, md.zeta_std, id::rotate_to_real(md.shape.normalized()),
                        fmt::format(" {:5d}", res.models.size()), {{"runs", res.models.size()}}});
+    r.modes.back().shape_std = armax_shape_spread(res, md);
   }
   return r;
 }
