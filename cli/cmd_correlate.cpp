@@ -52,15 +52,19 @@ nlohmann::json matrix_json(const Eigen::MatrixXd& m) {
   return j;
 }
 
-/// The reduced mass of a test-analysis model ("guyan" or "irs") of the deck's model on
-/// the test DOFs `dofs` (grids, measured directions ±1..±3 in basic), in their order.
-/// Each measured direction becomes one coordinate of the analysis set
-/// (measurement_coordinates.hpp: a direction not along the grid's displacement frame is
-/// a combination of its translations), the rest is condensed. Throws InputError saying
-/// why not: a rotational test DOF, a test grid whose translations are not in the
-/// analysis set (dependent or constrained), a reduction that fails.
-Eigen::MatrixXd tam_mass(const std::string& kind, const translators::FeModel& model, const translators::FeOperators& op,
-                         const std::vector<translators::MeasuredDof>& dofs) {
+/// The deck's K and M in coordinates where each test DOF `dofs` (grids, measured
+/// directions ±1..±3 in basic) is one coordinate (measurement_coordinates.hpp: a
+/// direction not along the grid's displacement frame is a combination of its
+/// translations), and those coordinates' rows, in the order of `dofs`: what a
+/// test-analysis model condenses onto. Throws InputError saying why not: a rotational
+/// test DOF, a test grid whose translations are not in the analysis set (dependent or
+/// constrained).
+struct TestCoordinates {
+  Eigen::SparseMatrix<double> K, M;
+  std::vector<Eigen::Index> rows;
+};
+TestCoordinates test_coordinates(const translators::FeModel& model, const translators::FeOperators& op,
+                                 const std::vector<translators::MeasuredDof>& dofs) {
   namespace pt = estimator::pretest;
   std::map<std::int64_t, Eigen::Matrix3d> frame;
   for (const auto& g : grid_positions(model)) frame[g.id] = g.frame;
@@ -86,11 +90,16 @@ Eigen::MatrixXd tam_mass(const std::string& kind, const translators::FeModel& mo
   for (const auto& c : mc.candidates)
     if (c.directed) rows_of[c.dof.point].push_back(c.row);
   std::map<std::int64_t, std::size_t> used;
-  std::vector<Eigen::Index> rows;
-  for (const auto& d : dofs) rows.push_back(rows_of.at(d.node).at(used[d.node]++));
-  const Eigen::SparseMatrix<double> Kq = mc.congruent(op.K), Mq = mc.congruent(op.M);
+  TestCoordinates tc{mc.congruent(op.K), mc.congruent(op.M), {}};
+  for (const auto& d : dofs) tc.rows.push_back(rows_of.at(d.node).at(used[d.node]++));
+  return tc;
+}
+
+/// The reduced mass of a test-analysis model ("guyan" or "irs") on the test DOFs of `tc`.
+/// Throws InputError when the reduction fails.
+Eigen::MatrixXd tam_mass(const std::string& kind, const TestCoordinates& tc) {
   const estimator::ReducedModel r =
-      kind == "guyan" ? estimator::guyan_reduce(Kq, Mq, rows) : estimator::irs_reduce(Kq, Mq, rows);
+      kind == "guyan" ? estimator::guyan_reduce(tc.K, tc.M, tc.rows) : estimator::irs_reduce(tc.K, tc.M, tc.rows);
   if (r.status != estimator::ReductionStatus::Ok) throw formats::InputError(r.message);
   return r.M;
 }
@@ -318,11 +327,14 @@ int cmd_correlate(const Args& args) {
     j["cross_orthogonality"] = report::cross_orthogonality_json(c.fe.shapes, c.fe.modal_mass, c.fe.numbers,
                                                                 c.test.shapes, c.test.numbers, accepted);
     // Guyan and IRS need K and M: the analysis shapes at the test DOFs are those of
-    // synthetic_test (each basic direction's component), the same coordinates tam_mass reduces onto.
+    // synthetic_test (each basic direction's component), the same coordinates tam_mass
+    // reduces onto (made once for every TAM asked).
+    std::optional<TestCoordinates> tc;
     for (const auto& t : tams) {
       nlohmann::json x;
       try {
-        x = report::cross_orthogonality_json(c.fe.shapes, tam_mass(t, *lm.model, *op_kept, c.dofs), c.fe.numbers,
+        if (!tc) tc = test_coordinates(*lm.model, *op_kept, c.dofs);
+        x = report::cross_orthogonality_json(c.fe.shapes, tam_mass(t, *tc), c.fe.numbers,
                                              c.test.shapes, c.test.numbers, accepted,
                                              t == "guyan" ? "Guyan (static condensation of the deck's K, M onto the test DOFs)"
                                                           : "IRS (Guyan corrected for the omitted DOFs' inertia, O'Callahan)");

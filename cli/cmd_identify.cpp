@@ -18,6 +18,7 @@
 #include <map>
 #include <optional>
 #include <unsupported/Eigen/FFT>
+#include <set>
 #include <sstream>
 #include <utility>
 #include <variant>
@@ -45,6 +46,8 @@ namespace uff = formats::uff;
 namespace id = estimator::identification;
 using Dof = std::pair<std::int64_t, int>;  // node, direction (±1 … ±6)
 
+std::string dof_text(const Dof& d) { return fmt::format("{}:{}", d.first, d.second); }
+
 /// The FRFs of a file as lines of no × ni matrices, with their DOFs.
 struct FrfSet {
   std::vector<Dof> responses, references;
@@ -52,6 +55,13 @@ struct FrfSet {
   double df = 0;
   std::string unit;  ///< the ordinate's unit as the records' axis labels it ("" when they do not)
 };
+
+/// The frequency of each line, k·df (Hz).
+Eigen::VectorXd line_hz(const FrfSet& s) {
+  Eigen::VectorXd hz(static_cast<Eigen::Index>(s.lines.size()));
+  for (Eigen::Index k = 0; k < hz.size(); ++k) hz(k) = static_cast<double>(k) * s.df;
+  return hz;
+}
 
 /// A record's ordinate unit as its axis labels it ("" when it does not).
 std::string record_unit(const uff::Function58& f) {
@@ -242,12 +252,10 @@ nlohmann::json stabilisation_json(const id::StabilisationResult& st, const std::
 
 /// Σ|H_ij| over every FRF at each line: the curve behind the diagram.
 nlohmann::json frf_sum(const FrfSet& s) {
-  nlohmann::json hz = nlohmann::json::array(), mag = nlohmann::json::array();
-  for (std::size_t k = 0; k < s.lines.size(); ++k) {
-    hz.push_back(static_cast<double>(k) * s.df);
-    mag.push_back(s.lines[k].cwiseAbs().sum());
-  }
-  return {{"hz", hz}, {"magnitude", mag}, {"of", "FRFs"}};
+  const Eigen::VectorXd hz = line_hz(s);
+  nlohmann::json mag = nlohmann::json::array();
+  for (const auto& h : s.lines) mag.push_back(h.cwiseAbs().sum());
+  return {{"hz", std::vector<double>(hz.data(), hz.data() + hz.size())}, {"magnitude", mag}, {"of", "FRFs"}};
 }
 
 /// For free decays: Σ|Y_i(f)| over the records' discrete Fourier transforms (times dt,
@@ -322,9 +330,7 @@ Identified era_modes(const FrfSet& s, int max_order, const id::PlscfOptions& ban
   // residues and the residual terms by LSFD over the band (the table keeps ERA's shapes).
   if (!st.modes.empty()) {
     try {
-      Eigen::VectorXd hz(static_cast<Eigen::Index>(s.lines.size()));
-      for (Eigen::Index k = 0; k < hz.size(); ++k) hz(k) = static_cast<double>(k) * s.df;
-      r.fit = id::lsfd(hz, s.lines, id::mode_poles(st, poles), band);
+      r.fit = id::lsfd(line_hz(s), s.lines, id::mode_poles(st, poles), band);
     } catch (const formats::InputError& e) {
       r.fit_note = e.what();
     }
@@ -349,10 +355,10 @@ void add_test_geometry(nlohmann::json& j, const uff::UffFile& g, const Identifie
                                      g.path, nodes.empty() ? "no nodes" : "no trace lines");
     return;
   }
-  std::map<std::int64_t, const uff::Node*> by_id;
+  std::set<std::int64_t> ids;
   nlohmann::json grids = nlohmann::json::array(), lines = nlohmann::json::array();
   for (const auto& n : nodes) {
-    by_id[n.id] = &n;
+    ids.insert(n.id);
     grids.push_back({n.id, n.xyz[0], n.xyz[1], n.xyz[2]});
   }
   // Nodes of the originals (displacement systems), for direction_in_global.
@@ -360,7 +366,7 @@ void add_test_geometry(nlohmann::json& j, const uff::UffFile& g, const Identifie
   for (const auto& n : g.nodes()) original[n.id] = n;
   for (const auto* t : traces)
     for (std::size_t k = 1; k < t->nodes.size(); ++k)
-      if (t->nodes[k - 1] != 0 && t->nodes[k] != 0 && by_id.count(t->nodes[k - 1]) && by_id.count(t->nodes[k]))
+      if (t->nodes[k - 1] != 0 && t->nodes[k] != 0 && ids.count(t->nodes[k - 1]) && ids.count(t->nodes[k]))
         lines.push_back({t->nodes[k - 1], t->nodes[k]});
   j["geometry"] = {{"grids", grids}, {"lines", nlohmann::json::array()}, {"test_lines", lines}};
   nlohmann::json shapes = nlohmann::json::array();
@@ -396,8 +402,7 @@ Identified era_decay_modes(const TimeSet& t, int max_order, const id::Stabilisat
 /// the ± its cluster's spread over the orders.
 Identified plscf_modes(const FrfSet& s, int max_order, const id::PlscfOptions& band,
                        const id::StabilisationOptions& so, const estimator::Progress& progress) {
-  Eigen::VectorXd hz(static_cast<Eigen::Index>(s.lines.size()));
-  for (Eigen::Index k = 0; k < hz.size(); ++k) hz(k) = static_cast<double>(k) * s.df;
+  const Eigen::VectorXd hz = line_hz(s);
   std::vector<Eigen::Index> orders;
   for (int p = 1; p <= max_order; ++p) orders.push_back(p);
   const std::vector<id::OrderPoles> poles = id::plscf_orders(hz, s.lines, band, orders, progress);
@@ -430,13 +435,12 @@ Identified plscf_modes(const FrfSet& s, int max_order, const id::PlscfOptions& b
 /// "unit", "records": [{"response": [node, dir], "reference": [node, dir], "frac"}]}, and
 /// with `curves` the lines ("hz") and each record's "measured" and "synthesized" {"re", "im"}.
 nlohmann::json frf_fit_json(const FrfSet& s, const id::LsfdResult& fit, const id::PlscfOptions& band, bool curves) {
+  const Eigen::VectorXd all = line_hz(s);
   std::vector<Eigen::Index> lines;
-  for (std::size_t k = 0; k < s.lines.size(); ++k) {
-    const double f = static_cast<double>(k) * s.df;
-    if (f > 0 && f >= band.hz_min && f <= band.hz_max) lines.push_back(static_cast<Eigen::Index>(k));
-  }
+  for (Eigen::Index k = 0; k < all.size(); ++k)
+    if (all(k) > 0 && all(k) >= band.hz_min && all(k) <= band.hz_max) lines.push_back(k);
   Eigen::VectorXd hz(static_cast<Eigen::Index>(lines.size()));
-  for (std::size_t k = 0; k < lines.size(); ++k) hz(static_cast<Eigen::Index>(k)) = static_cast<double>(lines[k]) * s.df;
+  for (std::size_t k = 0; k < lines.size(); ++k) hz(static_cast<Eigen::Index>(k)) = all(lines[k]);
   const std::vector<Eigen::MatrixXcd> model = id::lsfd_synthesis(hz, fit);
   nlohmann::json j{{"model", "LSFD on the identified poles with lower and upper residuals"},
                    {"fit_error", fit.fit_error},
@@ -490,8 +494,6 @@ void print_frf_fit(std::ostream& o, const nlohmann::json& fit) {
                    (*at)["reference"][1].get<int>(), fit["fit_error"].get<double>());
 }
 
-/// The multistage ARMAX at orders (s, m) on all responses, then on each alone at
-/// (p·s, p·m): the modes found in every run (armax_model_order), within [hz_min, hz_max].
 /// `--subsets "N:D,N:D;N:D"`: subsets of the response records named by their DOFs
 /// (semicolon between subsets, comma within), as 0-based columns of `responses`.
 std::vector<std::vector<int>> parse_subsets(const std::string& text, const std::vector<Dof>& responses) {
@@ -588,12 +590,11 @@ double armax_shape_spread(const id::ArmaxOrderResult& res, const id::RecurringMo
   return n > 0 ? std::sqrt(sum / n) : std::numeric_limits<double>::quiet_NaN();
 }
 
-Identified armax_modes(const TimeSet& t, int ar_order, int arx_order, const id::StabilisationOptions& so,
-                       std::vector<std::string>& warnings, const std::vector<std::vector<int>>& subsets) {
-  id::ArmaxOptions all;
-  all.ar_order = ar_order;
-  all.arx_order = arx_order;
-  const auto runs = armax_runs(static_cast<int>(t.responses.size()), all, subsets);
+/// The multistage ARMAX's `runs` (armax_runs: all responses at (s, m), then each alone at
+/// (p·s, p·m) or the subsets): the modes found in every run (armax_model_order), within
+/// [hz_min, hz_max].
+Identified armax_modes(const TimeSet& t, const std::vector<id::ArmaxRun>& runs, const id::StabilisationOptions& so,
+                       std::vector<std::string>& warnings) {
   const id::ArmaxOrderResult res = id::armax_model_order(t.y, t.x, t.dt, runs, {});
   for (std::size_t k = 0; k < res.models.size(); ++k)
     if (!res.models[k].converged)
@@ -769,22 +770,24 @@ int identify_modes(const Args& args) {
       const int m = vm.count("arx-order") ? vm["arx-order"].as<int>() : (90 + p - 1) / p;
       std::vector<std::vector<int>> subsets;
       if (vm.count("subsets")) subsets = parse_subsets(vm["subsets"].as<std::string>(), t.responses);
+      id::ArmaxOptions all;
+      all.ar_order = s;
+      all.arx_order = m;
+      const std::vector<id::ArmaxRun> runs = armax_runs(p, all, subsets);
       if (subsets.empty()) {
-        text << fmt::format("ARMAX orders s = {}, m = {} on all responses, then {}, {} on each\n", s, m, p * s, p * m);
+        text << fmt::format("ARMAX orders s = {}, m = {} on all responses, then {}, {} on each\n", s, m,
+                            runs.back().options.ar_order, runs.back().options.arx_order);
       } else {
         text << fmt::format("ARMAX orders s = {}, m = {} on all responses, then on {} subset(s):", s, m, subsets.size());
-        for (const auto& sub : subsets) {
+        for (std::size_t k = 1; k < runs.size(); ++k) {
           std::string names;
-          for (int c : sub)
-            names += (names.empty() ? "" : ",") + fmt::format("{}:{}", t.responses[static_cast<std::size_t>(c)].first,
-                                                             t.responses[static_cast<std::size_t>(c)].second);
-          const int q = static_cast<int>(sub.size());
-          text << fmt::format(" {{{}}} at {}, {};", names, (s * p + q - 1) / q, (m * p + q - 1) / q);
+          for (int c : runs[k].outputs) names += (names.empty() ? "" : ",") + dof_text(t.responses[static_cast<std::size_t>(c)]);
+          text << fmt::format(" {{{}}} at {}, {};", names, runs[k].options.ar_order, runs[k].options.arx_order);
         }
         text << "\n";
       }
       try {
-        r = armax_modes(t, s, m, so, warnings, subsets);
+        r = armax_modes(t, runs, so, warnings);
       } catch (const formats::InputError& e) {
         // The estimator names the records by column; the file is what the user can act on.
         throw formats::InputError(file.path + ": " + e.what());
@@ -1183,7 +1186,6 @@ std::optional<Eigen::VectorXcd> frf_of(const CheckSet& s, const Dof& r, const Do
   return h;
 }
 
-std::string dof_text(const Dof& d) { return fmt::format("{}:{}", d.first, d.second); }
 
 /// Verdict of a figure against its pass and warn limits (smaller is better, or larger when `larger_better`).
 std::string verdict(double v, double pass, double warn, bool larger_better = false) {

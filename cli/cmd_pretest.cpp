@@ -179,12 +179,11 @@ void print_evaluation(std::ostream& o, const char* title, const estimator::prete
 /// displacement frame, or its selected given directions when they are mutually
 /// orthogonal (completed to a right-handed frame). Sets each sensor record's
 /// "uff_direction" (±1..3 in its node's displacement system; `sensors` in selection
-/// order). Returns the systems and the grids whose given directions no frame holds.
+/// order; `frame_of`: each grid's displacement frame, columns its axes in basic). Returns the
+/// systems and the grids whose given directions no frame holds.
 std::pair<std::vector<formats::uff::Cs2420>, std::vector<std::int64_t>> sensor_systems(
     const std::vector<pt::CandidateDof>& cand, const std::vector<Eigen::Index>& selected,
-    const std::vector<translators::GridPosition>& grids, nlohmann::json& sensors) {
-  std::map<std::int64_t, Eigen::Matrix3d> frame_of;
-  for (const auto& g : grids) frame_of[g.id] = g.frame;
+    const std::map<std::int64_t, Eigen::Matrix3d>& frame_of, nlohmann::json& sensors) {
   std::map<std::int64_t, std::vector<std::size_t>> at;  // grid → positions in `selected`
   std::vector<std::int64_t> order;
   for (std::size_t i = 0; i < selected.size(); ++i) {
@@ -527,7 +526,7 @@ int cmd_pretest(const Args& args) {
     j["sensors"].push_back(x);
   }
   // The sensor grids' frames for the UFF (sensor_systems), and each sensor's direction code there.
-  const auto [systems, unoriented] = sensor_systems(scand, placement.selected, grids, j["sensors"]);
+  const auto [systems, unoriented] = sensor_systems(scand, placement.selected, frame_of, j["sensors"]);
   auto finite_or_null = [](double v) { return std::isfinite(v) ? nlohmann::json(v) : nlohmann::json(nullptr); };
   j["fisher_determinant"] = placement.fisher.determinant;
   j["log10_fisher_determinant"] = finite_or_null(placement.fisher.log10_determinant);

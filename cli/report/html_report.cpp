@@ -552,27 +552,44 @@ std::string mems_figure(const json& sh, std::size_t k, const Points& grids,
       fixed(m["mac_superposition"], 4), significant(m["pair_error_squared"], 4));
 }
 
+/// The diagonal of the grids' bounding box: the structure's size, against which the
+/// shapes' largest displacement is drawn (0 for fewer than two distinct grids).
+double extent(const Points& grids) {
+  if (grids.empty()) return 0;
+  Eigen::Vector3d lo = grids.begin()->second, hi = lo;
+  for (const auto& [id, p] : grids) lo = lo.cwiseMin(p), hi = hi.cwiseMax(p);
+  return (hi - lo).norm();
+}
+
+/// Each view's placement of `grids` in a `w` × `h` panel.
+std::vector<Placement> placements(const std::vector<View>& vs, const Points& grids, double w, double h) {
+  std::vector<Placement> pl;
+  for (const auto& v : vs) pl.push_back(place(v, grids, w, h));
+  return pl;
+}
+
+/// The view menu the page's script reads (select#view), with the animation switch
+/// (input#animate) when the drawings below it move.
+std::string view_menu(const std::vector<View>& vs, bool animate) {
+  std::string s = "<div class=\"controls\">view <select id=\"view\">";
+  for (const auto& v : vs) s += fmt::format("<option value=\"{}\">{}</option>", v.name, esc(v.label));
+  s += "</select>";
+  if (animate) s += " <label><input type=\"checkbox\" id=\"animate\" checked> animate</label>";
+  return s + "</div>\n";
+}
+
 std::string shapes_section(const json& j) {
   if (!j.contains("geometry") || !j.contains("shapes") || j["shapes"].empty()) return "";
   const json& g = j["geometry"];
   const Points grids = read_points(g["grids"]);
   if (grids.empty()) return "";
   const auto lines = read_lines(g["lines"]), test_lines = read_lines(g["test_lines"]);
-  double size = 0;
-  {
-    Eigen::Vector3d lo = grids.begin()->second, hi = lo;
-    for (const auto& [id, p] : grids) lo = lo.cwiseMin(p), hi = hi.cwiseMax(p);
-    size = (hi - lo).norm();
-  }
+  const double size = extent(grids);
   const double w = 360, h = 270;
   const auto vs = views();
-  std::vector<Placement> pl;
-  for (const auto& v : vs) pl.push_back(place(v, grids, w, h));
+  const std::vector<Placement> pl = placements(vs, grids, w, h);
 
-  std::string s = "<section id=\"shapes\">\n<h2>Mode shapes</h2>\n";
-  s += "<div class=\"controls\">view <select id=\"view\">";
-  for (const auto& v : vs) s += fmt::format("<option value=\"{}\">{}</option>", v.name, esc(v.label));
-  s += "</select> <label><input type=\"checkbox\" id=\"animate\" checked> animate</label></div>\n";
+  std::string s = "<section id=\"shapes\">\n<h2>Mode shapes</h2>\n" + view_menu(vs, true);
   s += "<p class=\"note\">Analysis (blue, left) on the deck's elements; test (red, right) on the test's wire frame "
        "(test grids joined where the deck's elements join them), scaled onto the analysis shape by the least-squares "
        "factor; grey: the undeformed structure (dashed red: the test's undeformed wire frame). The largest displacement "
@@ -923,9 +940,7 @@ std::string pretest_sections(const json& j) {
                    j.value("candidates", 0), j.value("dof", 0));
   if (j.contains("geometry") && !j["geometry"]["grids"].empty()) {
     const auto vs = views();
-    s += "<div class=\"controls\">view <select id=\"view\">";
-    for (const auto& v : vs) s += fmt::format("<option value=\"{}\">{}</option>", v.name, esc(v.label));
-    s += "</select></div>\n";
+    s += view_menu(vs, false);
     s += figure("fig-placement", pretest_picture_svg(j, vs, "placement-svg"),
                 "The structure (grey) with each sensor as an arrow along its measured direction (triaxes: squares), the "
                 "exciters as red arrows along their force directions (given exciters orange), and the sensors' wire frame "
@@ -1146,17 +1161,12 @@ std::string identified_shapes_section(const json& j) {
   }
   const Points grids = read_points(j["geometry"]["grids"]);
   const Lines wire = read_lines(j["geometry"]["test_lines"]);
-  Eigen::Vector3d lo = grids.begin()->second, hi = lo;
-  for (const auto& [id, p] : grids) lo = lo.cwiseMin(p), hi = hi.cwiseMax(p);
   // A structure without extent (one node) still gets a scale for its arrows.
-  const double size = std::max((hi - lo).norm(), 1e-300);
+  const double size = std::max(extent(grids), 1e-300);
   const double w = 360, h = 270;
   const auto vs = views();
-  std::vector<Placement> pl;
-  for (const auto& v : vs) pl.push_back(place(v, grids, w, h));
-  s += "<div class=\"controls\">view <select id=\"view\">";
-  for (const auto& v : vs) s += fmt::format("<option value=\"{}\">{}</option>", v.name, esc(v.label));
-  s += "</select> <label><input type=\"checkbox\" id=\"animate\" checked> animate</label></div>\n";
+  const std::vector<Placement> pl = placements(vs, grids, w, h);
+  s += view_menu(vs, true);
   s += "<p class=\"note\">Each identified mode (the real part of its unit shape, each measured direction in its node's "
        "displacement system turned to global) on the test's trace lines; grey: the undeformed wire frame. The largest "
        "displacement is drawn at 8 % of the structure's size. Nodes without a measured direction do not move.</p>\n";
