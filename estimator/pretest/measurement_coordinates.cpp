@@ -75,8 +75,7 @@ MeasurementCoordinates measurement_coordinates(const std::vector<translators::Do
   const auto n = static_cast<Eigen::Index>(a_set.size());
   const auto by_grid = candidates_by_grid(candidates);
   std::map<std::int64_t, std::vector<Eigen::Vector3d>> dirs_of;
-  for (std::size_t i = 0; i < directions.size(); ++i) {
-    const auto& s = directions[i];
+  for (const auto& s : directions) {
     if (!by_grid.count(s.grid))
       throw formats::InputError(fmt::format("sensor direction at grid {}: not a candidate grid (no such grid, no free "
                                             "translation, or left out of the candidate grids)",
@@ -89,7 +88,6 @@ MeasurementCoordinates measurement_coordinates(const std::vector<translators::Do
   MeasurementCoordinates mc;
   std::vector<Eigen::Triplet<double>> t, t_inv;
   std::vector<bool> done(static_cast<std::size_t>(n), false);
-  std::map<std::int64_t, Eigen::MatrixXd> block_of;
   for (const auto& [grid, dirs] : dirs_of) {
     const auto& free = by_grid.at(grid);
     const Eigen::MatrixXd D = grid_block(grid, free, dirs);
