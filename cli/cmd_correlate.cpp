@@ -8,6 +8,7 @@
 #include <fmt/format.h>
 #include <fstream>
 #include <iostream>
+#include <limits>
 #include <map>
 #include <optional>
 #include <set>
@@ -16,6 +17,7 @@
 
 #include "cli/cli_util.hpp"
 #include "cli/model_load.hpp"
+#include "cli/report/frf_comparison.hpp"
 #include "cli/report/report_data.hpp"
 #include "estimator/correlation/correlate.hpp"
 #include "estimator/correlation/measures.hpp"
@@ -140,14 +142,22 @@ int cmd_correlate(const Args& args) {
       "nmodes", po::value<int>(), "deck: solve the lowest N modes (default: the deck's EIGRL/EIGR)")(
       "tam", po::value<std::string>(),
       "deck: cross-orthogonality also with these test-analysis models' masses on the test DOFs, guyan and/or irs "
-      "(comma-separated; SEREP's is always computed)");
+      "(comma-separated; SEREP's is always computed)")(
+      "frf", po::value<std::string>(),
+      "deck: measured FRFs (universal file, dataset 58) to lay the deck's FRFs over (modal superposition; JSON "
+      "frf_comparison, the report's FRF figures); with --report the test file's own FRFs are used when it holds some")(
+      "frf-damping", po::value<double>(),
+      "modal damping ratio of the analysis FRFs' modes no test mode lends its damping to (default: the test modes' "
+      "mean; needed when the test modes carry none)")(
+      "frf-max", po::value<int>()->default_value(6), "draw at most N measured FRFs (drive points first)");
   po::positional_options_description pos;
   pos.add("fe", 1).add("test", 1);
   po::variables_map vm;
   int rc = 0;
   if (!parse_options(args,
                      "ssid correlate DECK|FE.unv TEST.unv [--json FILE] [--report FILE.html] [--nmodes N] [--mac squared|ns] [--min-mac X] "
-                     "[--max-freq-error PCT] [--map id|position|id-then-position --tol D] [--tam guyan,irs]",
+                     "[--max-freq-error PCT] [--map id|position|id-then-position --tol D] [--tam guyan,irs] "
+                     "[--frf MEASURED.unv [--frf-damping Z] [--frf-max N]]",
                      desc, pos, vm, rc))
     return rc;
   const std::string fe_path = vm["fe"].as<std::string>(), test_path = vm["test"].as<std::string>();
@@ -170,6 +180,18 @@ int cmd_correlate(const Args& args) {
       print_error("--tam needs the deck's stiffness and mass: give a deck as the first argument");
       return 2;
     }
+  }
+  if (!from_deck && vm.count("frf")) {
+    print_error("--frf needs the deck's modes: give a deck as the first argument");
+    return 2;
+  }
+  if (vm["frf-max"].as<int>() < 1) {
+    print_error(fmt::format("--frf-max: expected at least 1, got {}", vm["frf-max"].as<int>()));
+    return 2;
+  }
+  if (vm.count("frf-damping") && !(vm["frf-damping"].as<double>() >= 0 && vm["frf-damping"].as<double>() < 1)) {
+    print_error(fmt::format("--frf-damping: expected a ratio 0 ≤ ζ < 1 (0.01 = 1 %), got {}", vm["frf-damping"].as<double>()));
+    return 2;
   }
 
   estimator::PairingOptions opt;
@@ -219,8 +241,9 @@ int cmd_correlate(const Args& args) {
   const std::string map = vm["map"].as<std::string>();
   nlohmann::json mapping_json;
   report::Lines test_trace;  // the test file's trace lines (82) in grid ids, for the report
+  translators::NodeMapOptions mo;
+  std::vector<translators::TestNode> nodes = translators::test_nodes(test_file);
   {
-    translators::NodeMapOptions mo;
     if (map == "id") mo.by = translators::MapBy::Id;
     else if (map == "position") mo.by = translators::MapBy::Position;
     else if (map == "id-then-position") mo.by = translators::MapBy::IdThenPosition;
@@ -233,9 +256,6 @@ int cmd_correlate(const Args& args) {
     if (from_deck) grids = grid_positions(*lm.model);
     for (const auto& n : fe_file.nodes())
       grids.push_back({n.id, Eigen::Vector3d(n.xyz[0], n.xyz[1], n.xyz[2]), Eigen::Matrix3d::Identity()});
-    std::vector<translators::TestNode> nodes;
-    for (const auto& n : test_file.nodes())
-      nodes.push_back({n.id, Eigen::Vector3d(n.xyz[0], n.xyz[1], n.xyz[2]), n.displacement_cs});
     if (map == "id") {
       // Node geometry is optional for id matching: every test node id in the modes maps to itself
       // when the analysis file lists no nodes.
@@ -345,10 +365,30 @@ int cmd_correlate(const Args& args) {
       j["cross_orthogonality_tam"][t] = x;
     }
   }
+  // FE FRFs over the measured ones: --frf's file, or with --report the test file's own.
+  std::optional<uff::UffFile> frf_file;
+  if (vm.count("frf")) frf_file = uff::read_uff(vm["frf"].as<std::string>());
+  else if (from_deck && vm.count("report") &&
+           std::any_of(test_file.functions().begin(), test_file.functions().end(),
+                       [](const uff::Function58* f) { return f->function_type == 4; }))
+    frf_file = test_file;
+  if (frf_file) {
+    Eigen::MatrixXd unit_modes = fe_modes.modes;  // Eq. 2 needs φᵀMφ = 1, whatever the deck's NORM
+    for (int i = 0; i < fe_modes.size(); ++i) unit_modes.col(i) /= std::sqrt(fe_modes.generalized_mass(i));
+    report::FrfDamping damping{test.frequency_hz, test.damping, test.numbers,
+                               vm.count("frf-damping") ? vm["frf-damping"].as<double>()
+                                                       : std::numeric_limits<double>::quiet_NaN(),
+                               0.1};
+    j["frf_comparison"] = report::frf_comparison_json(*frf_file, nodes, mo, *lm.model,
+                                                      {{"analysis", fe_modes.eigenvalues, unit_modes}}, damping,
+                                                      static_cast<std::size_t>(vm["frf-max"].as<int>()), problems);
+  }
   j["problems"] = problems;
 
   if (vm.count("report")) {
-    j["run"] = report::run_json("correlate", args, {fe_path, test_path});
+    std::vector<std::string> inputs{fe_path, test_path};
+    if (vm.count("frf")) inputs.push_back(vm["frf"].as<std::string>());
+    j["run"] = report::run_json("correlate", args, inputs);
     if (from_deck) {
       // The accepted pairs drawn on the deck: every grid for the analysis, the common DOFs for the test.
       std::vector<report::ShapePair> sp;
@@ -384,6 +424,7 @@ int cmd_correlate(const Args& args) {
   if (p.unpaired_test.empty()) std::cout << " none";
   for (int k : p.unpaired_test) std::cout << " " << test_no(k);
   std::cout << "\n";
+  if (j.contains("frf_comparison")) std::cout << "\n" << report::frf_comparison_text(j["frf_comparison"]);
   if (!json_path.empty()) write_json(json_path, j);
   return 0;
 }

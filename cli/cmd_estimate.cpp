@@ -2,13 +2,16 @@
 /// `ssid estimate` (SSID analogue), `ssid translate` (NASSID analogue: the
 /// problem file) and `ssid update-deck` (SD2NAS analogue). See docs/estimation.md.
 #include <cmath>
+#include <fmt/format.h>
 #include <fstream>
 #include <iostream>
+#include <limits>
 #include <sstream>
 
 #include "cli/cli_util.hpp"
 #include "cli/exit_codes.hpp"
 #include "cli/progress_lines.hpp"
+#include "cli/report/frf_comparison.hpp"
 #include "cli/report/report_data.hpp"
 #include "estimator/study/deck_study.hpp"
 #include "formats/deck_writer.hpp"
@@ -84,6 +87,13 @@ int cmd_estimate(const Args& args) {
       "report", po::value<std::string>(),
       "write an HTML report (MAC, frequencies before and after, parameters, convergence, mode shapes) to this file; "
       "the JSON then also holds the run, geometry and shapes (docs/report.md)")(
+      "frf", po::value<std::string>(),
+      "measured FRFs (universal file, dataset 58) to lay the deck's FRFs at the prior mean and at the estimate over "
+      "(first configuration; JSON frf_comparison, the report's FRF figures)")(
+      "frf-damping", po::value<double>(),
+      "modal damping ratio of the analysis FRFs' modes no measured mode lends its damping to (default: the measured "
+      "modes' mean; needed when they carry none)")(
+      "frf-max", po::value<int>()->default_value(6), "draw at most N measured FRFs (drive points first)")(
       "problem", po::value<std::string>(),
       "estimate from this problem file (ssid translate) instead of DECK MEASURED.unv: imported operators, Taylor model")(
       "quiet,q", "no progress lines on stderr (each cycle's J and frequency error, the time left)");
@@ -91,14 +101,26 @@ int cmd_estimate(const Args& args) {
   pos.add("deck", 1).add("measured", 1);
   po::variables_map vm;
   int rc = 0;
-  if (!parse_options(args, "ssid estimate DECK MEASURED.unv [--study FILE] [--json FILE] [--report FILE.html] | ssid estimate --problem FILE [--json FILE]",
+  if (!parse_options(args, "ssid estimate DECK MEASURED.unv [--study FILE] [--json FILE] [--report FILE.html] [--frf FRF.unv "
+                     "[--frf-damping Z] [--frf-max N]] | ssid estimate --problem FILE [--json FILE]",
                      desc, pos, vm, rc))
     return rc;
   if (!vm.count("deck") && !vm.count("problem")) {
     print_error("estimate: give DECK MEASURED.unv, or --problem FILE (ssid estimate --help)");
     return kExitBadInput;
   }
+  if (vm["frf-max"].as<int>() < 1) {
+    print_error(fmt::format("--frf-max: expected at least 1, got {}", vm["frf-max"].as<int>()));
+    return kExitBadInput;
+  }
+  if (vm.count("frf-damping") && !(vm["frf-damping"].as<double>() >= 0 && vm["frf-damping"].as<double>() < 1)) {
+    print_error(fmt::format("--frf-damping: expected a ratio 0 ≤ ζ < 1 (0.01 = 1 %), got {}", vm["frf-damping"].as<double>()));
+    return kExitBadInput;
+  }
   estimator::EstimationProblem problem = load_problem(vm, true);
+  // The measured FRFs before the estimate: a bad file is reported before the cycles run.
+  std::optional<formats::uff::UffFile> frf_file;
+  if (vm.count("frf")) frf_file = formats::uff::read_uff(vm["frf"].as<std::string>());
   const std::string json_path = vm.count("json") ? vm["json"].as<std::string>() : "";
   const std::string diagnose_args = vm.count("deck") && vm.count("measured")
                                         ? vm["deck"].as<std::string>() + " " + vm["measured"].as<std::string>()
@@ -118,11 +140,19 @@ int cmd_estimate(const Args& args) {
     return kExitInterrupted;
   }
   nlohmann::json j = estimator::result_json(problem, result);
+  std::vector<std::string> frf_notes;
+  if (frf_file)
+    j["frf_comparison"] = report::estimate_frf_comparison(
+        *frf_file, problem.configurations.front(), problem.prior.mean, result.update.r,
+        vm.count("frf-damping") ? vm["frf-damping"].as<double>() : std::numeric_limits<double>::quiet_NaN(),
+        static_cast<std::size_t>(vm["frf-max"].as<int>()), frf_notes);
+  for (const auto& n : frf_notes) std::cerr << "note: " << n << "\n";
   if (vm.count("report")) report::write_estimate_report(vm["report"].as<std::string>(), args, vm, problem, result, j);
   if (json_path == "-") {
     write_json("-", j);
   } else {
     std::cout << estimator::format_summary(problem, result);
+    if (j.contains("frf_comparison")) std::cout << "\n" << report::frf_comparison_text(j["frf_comparison"]);
     if (!json_path.empty()) write_json(json_path, j);
   }
   if (!result.partial()) return kExitSuccess;

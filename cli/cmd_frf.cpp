@@ -101,33 +101,20 @@ Eigen::VectorXd damping_from_identified(const std::string& path, const Eigen::Ve
       throw InputError(fmt::format("{}: modes[{}]: {} Hz, ζ = {} (expected > 0 Hz and ζ ≥ 0)", path, k, hz, z));
     test.emplace_back(hz, z);
   }
-  struct Cand {
-    double rel;
-    Eigen::Index fe;
-    std::size_t t;
-  };
-  std::vector<Cand> cands;
-  for (Eigen::Index r = 0; r < fe_hz.size(); ++r)
-    for (std::size_t t = 0; t < test.size(); ++t) {
-      const double rel = std::abs(fe_hz(r) - test[t].first) / test[t].first;
-      if (rel <= tol) cands.push_back({rel, r, t});
-    }
-  std::sort(cands.begin(), cands.end(), [](const Cand& a, const Cand& b) { return a.rel < b.rel; });
+  std::vector<double> test_hz;
   double mean = 0;
-  for (const auto& t : test) mean += t.second;
+  for (const auto& t : test) test_hz.push_back(t.first), mean += t.second;
   mean /= static_cast<double>(test.size());
   const double rest = std::isnan(fallback) ? mean : fallback;
   Eigen::VectorXd zeta = Eigen::VectorXd::Constant(fe_hz.size(), rest);
   source.assign(static_cast<std::size_t>(fe_hz.size()),
                 std::isnan(fallback) ? "mean of the identified" : "--damping (no identified mode near)");
-  std::vector<bool> fe_used(static_cast<std::size_t>(fe_hz.size())), t_used(test.size());
-  for (const Cand& c : cands) {
-    if (fe_used[static_cast<std::size_t>(c.fe)] || t_used[c.t]) continue;
-    fe_used[static_cast<std::size_t>(c.fe)] = t_used[c.t] = true;
-    zeta(c.fe) = test[c.t].second;
-    source[static_cast<std::size_t>(c.fe)] = fmt::format("identified mode {} at {} Hz", c.t + 1,
-                                                         estimator::significant(test[c.t].first, 6));
-  }
+  const auto partner = id::damping_partners(fe_hz, test_hz, tol);
+  for (std::size_t r = 0; r < partner.size(); ++r)
+    if (const auto t = partner[r]) {
+      zeta(static_cast<Eigen::Index>(r)) = test[*t].second;
+      source[r] = fmt::format("identified mode {} at {} Hz", *t + 1, estimator::significant(test[*t].first, 6));
+    }
   return zeta;
 }
 
@@ -140,14 +127,6 @@ const uff::Function58* find_measured(const uff::UffFile& file, const translators
         f->response_node == response.point && std::abs(f->response_direction) == response.component)
       return f;
   return nullptr;
-}
-
-/// Frequency lines of a measured FRF (Hz).
-std::vector<double> abscissa(const uff::Function58& f) {
-  if (!f.x.empty()) return f.x;
-  std::vector<double> x;
-  for (std::size_t k = 0; k < f.y.size(); ++k) x.push_back(f.abscissa_min + static_cast<double>(k) * f.abscissa_increment);
-  return x;
 }
 
 }  // namespace
@@ -269,11 +248,11 @@ int cmd_frf(const Args& args) {
     const uff::Function58* first = nullptr;
     for (const auto* f : meas)
       if (f && !first) first = f;
-    const auto lines0 = abscissa(*first);
+    const auto lines0 = first->abscissa();
     for (const auto* f : meas)
-      if (f && abscissa(*f) != lines0)
+      if (f && f->abscissa() != lines0)
         throw InputError(fmt::format("{}: dataset 58: {} lines from {} Hz (expected the lines of {})", f->where.str(),
-                                     f->y.size(), abscissa(*f).empty() ? 0.0 : abscissa(*f).front(),
+                                     f->y.size(), f->abscissa().empty() ? 0.0 : f->abscissa().front(),
                                      first->where.str()));
     // The measured FRFs' quantity, from the ordinate numerator's data type.
     std::optional<id::FrfQuantity> mq;
@@ -346,7 +325,7 @@ int cmd_frf(const Args& args) {
     const uff::Function58* first = nullptr;
     for (const auto* m : meas)
       if (m && !first) first = m;
-    for (double x : abscissa(*first))
+    for (double x : first->abscissa())
       if (!band || (x >= band->first && x <= band->second)) f.push_back(x);
     if (f.empty())
       throw InputError(fmt::format("{}: no measured line in --band {}:{} Hz", first->where.str(), band->first,
@@ -405,7 +384,7 @@ int cmd_frf(const Args& args) {
     for (Eigen::Index k = 0; k < H.rows(); ++k) curves[0].h.push_back(H(k, oi));
     if (const uff::Function58* m = meas[o]) {
       const double sign = (m->response_direction < 0 ? -1.0 : 1.0) * (m->reference_direction < 0 ? -1.0 : 1.0);
-      const auto x = abscissa(*m);
+      const auto x = m->abscissa();
       Eigen::VectorXcd hm(static_cast<Eigen::Index>(f.size()));
       std::size_t n = 0;
       for (std::size_t k = 0; k < x.size(); ++k)

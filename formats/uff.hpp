@@ -225,6 +225,14 @@ struct Function58 {
 
   bool is_complex() const { return ordinate_type == 5 || ordinate_type == 6; }
   bool is_double() const { return ordinate_type == 4 || ordinate_type == 6; }
+  /// The abscissa of every value: `x` when held (the reader fills it), else
+  /// min + k · increment (a record built in memory as even data).
+  std::vector<double> abscissa() const {
+    if (!x.empty()) return x;
+    std::vector<double> out;
+    for (std::size_t k = 0; k < y.size(); ++k) out.push_back(abscissa_min + static_cast<double>(k) * abscissa_increment);
+    return out;
+  }
 };
 
 /// Dataset 1858: qualifiers of the dataset 58 that follows it (as Test.Lab writes them).

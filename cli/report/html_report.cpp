@@ -1109,18 +1109,19 @@ std::vector<int> mode_numbers(const json& modes) {
 /// "a:b" of a [node, direction] pair.
 std::string dof_pair(const json& d) { return fmt::format("{}:{}", d[0].get<long>(), d[1].get<int>()); }
 
+/// An FRF's {"re": [...], "im": [...]} as complex values.
+std::vector<std::complex<double>> complex_values(const json& p) {
+  const auto re = p["re"].get<std::vector<double>>(), im = p["im"].get<std::vector<double>>();
+  std::vector<std::complex<double>> v(re.size());
+  for (std::size_t k = 0; k < re.size(); ++k) v[k] = {re[k], im[k]};
+  return v;
+}
+
 /// The measured FRFs against those of the identified modal model (the seed's Figure 4:
 /// the synthesized FRFs laid over the measured ones), one figure per FRF with its FRAC,
 /// a menu to show one.
 std::string frf_fit_section(const json& fit) {
-  using cd = std::complex<double>;
   const std::vector<double> hz = fit["hz"].get<std::vector<double>>();
-  auto values = [](const json& p) {
-    const auto re = p["re"].get<std::vector<double>>(), im = p["im"].get<std::vector<double>>();
-    std::vector<cd> v(re.size());
-    for (std::size_t k = 0; k < re.size(); ++k) v[k] = cd(re[k], im[k]);
-    return v;
-  };
   const std::string unit = fit.value("unit", "");
   std::string s = "<section id=\"frf-fit\">\n<h2>FRFs: measured and of the identified modes</h2>\n";
   s += fmt::format("<p>Each measured FRF against the FRF of the identified modes ({}, {}…{} Hz; {} of the FRFs "
@@ -1137,8 +1138,8 @@ std::string frf_fit_section(const json& fit) {
   k = 0;
   for (const auto& r : fit["records"]) {
     const std::string title = "response " + dof_pair(r["response"]) + " / reference " + dof_pair(r["reference"]);
-    const std::vector<FrfCurve> curves{{"measured", "#c0392b", "measured", hz, values(r["measured"]), ""},
-                                       {"synthesized", "#1f5fa8", "identified modes", hz, values(r["synthesized"]), "6 4"}};
+    const std::vector<FrfCurve> curves{{"measured", "#c0392b", "measured", hz, complex_values(r["measured"]), ""},
+                                       {"synthesized", "#1f5fa8", "identified modes", hz, complex_values(r["synthesized"]), "6 4"}};
     const std::string frac = r["frac"].is_null() ? std::string("—") : fixed(r["frac"].get<double>(), 4);
     s += fmt::format("<figure id=\"fig-frf-{0}\" class=\"frf\" data-frf=\"{0}\" data-frac=\"{1}\">\n{2}<figcaption>{3}: "
                      "FRAC {4}.</figcaption>\n</figure>\n",
@@ -1148,6 +1149,68 @@ std::string frf_fit_section(const json& fit) {
     ++k;
   }
   return s + "</section>\n";
+}
+
+/// The measured FRFs against the analysis model's (`frf_comparison`, frf_comparison.hpp):
+/// the seed's Figures 6–9, with the model before and after the update where the JSON holds
+/// both. One figure per FRF (measured solid, each analysis dashed) with its FRAC per
+/// analysis (attributes data-frac: the last analysis's, data-frac-before: the first's of
+/// two), a menu to show one, and the damping each analysis mode was given.
+std::string frf_comparison_section(const json& c, bool before_after) {
+  static const char* colours[] = {"#1f5fa8", "#2e8b57", "#8e44ad"};
+  const auto& analyses = c["analyses"];
+  const bool two = analyses.size() == 2;
+  std::string s = "<section id=\"frf-comparison\">\n<h2>" +
+                  std::string(before_after ? "FRFs before and after the update" : "FRFs: measured and of the analysis") +
+                  "</h2>\n";
+  s += fmt::format("<p>Each measured FRF of {} ({} drawn, drive points first) against the FRF of the deck's modes by "
+                   "modal superposition (the seed's Eq. 2), observed along the same signed test directions; each "
+                   "analysis mode is damped as the test mode it stands for (table below). FRAC = |Σ H<sub>x</sub> "
+                   "Ĥ*|² / (Σ|H<sub>x</sub>|² Σ|Ĥ|²) over the lines: 1 when the two have the same shape.</p>\n",
+                   esc(c["file"].get<std::string>()), c["frfs"].size());
+  if (!c["left_out"].empty())
+    s += fmt::format("<p class=\"note\">{} FRF(s) not drawn, e.g. {}.</p>\n", c["left_out"].size(),
+                     esc(c["left_out"][0].get<std::string>()));
+  s += "<div class=\"controls\">FRF <select id=\"frf\"><option value=\"all\">all</option>";
+  std::size_t k = 0;
+  for (const auto& r : c["frfs"])
+    s += fmt::format("<option value=\"{}\">response {} / reference {}</option>", k++, dof_pair(r["response"]),
+                     dof_pair(r["reference"]));
+  s += "</select></div>\n";
+  k = 0;
+  for (const auto& r : c["frfs"]) {
+    const std::vector<double> hz = r["hz"].get<std::vector<double>>();
+    std::vector<FrfCurve> curves{{"measured", "#c0392b", "measured", hz, complex_values(r["measured"]), ""}};
+    std::string fracs, data;
+    for (std::size_t a = 0; a < r["analyses"].size(); ++a) {
+      const json& x = r["analyses"][a];
+      const std::string label = x["label"].get<std::string>();
+      // Before the update grey and dotted, as the frequency figures draw it.
+      curves.push_back({fmt::format("analysis-{}", a), two && a == 0 ? "#777777" : colours[a % 3], label, hz,
+                        complex_values(x), two && a == 0 ? "2 3" : "6 4"});
+      fracs += fmt::format("{}FRAC {} {}", a ? ", " : "", esc(label),
+                           x["frac"].is_null() ? std::string("—") : fixed(x["frac"].get<double>(), 4));
+      // The last analysis's FRAC (the estimate's), and the first's when there are two (before the update).
+      if (a + 1 == r["analyses"].size() || (two && a == 0))
+        data += fmt::format(" data-frac{}=\"{}\"", a + 1 == r["analyses"].size() ? "" : "-before",
+                            x["frac"].is_null() ? std::string() : exact(x["frac"].get<double>()));
+    }
+    const std::string title = "response " + dof_pair(r["response"]) + " / reference " + dof_pair(r["reference"]);
+    s += fmt::format("<figure id=\"fig-frfc-{0}\" class=\"frf\" data-frf=\"{0}\"{1}>\n{2}<figcaption>{3} (grids {4} / "
+                     "{5}; {6}): {7}.</figcaption>\n</figure>\n",
+                     k, data, frf_overlay_svg(curves, title, r["unit"].get<std::string>(), fmt::format("frfc-{}", k)),
+                     esc(title), r["response_grid"].get<long>(), r["reference_grid"].get<long>(),
+                     esc(r["at"].get<std::string>()), fracs);
+    ++k;
+  }
+  s += "<table class=\"pairs\"><caption>Modal damping of the analysis FRFs</caption>\n<tr><th>analysis</th><th>mode</th>"
+       "<th>frequency (Hz)</th><th>ζ (%)</th><th>from</th></tr>\n";
+  for (const auto& a : analyses)
+    for (const auto& m : a["modes"])
+      s += fmt::format("<tr><td>{}</td><td>{}</td><td>{}</td><td>{}</td><td>{}</td></tr>\n", esc(a["label"].get<std::string>()),
+                       m["mode"].get<int>(), fixed(m["hz"].get<double>(), 3), fixed(100 * m["zeta"].get<double>(), 3),
+                       esc(m["zeta_from"].get<std::string>()));
+  return s + "</table>\n</section>\n";
 }
 
 /// The identified modes drawn on the test's geometry (its nodes and trace lines): one
@@ -1347,6 +1410,7 @@ std::string html_report(const json& j) {
     s += frequency_figure(accepted, nullptr, j.value("max_frequency_error_pct", 10.0), "accepted pairs");
     s += error_figure(accepted, nullptr, "accepted pairs");
     s += pair_table(j["pairs"], nullptr) + "</section>\n";
+    if (j.contains("frf_comparison")) s += frf_comparison_section(j["frf_comparison"], false);
   } else if (cmd == "estimate") {
     const json& c0 = j["configurations"].empty() ? json::object() : j["configurations"][0];
     s += "<section id=\"correlation\">\n<h2>Correlation at the estimate</h2>\n";
@@ -1365,6 +1429,7 @@ std::string html_report(const json& j) {
     s += frequency_figure(j["pairs"], before, 5.0, "at the estimate");
     s += error_figure(j["pairs"], before, "at the estimate");
     s += pair_table(j["pairs"], before) + "</section>\n";
+    if (j.contains("frf_comparison")) s += frf_comparison_section(j["frf_comparison"], true);
     s += parameter_figures(j) + convergence_figures(j);
   } else if (cmd == "identify") {
     s += identification_sections(j) + identified_shapes_section(j);

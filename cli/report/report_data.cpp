@@ -361,7 +361,7 @@ void write_estimate_report(const std::string& path, const Args& args, const boos
                            const estimator::EstimationProblem& problem, const estimator::EstimationResult& result,
                            nlohmann::json& j) {
   std::vector<std::string> inputs;
-  for (const char* k : {"deck", "measured", "study", "problem"})
+  for (const char* k : {"deck", "measured", "study", "problem", "frf"})
     if (vm.count(k)) inputs.push_back(vm[k].as<std::string>());
   j["run"] = run_json("estimate", args, inputs);
   const auto& c = problem.configurations.front();

@@ -1,5 +1,6 @@
 #include "estimator/identification/frf_synthesis.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <complex>
 #include <fmt/format.h>
@@ -56,6 +57,32 @@ double frf_assurance(const Eigen::Ref<const Eigen::VectorXcd>& a, const Eigen::R
   const double na = a.squaredNorm(), nb = b.squaredNorm();
   if (!(na > 0) || !(nb > 0)) return std::numeric_limits<double>::quiet_NaN();
   return std::norm(a.dot(b)) / (na * nb);
+}
+
+std::vector<std::optional<std::size_t>> damping_partners(const Eigen::Ref<const Eigen::VectorXd>& analysis_hz,
+                                                         const std::vector<double>& measured_hz, double tolerance) {
+  struct Candidate {
+    double rel;
+    Eigen::Index r;
+    std::size_t t;
+  };
+  std::vector<Candidate> cands;
+  for (Eigen::Index r = 0; r < analysis_hz.size(); ++r)
+    for (std::size_t t = 0; t < measured_hz.size(); ++t) {
+      const double rel = std::abs(analysis_hz(r) - measured_hz[t]) / measured_hz[t];
+      if (rel <= tolerance) cands.push_back({rel, r, t});
+    }
+  // Stable: equal distances keep the lower analysis mode first, then the lower measured one.
+  std::stable_sort(cands.begin(), cands.end(), [](const Candidate& a, const Candidate& b) { return a.rel < b.rel; });
+  std::vector<std::optional<std::size_t>> out(static_cast<std::size_t>(analysis_hz.size()));
+  std::vector<bool> used(measured_hz.size());
+  for (const Candidate& c : cands) {
+    auto& slot = out[static_cast<std::size_t>(c.r)];
+    if (slot || used[c.t]) continue;
+    slot = c.t;
+    used[c.t] = true;
+  }
+  return out;
 }
 
 }  // namespace ssid::estimator::identification

@@ -4,6 +4,9 @@
 /// modal test section), and the frequency response assurance criterion that compares
 /// two FRFs line by line.
 #include <Eigen/Core>
+#include <cstddef>
+#include <optional>
+#include <vector>
 
 namespace ssid::estimator::identification {
 
@@ -38,5 +41,14 @@ Eigen::MatrixXcd synthesize_frf(const Eigen::Ref<const Eigen::VectorXd>& frequen
 /// complex factor). NaN when either is all zero. Throws formats::InputError when the
 /// lengths differ.
 double frf_assurance(const Eigen::Ref<const Eigen::VectorXcd>& a, const Eigen::Ref<const Eigen::VectorXcd>& b);
+
+/// Which measured mode lends each analysis mode its damping: analysis mode r (at
+/// `analysis_hz`(r)) takes measured mode t (at `measured_hz`[t]) when
+/// |f_r − f_t| / f_t ≤ `tolerance` (relative), nearest pairs first, each measured and
+/// each analysis mode used once; nullopt where no measured mode is left near. The
+/// analyst's rule of thumb for an FRF overlay: the damping of the test mode the
+/// analysis mode stands for (NASTRAN's modal damping table, TABDMP1, is set the same way).
+std::vector<std::optional<std::size_t>> damping_partners(const Eigen::Ref<const Eigen::VectorXd>& analysis_hz,
+                                                         const std::vector<double>& measured_hz, double tolerance);
 
 }  // namespace ssid::estimator::identification

@@ -406,6 +406,8 @@ ShapeRows map_sensors(const Study& study, const ConfigurationSource& sc, const t
                       PreparedConfiguration& pc) {
   const translators::ModeSet& set = sc.data.modes;
   const auto na = static_cast<Eigen::Index>(fe.reduction().a_to_g.size());
+  pc.node_map = {study.map_by, study.map_tolerance};
+  pc.test_nodes = sc.data.nodes;
   if (set.dofs.empty()) {
     pc.sensors = SparseMatrix(0, na);
     return {};
@@ -420,10 +422,7 @@ ShapeRows map_sensors(const Study& study, const ConfigurationSource& sc, const t
       throw formats::InputError(sc.measured + ": mapping by position needs the test node positions (dataset 15 or 2411)");
     for (auto id : shape_nodes) nodes.push_back({id, Eigen::Vector3d::Zero(), 0});
   }
-  translators::NodeMapOptions mo;
-  mo.by = study.map_by;
-  mo.tolerance = study.map_tolerance;
-  const translators::NodeMapping mapping = translators::map_test_nodes(nodes, grids, mo);
+  const translators::NodeMapping mapping = translators::map_test_nodes(nodes, grids, pc.node_map);
   for (const auto& pr : mapping.problems) pc.notes.push_back(sc.measured + ": " + pr);
   const translators::Observation obs = translators::observe(set.dofs, mapping, grids);
   if (obs.rows.empty())
@@ -550,6 +549,7 @@ void select_measured_modes(const Study& study, const ConfigurationSource& sc, st
     if (auto it = fixed.find(number); it != fixed.end()) mm.fixed_partner = it->second;
     pc.test.push_back(mm);
     pc.test_numbers.push_back(number);
+    pc.test_damping.push_back(m < set.damping.size() ? set.damping[m] : 0.0);
     pc.std_from.push_back(identified_std(study, set, m) ? "identification" : "study");
   }
   for (int n : sel.modes)
@@ -846,7 +846,7 @@ MeasuredData read_measured(const std::string& path, bool frequencies_only) {
                       " complex mode(s) read and not used (the update uses real normal modes)");
   if (d.modes.frequency_hz.empty())
     throw formats::InputError(path + ": no real normal modes (dataset 55, analysis type 2) to estimate from");
-  for (const auto& n : file.nodes()) d.nodes.push_back({n.id, Eigen::Vector3d(n.xyz[0], n.xyz[1], n.xyz[2]), n.displacement_cs});
+  d.nodes = translators::test_nodes(file);
   if (frequencies_only) {
     d.modes.dofs.clear();
     d.modes.shapes.resize(0, static_cast<Eigen::Index>(d.modes.frequency_hz.size()));
@@ -1032,6 +1032,7 @@ EstimationProblem problem_from_file(const formats::ProblemFile& file) {
       mm.use_shape = m.use_shape;
       pc.test.push_back(mm);
       pc.test_numbers.push_back(m.id);
+      pc.test_damping.push_back(0.0);
       pc.std_from.push_back("problem file");
     }
     const std::string who = "configuration '" + c.name + "'";

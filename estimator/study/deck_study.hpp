@@ -249,6 +249,13 @@ struct PreparedConfiguration {
   /// operators' Taylor model): what the model solves, and what a problem file stores.
   OperatorModel::Assemble assemble;
   std::vector<std::string> notes;                ///< unmapped nodes, dropped DOFs, left-out modes
+  /// Viscous damping ratio of each mode of `test` as the measured file gives it (UFF 55; 0 when
+  /// it gives none): what an FRF synthesized from the model's modes is damped with.
+  std::vector<double> test_damping;
+  /// The measured file's test nodes and the study's mapping onto grids: how other files of
+  /// the same test (measured FRFs) reach the deck.
+  std::vector<translators::TestNode> test_nodes;
+  translators::NodeMapOptions node_map;
 };
 
 struct EstimationProblem {

@@ -12,6 +12,7 @@
 #include <nlohmann/json.hpp>
 
 #include "cli/cli_run.hpp"
+#include "cli/spring_deck.hpp"
 #include "formats/uff.hpp"
 
 namespace fs = std::filesystem;
@@ -22,49 +23,9 @@ namespace {
 
 fs::path scratch(const std::string& name) { return cli_scratch("frf") / name; }
 
-/// Three masses in X (2, 1, 1.5 kg at grids 1, 2, 3; PS 23456 leaves X only), springs
-/// 4e4 N/m grid 1 to ground, 1.5e4 N/m 1–2, 1e4 N/m 2–3.
-const char* kSpringDeck = R"(SOL 103
-CEND
-BEGIN BULK
-GRID,1,,0.,0.,0.,,23456
-GRID,2,,1.,0.,0.,,23456
-GRID,3,,2.,0.,0.,,23456
-CELAS2,11,4.0E4,1,1
-CELAS2,12,1.5E4,1,1,2,1
-CELAS2,13,1.0E4,2,1,3,1
-CONM2,21,1,,2.0
-CONM2,22,2,,1.0
-CONM2,23,3,,1.5
-ENDDATA
-)";
-
-struct Spring3 {
-  Eigen::Matrix3d M, K;
-  Eigen::Vector3d lambda;  ///< ω_r², ascending
-  Eigen::Matrix3d phi;     ///< mass-normalised (Eigen's generalized solver: ΦᵀMΦ = I)
-  Spring3() {
-    M = Eigen::Vector3d(2.0, 1.0, 1.5).asDiagonal();
-    const double k1 = 4e4, k2 = 1.5e4, k3 = 1e4;
-    K << k1 + k2, -k2, 0, -k2, k2 + k3, -k3, 0, -k3, k3;
-    Eigen::GeneralizedSelfAdjointEigenSolver<Eigen::Matrix3d> es(K, M);
-    lambda = es.eigenvalues();
-    phi = es.eigenvectors();
-  }
-  /// (K − ω²M + iωC)⁻¹ with modal damping ζ_r: C = M Φ diag(2ζ_rω_r) Φᵀ M.
-  Eigen::Matrix3cd direct(double f, const Eigen::Vector3d& zeta) const {
-    const double w = 2 * M_PI * f;
-    Eigen::Vector3d c;
-    for (int r = 0; r < 3; ++r) c(r) = 2 * zeta(r) * std::sqrt(lambda(r));
-    const Eigen::Matrix3d C = M * phi * c.asDiagonal() * phi.transpose() * M;
-    const Eigen::Matrix3cd D = K.cast<cd>() - w * w * M.cast<cd>() + cd(0, w) * C.cast<cd>();
-    return D.partialPivLu().solve(Eigen::Matrix3cd::Identity());
-  }
-};
-
 fs::path spring_deck() {
   const fs::path p = scratch("springs.bdf");
-  std::ofstream(p) << kSpringDeck;
+  std::ofstream(p) << spring_deck_text();
   return p;
 }
 

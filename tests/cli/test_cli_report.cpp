@@ -274,9 +274,19 @@ Report correlate_report() {
   return run_report("correlate", "correlate " + src("samples/mpi_rod.bdf") + " " + src("samples/estimate/measured.unv"));
 }
 
+/// The estimate sample's report, with FRFs laid over "measured" ones: those of the truth
+/// deck (samples/estimate/truth.json) by `ssid frf`, as docs/report.md makes them. They
+/// stand in for a measurement so the report draws its FRF figures (the overlay itself is
+/// checked against dense solves in test_cli_frf_comparison.cpp).
 Report estimate_report() {
+  const fs::path truth = scratch() / "truth.bdf", frf = scratch() / "truth_frf.unv";
+  REQUIRE(run_ssid("update-deck " + src("samples/mpi_rod.bdf") + " " + src("samples/estimate/truth.json") + " -o " +
+                   truth.string()).code == 0);
+  REQUIRE(run_ssid("frf " + truth.string() + " --drive 41,2 --response 41,2 79,3 --damping 0.01 --band 2:60 --lines 581 "
+                   "--uff " + frf.string()).code == 0);
   return run_report("estimate", "estimate -q " + src("samples/mpi_rod.bdf") + " " + src("samples/estimate/measured.unv") +
-                                    " --study " + src("samples/estimate/study.json"));
+                                    " --study " + src("samples/estimate/study.json") + " --frf " + frf.string() +
+                                    " --frf-damping 0.01");
 }
 
 Report diagnose_report() {
@@ -431,7 +441,20 @@ TEST_CASE("ssid estimate --report: before and after, parameters, convergence and
   const Report r = estimate_report();
   const json& j = r.j;
   check_run(j, r.html,
-            {src("samples/mpi_rod.bdf"), src("samples/estimate/measured.unv"), src("samples/estimate/study.json")});
+            {src("samples/mpi_rod.bdf"), src("samples/estimate/measured.unv"), src("samples/estimate/study.json"),
+             (scratch() / "truth_frf.unv").string()});
+  // The FRF figures carry the JSON's FRAC before and after the update.
+  REQUIRE(j["frf_comparison"]["frfs"].size() == 2);
+  for (std::size_t k = 0; k < 2; ++k) {
+    const std::string fig = "<figure id=\"fig-frfc-" + std::to_string(k) + "\"";
+    const auto at = r.html.find(fig);
+    REQUIRE(at != std::string::npos);
+    const Attributes a = attributes_of(r.html.substr(at + 8, r.html.find('>', at) - at - 8));
+    const auto& x = j["frf_comparison"]["frfs"][k]["analyses"];
+    CHECK(std::stod(a.at("data-frac-before")) == x[0]["frac"].get<double>());
+    CHECK(std::stod(a.at("data-frac")) == x[1]["frac"].get<double>());
+    CHECK(x[1]["frac"].get<double>() > x[0]["frac"].get<double>());  // the update brings the FRFs closer
+  }
   const json& c0 = j["configurations"][0];
   std::set<std::pair<int, int>> paired;
   for (const auto& p : c0["pairs"]) {
@@ -717,7 +740,7 @@ TEST_CASE("ssid pretest --report: sensors, Fisher figures, cross-orthogonality, 
 
 TEST_CASE("the samples' reports render in headless Chromium", "[cli][report][browser][slow]") {
   check_in_browser(correlate_report().path, 27);
-  check_in_browser(estimate_report().path, 28);
+  check_in_browser(estimate_report().path, 30);  // 28 and the two FRF figures
   check_in_browser(diagnose_report().path, 7);
   check_in_browser(pretest_report().path, 10);
   check_in_browser(identify_report().path, 1, 600);

@@ -90,6 +90,12 @@ formats::uff::UffFile mode_set_to_uff(const ModeSet& set, const std::vector<form
   return f;
 }
 
+std::vector<TestNode> test_nodes(const formats::uff::UffFile& file) {
+  std::vector<TestNode> out;
+  for (const auto& n : file.nodes()) out.push_back({n.id, Eigen::Vector3d(n.xyz[0], n.xyz[1], n.xyz[2]), n.displacement_cs});
+  return out;
+}
+
 std::vector<MeasuredDof> measured_dofs(const formats::uff::UffFile& file) {
   std::vector<MeasuredDof> r;
   std::set<std::int64_t> seen;

@@ -48,6 +48,9 @@ ModeSet modes_from_uff(const formats::uff::UffFile& file, ModeSetReport* report 
 /// A negative direction is written as the negated value on the positive axis.
 formats::uff::UffFile mode_set_to_uff(const ModeSet& set, const std::vector<formats::uff::Node>& nodes = {});
 
+/// The nodes of a universal file (datasets 15 and 2411) as the mapping takes them.
+std::vector<TestNode> test_nodes(const formats::uff::UffFile& file);
+
 /// The measured DOFs named by the 58 functions of a file (response node and
 /// signed direction), each once, in file order: the sensors of an FRF test.
 std::vector<MeasuredDof> measured_dofs(const formats::uff::UffFile& file);
