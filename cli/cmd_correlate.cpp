@@ -8,7 +8,6 @@
 #include <fmt/format.h>
 #include <fstream>
 #include <iostream>
-#include <limits>
 #include <map>
 #include <optional>
 #include <set>
@@ -24,6 +23,7 @@
 #include "estimator/pretest/measurement_coordinates.hpp"
 #include "formats/parse_error.hpp"
 #include "formats/uff.hpp"
+#include "translators/measurement/mode_set.hpp"
 #include "translators/synthetic_modes.hpp"
 
 namespace ssid::cli {
@@ -106,20 +106,6 @@ Eigen::MatrixXd tam_mass(const std::string& kind, const TestCoordinates& tc) {
   return r.M;
 }
 
-/// The segments of the test file's trace lines (dataset 82; node 0 lifts the pen) whose
-/// two nodes map to grids, as (smaller, larger) grid ids, each once, sorted.
-report::Lines trace_lines_in_grids(const uff::UffFile& f, const translators::NodeMapping& m) {
-  std::set<std::pair<std::int64_t, std::int64_t>> out;
-  for (const auto& d : f.datasets)
-    if (const auto* t = std::get_if<uff::TraceLine82>(&d))
-      for (std::size_t k = 1; k < t->nodes.size(); ++k) {
-        if (t->nodes[k - 1] == 0 || t->nodes[k] == 0) continue;
-        const auto a = m.grid_of(t->nodes[k - 1]), b = m.grid_of(t->nodes[k]);
-        if (a && b && *a != *b) out.insert(std::minmax(*a, *b));
-      }
-  return {out.begin(), out.end()};
-}
-
 }  // namespace
 
 int cmd_correlate(const Args& args) {
@@ -142,14 +128,11 @@ int cmd_correlate(const Args& args) {
       "nmodes", po::value<int>(), "deck: solve the lowest N modes (default: the deck's EIGRL/EIGR)")(
       "tam", po::value<std::string>(),
       "deck: cross-orthogonality also with these test-analysis models' masses on the test DOFs, guyan and/or irs "
-      "(comma-separated; SEREP's is always computed)")(
-      "frf", po::value<std::string>(),
-      "deck: measured FRFs (universal file, dataset 58) to lay the deck's FRFs over (modal superposition; JSON "
-      "frf_comparison, the report's FRF figures); with --report the test file's own FRFs are used when it holds some")(
-      "frf-damping", po::value<double>(),
-      "modal damping ratio of the analysis FRFs' modes no test mode lends its damping to (default: the test modes' "
-      "mean; needed when the test modes carry none)")(
-      "frf-max", po::value<int>()->default_value(6), "draw at most N measured FRFs (drive points first)");
+      "(comma-separated; SEREP's is always computed)");
+  report::add_frf_options(desc,
+                          "deck: measured FRFs (universal file, dataset 58) to lay the deck's FRFs over (modal "
+                          "superposition; JSON frf_comparison, the report's FRF figures); with --report the test "
+                          "file's own FRFs are used when it holds some");
   po::positional_options_description pos;
   pos.add("fe", 1).add("test", 1);
   po::variables_map vm;
@@ -185,14 +168,8 @@ int cmd_correlate(const Args& args) {
     print_error("--frf needs the deck's modes: give a deck as the first argument");
     return 2;
   }
-  if (vm["frf-max"].as<int>() < 1) {
-    print_error(fmt::format("--frf-max: expected at least 1, got {}", vm["frf-max"].as<int>()));
-    return 2;
-  }
-  if (vm.count("frf-damping") && !(vm["frf-damping"].as<double>() >= 0 && vm["frf-damping"].as<double>() < 1)) {
-    print_error(fmt::format("--frf-damping: expected a ratio 0 ≤ ζ < 1 (0.01 = 1 %), got {}", vm["frf-damping"].as<double>()));
-    return 2;
-  }
+  const std::optional<report::FrfOptions> frf_opt = report::frf_options(vm);
+  if (!frf_opt) return 2;
 
   estimator::PairingOptions opt;
   const std::string form = vm["mac"].as<std::string>();
@@ -274,7 +251,7 @@ int cmd_correlate(const Args& args) {
     if (from_deck) translators::require_mapped(test.dofs, m, test_path, "the deck " + fe_path);
     mapping_json = {{"by", map}, {"mapped", m.matches.size()}, {"unmapped", m.unmapped}};
     test = translators::relabel(test, m);
-    test_trace = trace_lines_in_grids(test_file, m);
+    test_trace = translators::segments_in_grids(translators::trace_segments(test_file), m);
     if (from_deck) {
       // The analysis modes at the grids the test nodes map to, in basic directions.
       translators::SyntheticTestOptions so;
@@ -375,13 +352,10 @@ int cmd_correlate(const Args& args) {
   if (frf_file) {
     Eigen::MatrixXd unit_modes = fe_modes.modes;  // Eq. 2 needs φᵀMφ = 1, whatever the deck's NORM
     for (int i = 0; i < fe_modes.size(); ++i) unit_modes.col(i) /= std::sqrt(fe_modes.generalized_mass(i));
-    report::FrfDamping damping{test.frequency_hz, test.damping, test.numbers,
-                               vm.count("frf-damping") ? vm["frf-damping"].as<double>()
-                                                       : std::numeric_limits<double>::quiet_NaN(),
-                               0.1};
-    j["frf_comparison"] = report::frf_comparison_json(*frf_file, nodes, mo, *lm.model,
-                                                      {{"analysis", fe_modes.eigenvalues, unit_modes}}, damping,
-                                                      static_cast<std::size_t>(vm["frf-max"].as<int>()), problems);
+    const report::FrfDamping damping{test.frequency_hz, test.damping, test.numbers, frf_opt->zeta_fallback, 0.1};
+    j["frf_comparison"] = report::frf_comparison_json(*frf_file, nodes, mo,
+                                                      {{"analysis", lm.model.get(), fe_modes.eigenvalues, unit_modes}}, damping,
+                                                      frf_opt->max_frfs, problems);
   }
   j["problems"] = problems;
 

@@ -13,11 +13,13 @@
 #include "cli/cli_util.hpp"
 #include "cli/exit_codes.hpp"
 #include "cli/progress_lines.hpp"
+#include "cli/report/frf_comparison.hpp"
 #include "cli/report/report_data.hpp"
 #include "estimator/diagnosis/diagnosis.hpp"
 #include "estimator/reporting/number_text.hpp"
-#include "formats/parse_error.hpp"
 #include "estimator/study/deck_study.hpp"
+#include "formats/parse_error.hpp"
+#include "formats/uff.hpp"
 
 namespace ssid::cli {
 
@@ -87,6 +89,10 @@ void add_diagnose_options(po::options_description& desc) {
       "false-alarm", po::value<double>(), "the largest false-alarm probability of a named cause (default 0.01)")(
       "hold-back", po::value<int>(), "hold back the N highest test modes and report their prediction")(
       "quiet,q", "no progress lines on stderr (phases, counts of candidates, the time left)");
+  report::add_frf_options(desc,
+                          "measured FRFs (universal file, dataset 58) to lay over them the FRFs of the deck as given, "
+                          "of the ordinary update and of the named cause's extended deck (first configuration; JSON "
+                          "frf_comparison, the report's FRF figures)");
 }
 
 /// The diagnosis options from the study file (its estimation settings and its
@@ -453,6 +459,11 @@ int cmd_diagnose(const Args& args) {
   dx::DiagnosisOptions opt;
   std::vector<dx::ConfigurationInput> configs;
   if (!diagnosis_options(vm, opt, configs, rc)) return rc;
+  const std::optional<report::FrfOptions> frf_opt = report::frf_options(vm);
+  if (!frf_opt) return kExitBadInput;
+  // The measured FRFs before the search: a bad file is reported before minutes of work.
+  std::optional<formats::uff::UffFile> frf_file;
+  if (vm.count("frf")) frf_file = formats::uff::read_uff(vm["frf"].as<std::string>());
   const std::string json_path = vm.count("json") ? vm["json"].as<std::string>() : "";
   const bool quiet_json = json_path == "-";
   // Candidates can number hundreds: their counts at most every 2 s.
@@ -477,12 +488,20 @@ int cmd_diagnose(const Args& args) {
   const std::string untrusted = untrusted_reason(dg, cause);
   j["partial"] = !untrusted.empty();
   if (!untrusted.empty()) j["partial_reason"] = untrusted;
+  if (frf_file) {
+    std::vector<std::string> notes;
+    j["frf_comparison"] = report::diagnosis_frf_comparison(*frf_file, configs.front(), dg,
+                                                           {opt.study.map_by, opt.study.map_tolerance},
+                                                           frf_opt->zeta_fallback, frf_opt->max_frfs, notes);
+    for (const auto& n : notes) std::cerr << "note: " << n << "\n";
+  }
   if (vm.count("report")) report::write_diagnosis_report(vm["report"].as<std::string>(), args, vm, j);
   if (quiet_json) {
     write_json("-", j);
     return exit_code(dg, untrusted, json_path);
   }
   print_report(dg, cause, configs, vm["measured"].as<std::string>(), untrusted, deck_path);
+  if (j.contains("frf_comparison")) std::cout << "\n" << report::frf_comparison_text(j["frf_comparison"]);
   if (!json_path.empty()) write_json(json_path, j);
   return exit_code(dg, untrusted, json_path);
 }

@@ -2,10 +2,8 @@
 /// `ssid estimate` (SSID analogue), `ssid translate` (NASSID analogue: the
 /// problem file) and `ssid update-deck` (SD2NAS analogue). See docs/estimation.md.
 #include <cmath>
-#include <fmt/format.h>
 #include <fstream>
 #include <iostream>
-#include <limits>
 #include <sstream>
 
 #include "cli/cli_util.hpp"
@@ -87,16 +85,12 @@ int cmd_estimate(const Args& args) {
       "report", po::value<std::string>(),
       "write an HTML report (MAC, frequencies before and after, parameters, convergence, mode shapes) to this file; "
       "the JSON then also holds the run, geometry and shapes (docs/report.md)")(
-      "frf", po::value<std::string>(),
-      "measured FRFs (universal file, dataset 58) to lay the deck's FRFs at the prior mean and at the estimate over "
-      "(first configuration; JSON frf_comparison, the report's FRF figures)")(
-      "frf-damping", po::value<double>(),
-      "modal damping ratio of the analysis FRFs' modes no measured mode lends its damping to (default: the measured "
-      "modes' mean; needed when they carry none)")(
-      "frf-max", po::value<int>()->default_value(6), "draw at most N measured FRFs (drive points first)")(
       "problem", po::value<std::string>(),
       "estimate from this problem file (ssid translate) instead of DECK MEASURED.unv: imported operators, Taylor model")(
       "quiet,q", "no progress lines on stderr (each cycle's J and frequency error, the time left)");
+  report::add_frf_options(desc,
+                          "measured FRFs (universal file, dataset 58) to lay the deck's FRFs at the prior mean and at "
+                          "the estimate over (first configuration; JSON frf_comparison, the report's FRF figures)");
   po::positional_options_description pos;
   pos.add("deck", 1).add("measured", 1);
   po::variables_map vm;
@@ -109,14 +103,8 @@ int cmd_estimate(const Args& args) {
     print_error("estimate: give DECK MEASURED.unv, or --problem FILE (ssid estimate --help)");
     return kExitBadInput;
   }
-  if (vm["frf-max"].as<int>() < 1) {
-    print_error(fmt::format("--frf-max: expected at least 1, got {}", vm["frf-max"].as<int>()));
-    return kExitBadInput;
-  }
-  if (vm.count("frf-damping") && !(vm["frf-damping"].as<double>() >= 0 && vm["frf-damping"].as<double>() < 1)) {
-    print_error(fmt::format("--frf-damping: expected a ratio 0 ≤ ζ < 1 (0.01 = 1 %), got {}", vm["frf-damping"].as<double>()));
-    return kExitBadInput;
-  }
+  const std::optional<report::FrfOptions> frf_opt = report::frf_options(vm);
+  if (!frf_opt) return kExitBadInput;
   estimator::EstimationProblem problem = load_problem(vm, true);
   // The measured FRFs before the estimate: a bad file is reported before the cycles run.
   std::optional<formats::uff::UffFile> frf_file;
@@ -143,9 +131,8 @@ int cmd_estimate(const Args& args) {
   std::vector<std::string> frf_notes;
   if (frf_file)
     j["frf_comparison"] = report::estimate_frf_comparison(
-        *frf_file, problem.configurations.front(), problem.prior.mean, result.update.r,
-        vm.count("frf-damping") ? vm["frf-damping"].as<double>() : std::numeric_limits<double>::quiet_NaN(),
-        static_cast<std::size_t>(vm["frf-max"].as<int>()), frf_notes);
+        *frf_file, problem.configurations.front(), problem.prior.mean, result.update.r, frf_opt->zeta_fallback,
+        frf_opt->max_frfs, frf_notes);
   for (const auto& n : frf_notes) std::cerr << "note: " << n << "\n";
   if (vm.count("report")) report::write_estimate_report(vm["report"].as<std::string>(), args, vm, problem, result, j);
   if (json_path == "-") {

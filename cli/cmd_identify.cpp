@@ -37,6 +37,7 @@
 #include "estimator/identification/stabilisation.hpp"
 #include "formats/parse_error.hpp"
 #include "formats/uff.hpp"
+#include "translators/measurement/mode_set.hpp"
 
 namespace ssid::cli {
 
@@ -346,9 +347,7 @@ Identified era_modes(const FrfSet& s, int max_order, const id::PlscfOptions& ban
 /// the geometry has no nodes or no trace lines.
 void add_test_geometry(nlohmann::json& j, const uff::UffFile& g, const Identified& r, const std::vector<Dof>& responses) {
   const std::vector<uff::Node> nodes = g.nodes_in_global();
-  std::vector<const uff::TraceLine82*> traces;
-  for (const auto& d : g.datasets)
-    if (const auto* t = std::get_if<uff::TraceLine82>(&d)) traces.push_back(t);
+  const translators::NodeSegments traces = translators::trace_segments(g);
   if (nodes.empty() || traces.empty()) {
     j["geometry_note"] = fmt::format("{}: {}; the identified shapes are not drawn (--geometry FILE.unv names a "
                                      "universal file with the test's nodes, dataset 15 or 2411, and trace lines, 82)",
@@ -364,10 +363,8 @@ void add_test_geometry(nlohmann::json& j, const uff::UffFile& g, const Identifie
   // Nodes of the originals (displacement systems), for direction_in_global.
   std::map<std::int64_t, uff::Node> original;
   for (const auto& n : g.nodes()) original[n.id] = n;
-  for (const auto* t : traces)
-    for (std::size_t k = 1; k < t->nodes.size(); ++k)
-      if (t->nodes[k - 1] != 0 && t->nodes[k] != 0 && ids.count(t->nodes[k - 1]) && ids.count(t->nodes[k]))
-        lines.push_back({t->nodes[k - 1], t->nodes[k]});
+  for (const auto& [a, b] : traces)
+    if (ids.count(a) && ids.count(b)) lines.push_back({a, b});
   j["geometry"] = {{"grids", grids}, {"lines", nlohmann::json::array()}, {"test_lines", lines}};
   nlohmann::json shapes = nlohmann::json::array();
   for (std::size_t m = 0; m < r.modes.size(); ++m) {

@@ -3,13 +3,17 @@
 #include <Eigen/SparseCore>
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <fmt/format.h>
 #include <map>
+#include <memory>
 #include <set>
+#include <stdexcept>
 
 #include "cli/model_load.hpp"
 #include "estimator/identification/frf_synthesis.hpp"
 #include "estimator/reporting/number_text.hpp"
+#include "formats/deck.hpp"
 #include "formats/parse_error.hpp"
 
 namespace ssid::cli::report {
@@ -72,10 +76,46 @@ std::vector<double> to_vector(const Eigen::VectorXd& v) { return {v.data(), v.da
 
 }  // namespace
 
+void add_frf_options(po::options_description& desc, const std::string& frf_help) {
+  desc.add_options()("frf", po::value<std::string>(), frf_help.c_str())(
+      "frf-damping", po::value<double>(),
+      "modal damping ratio of the analysis FRFs' modes no damped test mode lends its damping to (default: the test "
+      "modes' mean; needed when they carry none)")(
+      "frf-max", po::value<int>()->default_value(6), "draw at most N measured FRFs (drive points first)");
+}
+
+std::optional<FrfOptions> frf_options(const po::variables_map& vm) {
+  const int max = vm["frf-max"].as<int>();
+  if (max < 1) {
+    print_error(fmt::format("--frf-max: expected at least 1, got {}", max));
+    return std::nullopt;
+  }
+  double zeta = std::numeric_limits<double>::quiet_NaN();
+  if (vm.count("frf-damping")) {
+    zeta = vm["frf-damping"].as<double>();
+    if (!(zeta >= 0 && zeta < 1)) {
+      print_error(fmt::format("--frf-damping: expected a ratio 0 ≤ ζ < 1 (0.01 = 1 %), got {}", zeta));
+      return std::nullopt;
+    }
+  }
+  return FrfOptions{zeta, static_cast<std::size_t>(max)};
+}
+
+FrfAnalysis deck_analysis(const std::string& label, const translators::FeModel& model,
+                          const translators::FeOperators& op, std::vector<std::string>& problems) {
+  std::string source;
+  estimator::EigenOptions eo = eigen_options(model, std::nullopt, op.K.rows(), source);
+  eo.norm = estimator::ModeNormalization::Mass;  // Eq. 2 needs φᵀMφ = 1, whatever the deck's NORM
+  const estimator::EigenResult er = solve_model(op, eo, a_set_dofs(model));
+  for (const auto& w : er.warnings) problems.push_back(label + ": " + w);
+  return {label, &model, er.eigenvalues, er.modes};
+}
+
 nlohmann::json frf_comparison_json(const uff::UffFile& measured, std::vector<translators::TestNode> nodes,
-                                   const translators::NodeMapOptions& map, const translators::FeModel& model,
-                                   const std::vector<FrfAnalysis>& analyses, const FrfDamping& damping,
-                                   std::size_t max_frfs, std::vector<std::string>& problems) {
+                                   const translators::NodeMapOptions& map, const std::vector<FrfAnalysis>& analyses,
+                                   const FrfDamping& damping, std::size_t max_frfs, std::vector<std::string>& problems) {
+  if (analyses.empty() || !analyses.front().model) throw std::invalid_argument("frf_comparison_json: no analysis model");
+  const translators::FeModel& model = *analyses.front().model;
   std::vector<const uff::Function58*> frfs;
   for (const auto* f : measured.functions())
     if (f->function_type == 4) frfs.push_back(f);
@@ -131,10 +171,13 @@ nlohmann::json frf_comparison_json(const uff::UffFile& measured, std::vector<tra
     throw InputError(fmt::format("{}: none of its {} FRF(s) can be drawn ({})", measured.path, frfs.size(),
                                  left_out.empty() ? std::string("none maps") : left_out[0].get<std::string>()));
 
-  // Each DOF as a combination of the analysis DOFs: C_a = C_g T.
-  const translators::Observation obs = translators::observe(dofs, mapping, grids);
-  const Eigen::SparseMatrix<double> Ca =
-      translators::observation_matrix(obs, model.geometry().gset()) * model.reduction().T;
+  // Each DOF as a combination of each analysis's DOFs: C_a = C_g T (an extended deck
+  // has DOFs of its own; the test grids are the deck's).
+  auto observation = [&](const translators::FeModel& m) -> Eigen::SparseMatrix<double> {
+    const translators::Observation obs = translators::observe(dofs, mapping, &m == &model ? grids : grid_positions(m));
+    return translators::observation_matrix(obs, m.geometry().gset()) * m.reduction().T;
+  };
+  const Eigen::SparseMatrix<double> Ca = observation(model);
 
   nlohmann::json out;
   out["file"] = measured.path;
@@ -149,7 +192,7 @@ nlohmann::json frf_comparison_json(const uff::UffFile& measured, std::vector<tra
       modes.push_back({{"mode", r + 1}, {"hz", hz(r)}, {"zeta", zeta(r)}, {"zeta_from", from[static_cast<std::size_t>(r)]}});
     out["analyses"].push_back({{"label", a.label}, {"modes", modes}});
     zetas.push_back(zeta);
-    at_dofs.push_back(Ca * a.a_modes);
+    at_dofs.push_back(a.model == &model ? Eigen::MatrixXd(Ca * a.a_modes) : Eigen::MatrixXd(observation(*a.model) * a.a_modes));
   }
 
   out["frfs"] = nlohmann::json::array();
@@ -234,17 +277,32 @@ nlohmann::json estimate_frf_comparison(const uff::UffFile& measured, const estim
     translators::FeOperators op;
     op.K = std::move(ops.K);
     op.M = std::move(ops.M);
-    std::string source;
-    estimator::EigenOptions eo = eigen_options(*c.fe, std::nullopt, op.K.rows(), source);
-    eo.norm = estimator::ModeNormalization::Mass;  // Eq. 2 needs φᵀMφ = 1, whatever the deck's NORM
-    const estimator::EigenResult er = solve_model(op, eo, a_set_dofs(*c.fe));
-    for (const auto& w : er.warnings) problems.push_back(std::string(label) + ": " + w);
-    analyses.push_back({label, er.eigenvalues, er.modes});
+    analyses.push_back(deck_analysis(label, *c.fe, op, problems));
   }
   std::vector<double> test_hz;
   for (const auto& m : c.test) test_hz.push_back(m.frequency_hz);
   const FrfDamping damping{test_hz, c.test_damping, c.test_numbers, zeta_fallback, 0.1};
-  return frf_comparison_json(measured, c.test_nodes, c.node_map, *c.fe, analyses, damping, max_frfs, problems);
+  return frf_comparison_json(measured, c.test_nodes, c.node_map, analyses, damping, max_frfs, problems);
+}
+
+nlohmann::json diagnosis_frf_comparison(const uff::UffFile& measured, const estimator::diagnosis::ConfigurationInput& c,
+                                        const estimator::diagnosis::Diagnosis& dg, const translators::NodeMapOptions& map,
+                                        double zeta_fallback, std::size_t max_frfs, std::vector<std::string>& problems) {
+  namespace dx = estimator::diagnosis;
+  std::vector<std::pair<std::string, std::string>> decks{{"deck", c.deck_text}};  // label, deck text
+  for (const dx::Hypothesis& h : dg.ranking)
+    if (h.kind == "parameter") decks.emplace_back("parameters updated", dx::deck_at(h.deck_text, c.name, h.estimate));
+  if (dg.cause >= 0 && dg.cause_kind != "parameter") decks.emplace_back("cause: " + dg.cause_kind, dg.updated_deck);
+  std::vector<std::unique_ptr<translators::FeModel>> models;
+  std::vector<FrfAnalysis> analyses;
+  for (const auto& [label, text] : decks) {
+    const formats::Deck deck = formats::read_deck_text(text, c.name);
+    models.push_back(translators::assemble_deck(deck, c.name));
+    const translators::FeModel& m = *models.back();
+    analyses.push_back(deck_analysis(label, m, m.operators(m.initial_parameters(), false), problems));
+  }
+  const FrfDamping damping{c.measured.frequency_hz, c.measured.damping, c.measured.numbers, zeta_fallback, 0.1};
+  return frf_comparison_json(measured, c.nodes, map, analyses, damping, max_frfs, problems);
 }
 
 std::string frf_comparison_text(const nlohmann::json& c) {
@@ -252,15 +310,23 @@ std::string frf_comparison_text(const nlohmann::json& c) {
                               "the same shape over the lines\n",
                               c["frfs"].size(), c["file"].get<std::string>());
   s += "response  reference  quantity      lines (Hz)          ";
-  for (const auto& a : c["analyses"]) s += fmt::format(" {:>14}", "FRAC " + a["label"].get<std::string>());
+  std::vector<std::size_t> width;  // a column per analysis, as wide as its heading
+  for (const auto& a : c["analyses"]) {
+    const std::string head = "FRAC " + a["label"].get<std::string>();
+    width.push_back(std::max<std::size_t>(14, head.size()));
+    s += fmt::format(" {:>{}}", head, width.back());
+  }
   s += "\n";
   for (const auto& f : c["frfs"]) {
     s += fmt::format("{:>8}  {:>9}  {:<12}  {:>8}…{:<10}", fmt::format("{}:{}", f["response"][0].get<long>(), f["response"][1].get<int>()),
                      fmt::format("{}:{}", f["reference"][0].get<long>(), f["reference"][1].get<int>()),
                      f["quantity"].get<std::string>(), estimator::significant(f["hz"].front().get<double>(), 5),
                      estimator::significant(f["hz"].back().get<double>(), 5));
-    for (const auto& a : f["analyses"])
-      s += fmt::format(" {:>14}", a["frac"].is_null() ? std::string("—") : fmt::format("{:.4f}", a["frac"].get<double>()));
+    for (std::size_t a = 0; a < f["analyses"].size(); ++a) {
+      const auto& x = f["analyses"][a];
+      s += fmt::format(" {:>{}}", x["frac"].is_null() ? std::string("—") : fmt::format("{:.4f}", x["frac"].get<double>()),
+                       a < width.size() ? width[a] : 14);
+    }
     s += "\n";
   }
   if (!c["left_out"].empty()) s += fmt::format("{} FRF(s) not drawn: see frf_comparison.left_out in the JSON\n", c["left_out"].size());

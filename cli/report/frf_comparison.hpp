@@ -10,11 +10,14 @@
 /// Like report_data.hpp, it adds to the command's JSON what the report draws.
 #include <Eigen/Core>
 #include <cstddef>
+#include <optional>
 #include <nlohmann/json.hpp>
 #include <string>
 #include <utility>
 #include <vector>
 
+#include "cli/cli_util.hpp"
+#include "estimator/diagnosis/diagnosis.hpp"
 #include "estimator/study/deck_study.hpp"
 #include "formats/uff.hpp"
 #include "translators/assembly/fe_model.hpp"
@@ -23,12 +26,32 @@
 
 namespace ssid::cli::report {
 
-/// One analysis whose FRFs are drawn ("analysis", "prior mean", "estimate").
+/// The options --frf FILE, --frf-damping Z, --frf-max N (correlate, estimate, diagnose);
+/// `frf_help` says what --frf lays over what.
+void add_frf_options(po::options_description& desc, const std::string& frf_help);
+
+/// --frf-damping (NaN when not given) and --frf-max, checked.
+struct FrfOptions {
+  double zeta_fallback;
+  std::size_t max_frfs;
+};
+/// Prints what is wrong and returns nullopt for --frf-damping outside [0, 1) or --frf-max < 1.
+std::optional<FrfOptions> frf_options(const po::variables_map& vm);
+
+/// One analysis whose FRFs are drawn ("analysis", "prior mean", "estimate"): a deck's
+/// model (not owned: it outlives the call) and its modes.
 struct FrfAnalysis {
   std::string label;
+  const translators::FeModel* model = nullptr;
   Eigen::VectorXd eigenvalue;  ///< ω_r², (rad/s)²
   Eigen::MatrixXd a_modes;     ///< a-set modes, mass-normalised (φᵀMφ = 1), one column per mode
 };
+
+/// The analysis of `model` with stiffness and mass `op` (a-set): the modes correlate
+/// solves (the deck's EIGRL, else every mode of a small model, else the lowest ten),
+/// mass-normalised whatever the deck's NORM. The solver's warnings go to `problems`.
+FrfAnalysis deck_analysis(const std::string& label, const translators::FeModel& model,
+                          const translators::FeOperators& op, std::vector<std::string>& problems);
 
 /// What gives each analysis mode its damping: the test modes' own (dataset 55's viscous
 /// damping ratio; `test_hz`/`test_zeta`, those > 0 only), the nearest within
@@ -42,7 +65,7 @@ struct FrfDamping {
 };
 
 /// The FRF comparison: every measured FRF of `measured` (dataset 58, function type 4)
-/// whose response and reference nodes map to grids of `model` (through `nodes` — the
+/// whose response and reference nodes map to grids of the first analysis's model (through `nodes` — the
 /// test file's nodes, to which the FRF file's own are added — by `map`; with map by id a
 /// node nobody lists maps to the grid of its id), drive points first, at most `max_frfs`,
 /// against each analysis of `analyses`. Returns {"file", "frfs": [{"response": [node,
@@ -54,8 +77,7 @@ struct FrfDamping {
 /// "left_out": [why, ...] (FRFs not drawn)}. Notes about what was left out go to
 /// `problems`. Throws formats::InputError when no FRF can be drawn or no damping is known.
 nlohmann::json frf_comparison_json(const formats::uff::UffFile& measured, std::vector<translators::TestNode> nodes,
-                                   const translators::NodeMapOptions& map, const translators::FeModel& model,
-                                   const std::vector<FrfAnalysis>& analyses, const FrfDamping& damping,
+                                   const translators::NodeMapOptions& map, const std::vector<FrfAnalysis>& analyses, const FrfDamping& damping,
                                    std::size_t max_frfs, std::vector<std::string>& problems);
 
 /// `ssid estimate --frf`: the measured FRFs against those of the first configuration's
@@ -68,6 +90,17 @@ nlohmann::json estimate_frf_comparison(const formats::uff::UffFile& measured,
                                        const estimator::PreparedConfiguration& configuration,
                                        const Eigen::VectorXd& prior_mean, const Eigen::VectorXd& estimate,
                                        double zeta_fallback, std::size_t max_frfs, std::vector<std::string>& problems);
+
+/// `ssid diagnose --frf`: the measured FRFs against those of the deck as given ("deck"),
+/// of the ordinary update ("parameters updated": the "parameter" hypothesis's deck at its
+/// estimate) and, when an extension is named, of the extended, updated deck ("cause:
+/// KIND"). `configuration` is the first configuration (its measured modes lend the
+/// damping, its nodes the mapping).
+nlohmann::json diagnosis_frf_comparison(const formats::uff::UffFile& measured,
+                                        const estimator::diagnosis::ConfigurationInput& configuration,
+                                        const estimator::diagnosis::Diagnosis& diagnosis,
+                                        const translators::NodeMapOptions& map, double zeta_fallback,
+                                        std::size_t max_frfs, std::vector<std::string>& problems);
 
 /// The comparison as text: one line per FRF with its FRAC against each analysis.
 std::string frf_comparison_text(const nlohmann::json& comparison);

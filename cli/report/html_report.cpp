@@ -1154,15 +1154,13 @@ std::string frf_fit_section(const json& fit) {
 /// The measured FRFs against the analysis model's (`frf_comparison`, frf_comparison.hpp):
 /// the seed's Figures 6–9, with the model before and after the update where the JSON holds
 /// both. One figure per FRF (measured solid, each analysis dashed) with its FRAC per
-/// analysis (attributes data-frac: the last analysis's, data-frac-before: the first's of
-/// two), a menu to show one, and the damping each analysis mode was given.
-std::string frf_comparison_section(const json& c, bool before_after) {
+/// analysis (attributes data-frac: the last analysis's, data-frac-before: the first's when
+/// there are more: the model before the update, grey), a menu to show one, and the damping each analysis mode was given.
+std::string frf_comparison_section(const json& c, const std::string& title) {
   static const char* colours[] = {"#1f5fa8", "#2e8b57", "#8e44ad"};
   const auto& analyses = c["analyses"];
-  const bool two = analyses.size() == 2;
-  std::string s = "<section id=\"frf-comparison\">\n<h2>" +
-                  std::string(before_after ? "FRFs before and after the update" : "FRFs: measured and of the analysis") +
-                  "</h2>\n";
+  const bool before = analyses.size() > 1;  // the first is the model before the update
+  std::string s = "<section id=\"frf-comparison\">\n<h2>" + esc(title) + "</h2>\n";
   s += fmt::format("<p>Each measured FRF of {} ({} drawn, drive points first) against the FRF of the deck's modes by "
                    "modal superposition (the seed's Eq. 2), observed along the same signed test directions; each "
                    "analysis mode is damped as the test mode it stands for (table below). FRAC = |Σ H<sub>x</sub> "
@@ -1186,12 +1184,12 @@ std::string frf_comparison_section(const json& c, bool before_after) {
       const json& x = r["analyses"][a];
       const std::string label = x["label"].get<std::string>();
       // Before the update grey and dotted, as the frequency figures draw it.
-      curves.push_back({fmt::format("analysis-{}", a), two && a == 0 ? "#777777" : colours[a % 3], label, hz,
-                        complex_values(x), two && a == 0 ? "2 3" : "6 4"});
+      curves.push_back({fmt::format("analysis-{}", a), before && a == 0 ? "#777777" : colours[a % 3], label, hz,
+                        complex_values(x), before && a == 0 ? "2 3" : "6 4"});
       fracs += fmt::format("{}FRAC {} {}", a ? ", " : "", esc(label),
                            x["frac"].is_null() ? std::string("—") : fixed(x["frac"].get<double>(), 4));
       // The last analysis's FRAC (the estimate's), and the first's when there are two (before the update).
-      if (a + 1 == r["analyses"].size() || (two && a == 0))
+      if (a + 1 == r["analyses"].size() || (before && a == 0))
         data += fmt::format(" data-frac{}=\"{}\"", a + 1 == r["analyses"].size() ? "" : "-before",
                             x["frac"].is_null() ? std::string() : exact(x["frac"].get<double>()));
     }
@@ -1410,7 +1408,7 @@ std::string html_report(const json& j) {
     s += frequency_figure(accepted, nullptr, j.value("max_frequency_error_pct", 10.0), "accepted pairs");
     s += error_figure(accepted, nullptr, "accepted pairs");
     s += pair_table(j["pairs"], nullptr) + "</section>\n";
-    if (j.contains("frf_comparison")) s += frf_comparison_section(j["frf_comparison"], false);
+    if (j.contains("frf_comparison")) s += frf_comparison_section(j["frf_comparison"], "FRFs: measured and of the analysis");
   } else if (cmd == "estimate") {
     const json& c0 = j["configurations"].empty() ? json::object() : j["configurations"][0];
     s += "<section id=\"correlation\">\n<h2>Correlation at the estimate</h2>\n";
@@ -1429,12 +1427,14 @@ std::string html_report(const json& j) {
     s += frequency_figure(j["pairs"], before, 5.0, "at the estimate");
     s += error_figure(j["pairs"], before, "at the estimate");
     s += pair_table(j["pairs"], before) + "</section>\n";
-    if (j.contains("frf_comparison")) s += frf_comparison_section(j["frf_comparison"], true);
+    if (j.contains("frf_comparison")) s += frf_comparison_section(j["frf_comparison"], "FRFs before and after the update");
     s += parameter_figures(j) + convergence_figures(j);
   } else if (cmd == "identify") {
     s += identification_sections(j) + identified_shapes_section(j);
   } else if (cmd == "diagnose") {
     s += diagnosis_sections(j);
+    if (j.contains("frf_comparison"))
+      s += frf_comparison_section(j["frf_comparison"], "FRFs of the deck, of the ordinary update and of the named cause");
   } else if (cmd == "pretest") {
     s += pretest_sections(j);
   }

@@ -343,7 +343,7 @@ namespace ssid::cli::report {
 void write_diagnosis_report(const std::string& path, const Args& args, const boost::program_options::variables_map& vm,
                             nlohmann::json& j) {
   std::vector<std::string> inputs;
-  for (const char* k : {"deck", "measured", "study"})
+  for (const char* k : {"deck", "measured", "study", "frf"})
     if (vm.count(k)) inputs.push_back(vm[k].as<std::string>());
   j["run"] = run_json("diagnose", args, inputs);
   const LoadedModel lm = load_model(vm["deck"].as<std::string>());
@@ -382,7 +382,7 @@ void write_estimate_report(const std::string& path, const Args& args, const boos
       }
       Eigen::MatrixXd test_set(sol.sensor_shapes.rows(), static_cast<Eigen::Index>(c.test.size()));
       for (std::size_t k = 0; k < c.test.size(); ++k) test_set.col(static_cast<Eigen::Index>(k)) = c.test[k].shape;
-      add_shapes(j, *lm.model, om->modes(), dofs_of_labels(c.sensor_labels), sp, test_set, c.test_numbers);
+      add_shapes(j, *lm.model, om->modes(), dofs_of_labels(c.sensor_labels), sp, test_set, c.test_numbers, c.test_lines);
       // The eigen-solver's modes are mass-normalised: unit generalised masses.
       std::vector<int> fe_numbers;
       for (Eigen::Index i = 0; i < sol.sensor_shapes.cols(); ++i) fe_numbers.push_back(static_cast<int>(i) + 1);

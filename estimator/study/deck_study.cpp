@@ -423,6 +423,7 @@ ShapeRows map_sensors(const Study& study, const ConfigurationSource& sc, const t
     for (auto id : shape_nodes) nodes.push_back({id, Eigen::Vector3d::Zero(), 0});
   }
   const translators::NodeMapping mapping = translators::map_test_nodes(nodes, grids, pc.node_map);
+  pc.test_lines = translators::segments_in_grids(sc.data.trace_lines, mapping);
   for (const auto& pr : mapping.problems) pc.notes.push_back(sc.measured + ": " + pr);
   const translators::Observation obs = translators::observe(set.dofs, mapping, grids);
   if (obs.rows.empty())
@@ -847,6 +848,7 @@ MeasuredData read_measured(const std::string& path, bool frequencies_only) {
   if (d.modes.frequency_hz.empty())
     throw formats::InputError(path + ": no real normal modes (dataset 55, analysis type 2) to estimate from");
   d.nodes = translators::test_nodes(file);
+  d.trace_lines = translators::trace_segments(file);
   if (frequencies_only) {
     d.modes.dofs.clear();
     d.modes.shapes.resize(0, static_cast<Eigen::Index>(d.modes.frequency_hz.size()));

@@ -186,6 +186,8 @@ struct MeasuredData {
   /// Identified modes (`ssid identify modes --json`): per test node, the key path
   /// of its first shape entry ("modes[0].shape[3]"), for errors naming the entry.
   std::map<std::int64_t, std::string> node_keys;
+  /// The test geometry's trace lines (UFF dataset 82) between test nodes; empty for other files.
+  translators::NodeSegments trace_lines;
 };
 
 /// Reads measured modes: a universal file (dataset 55, nodes 15/2411), the
@@ -256,6 +258,9 @@ struct PreparedConfiguration {
   /// the same test (measured FRFs) reach the deck.
   std::vector<translators::TestNode> test_nodes;
   translators::NodeMapOptions node_map;
+  /// The measured file's trace lines (dataset 82) between the grids their nodes map to:
+  /// the test's own wire frame, for drawing the test shapes.
+  translators::NodeSegments test_lines;
 };
 
 struct EstimationProblem {

@@ -261,3 +261,125 @@ TEST_CASE("ssid estimate --frf: FRFs at the prior mean and at the estimate again
   CHECK(html.find("FRFs before and after the update") != std::string::npos);
   CHECK(html.find("data-frac-before=\"") != std::string::npos);
 }
+
+namespace {
+
+/// Eight 1 kg masses in X (grids 1–8 at x = 1…8 m) on a fixed-free chain of springs, all
+/// one PELAS 11 (k = 1e4 N/m) designed by DESVAR KS; `hidden` kg more at grid 6 in the truth.
+struct Chain8 {
+  Eigen::MatrixXd M, K, phi;
+  Eigen::VectorXd lambda;
+  explicit Chain8(double hidden = 0) {
+    const int n = 8;
+    const double k = 1e4;
+    M = Eigen::MatrixXd::Identity(n, n);
+    M(5, 5) += hidden;
+    K = Eigen::MatrixXd::Zero(n, n);
+    for (int i = 0; i < n; ++i) {  // spring i joins mass i to mass i−1 (to ground for i = 0)
+      K(i, i) += k;
+      if (i > 0) K(i - 1, i - 1) += k, K(i, i - 1) -= k, K(i - 1, i) -= k;
+    }
+    Eigen::GeneralizedSelfAdjointEigenSolver<Eigen::MatrixXd> es(K, M);
+    lambda = es.eigenvalues();
+    phi = es.eigenvectors();
+  }
+  /// Accelerance from `ref` to `resp` (grids 1–8) at f Hz, modal damping ζ_r for every mode.
+  cd accelerance(double f, const Eigen::VectorXd& zeta, int resp, int ref) const {
+    const double w = 2 * M_PI * f;
+    Eigen::VectorXd c(lambda.size());
+    for (Eigen::Index r = 0; r < lambda.size(); ++r) c(r) = 2 * zeta(r) * std::sqrt(lambda(r));
+    const Eigen::MatrixXd C = M * phi * c.asDiagonal() * phi.transpose() * M;
+    const Eigen::MatrixXcd D = K.cast<cd>() - w * w * M.cast<cd>() + cd(0, w) * C.cast<cd>();
+    return -w * w * D.partialPivLu().solve(Eigen::MatrixXcd::Identity(8, 8))(resp - 1, ref - 1);
+  }
+  static std::string deck() {
+    std::string d = "SOL 103\nCEND\nBEGIN BULK\n";
+    for (int g = 1; g <= 8; ++g) d += "GRID," + std::to_string(g) + ",," + std::to_string(g) + ".,0.,0.,,23456\n";
+    d += "CELAS1,101,11,1,1\n";
+    for (int g = 2; g <= 8; ++g)
+      d += "CELAS1," + std::to_string(100 + g) + ",11," + std::to_string(g) + ",1," + std::to_string(g - 1) + ",1\n";
+    for (int g = 1; g <= 8; ++g) d += "CONM2," + std::to_string(200 + g) + "," + std::to_string(g) + ",,1.0\n";
+    d += "PELAS,11,10000.0\nDESVAR,1,KS,10000.0,1000.0,1.0E5\nDVPREL1,1,PELAS,11,K,,,0.0,,+DV1\n+DV1,1,1.0\nENDDATA\n";
+    return d;
+  }
+};
+
+}  // namespace
+
+TEST_CASE("ssid diagnose --frf: the deck's, the ordinary update's and the named cause's FRFs over measured ones",
+          "[cli][frf][diagnose][report]") {
+  const Chain8 nominal, truth(0.3);
+  const Eigen::VectorXd zeta = Eigen::VectorXd::Constant(8, 0.02);
+  const fs::path deck = scratch("chain8.bdf"), test = scratch("chain8_test.unv"), meas = scratch("chain8_frf.unv"),
+                 out = scratch("g.json"), rep = scratch("g.html");
+  std::ofstream(deck) << Chain8::deck();
+  {
+    uff::UffFile f;
+    std::vector<std::int64_t> nodes{1, 2, 3, 4, 5, 6, 7, 8};
+    for (int r = 0; r < 6; ++r) {
+      Eigen::MatrixXd v = Eigen::MatrixXd::Zero(8, 3);
+      v.col(0) = truth.phi.col(r);
+      f.datasets.emplace_back(uff::NodalData55::normal_mode(r + 1, std::sqrt(truth.lambda(r)) / (2 * M_PI), nodes, v,
+                                                            0.0, zeta(r)));
+    }
+    uff::write_uff(f, test.string(), uff::Precision::Extended);
+    uff::UffFile m;
+    for (const auto& [resp, ref] : {std::pair<int, int>{8, 8}, {6, 8}}) {
+      uff::Function58 fn;
+      fn.function_type = 4;
+      fn.function_id = resp;
+      fn.response_node = resp;
+      fn.response_direction = 1;
+      fn.reference_node = ref;
+      fn.reference_direction = 1;
+      fn.even = true;
+      fn.abscissa_min = 0;
+      fn.abscissa_increment = 0.05;
+      fn.axes[1].specific_data_type = 12;
+      for (int k = 0; k <= 600; ++k) {
+        fn.x.push_back(0.05 * k);
+        fn.y.push_back(truth.accelerance(0.05 * k, zeta, resp, ref));
+      }
+      m.datasets.emplace_back(fn);
+    }
+    uff::write_uff(m, meas.string(), uff::Precision::Extended);
+  }
+  const CliResult r = run_ssid("diagnose -q " + deck.string() + " " + test.string() + " --kinds missing_mass --frf " +
+                               meas.string() + " --json " + out.string() + " --report " + rep.string());
+  INFO(r.out << r.err);
+  REQUIRE((r.code == 0 || r.code == 3));
+  const json j = read_json(out);
+  REQUIRE(j["cause"]["kind"] == "missing_mass");
+  CHECK(j["cause"]["location"]["grids"][0] == 6);
+  const json& c = j["frf_comparison"];
+  REQUIRE(c["analyses"].size() == 3);
+  CHECK(c["analyses"][0]["label"] == "deck");
+  CHECK(c["analyses"][1]["label"] == "parameters updated");
+  CHECK(c["analyses"][2]["label"] == "cause: missing_mass");
+  REQUIRE(c["frfs"].size() == 2);
+  for (const auto& f : c["frfs"]) {
+    // The deck's curve is the dense solve of the nominal chain, with every mode (8 DOFs:
+    // all modes solved), the damping of the test mode each stands for (or the mean).
+    const Eigen::VectorXd z = [&] {
+      Eigen::VectorXd v(8);
+      for (int m = 0; m < 8; ++m) v(m) = c["analyses"][0]["modes"][m]["zeta"];
+      return v;
+    }();
+    const auto& hz = f["hz"];
+    double peak = 0;
+    for (const auto& x : hz) peak = std::max(peak, std::abs(nominal.accelerance(x, z, f["response"][0], f["reference"][0])));
+    for (std::size_t k = 0; k < hz.size(); k += 25) {
+      const cd want = nominal.accelerance(hz[k], z, f["response"][0], f["reference"][0]);
+      const cd got(f["analyses"][0]["re"][k].get<double>(), f["analyses"][0]["im"][k].get<double>());
+      CHECK(std::abs(got - want) <= 1e-9 * peak);
+    }
+    // The named cause brings the FRFs closest to the measured ones.
+    const double deck_frac = f["analyses"][0]["frac"], param = f["analyses"][1]["frac"], cause = f["analyses"][2]["frac"];
+    CHECK(cause > 0.99);
+    CHECK(cause > param);
+    CHECK(cause > deck_frac);
+  }
+  const std::string html = cli_slurp(rep);
+  CHECK(html.find("FRFs of the deck, of the ordinary update and of the named cause") != std::string::npos);
+  CHECK(html.find("id=\"fig-frfc-1\"") != std::string::npos);
+}

@@ -380,7 +380,8 @@ TEST_CASE("ssid correlate --report: MAC, frequencies and shapes are the JSON's",
   }
 }
 
-TEST_CASE("ssid correlate --report: a test file's own trace lines are the test shapes' wire frame", "[cli][report]") {
+TEST_CASE("ssid correlate and estimate --report: a test file's own trace lines are the test shapes' wire frame",
+          "[cli][report]") {
   // The sample test with a trace line (dataset 82) through four of its nodes, a pen lift,
   // and a segment to a node that is not in the test: the segments between mapped nodes,
   // in grid ids, replace the wire frame derived from the deck.
@@ -404,6 +405,11 @@ TEST_CASE("ssid correlate --report: a test file's own trace lines are the test s
   std::set<std::pair<std::int64_t, std::int64_t>> got;
   for (const auto& l : g["test_lines"]) got.insert({l[0].get<std::int64_t>(), l[1].get<std::int64_t>()});
   CHECK(got == want);  // the rod's test nodes are its grids' ids (mapped by id)
+  // The estimate's report draws the same lines (the study maps the nodes the same way).
+  const Report e = run_report("estimate_trace", "estimate -q " + src("samples/mpi_rod.bdf") + " " + test.string() +
+                                                    " --study " + src("samples/estimate/study.json"));
+  CHECK(e.j["geometry"]["test_lines_from"] == "the test file's trace lines (dataset 82)");
+  CHECK(e.j["geometry"]["test_lines"] == g["test_lines"]);
   // Without trace lines the report says the wire frame comes from the deck.
   CHECK(correlate_report().j["geometry"]["test_lines_from"] == "the deck's elements between the test grids");
 }

@@ -1,8 +1,10 @@
 #include "translators/measurement/mode_set.hpp"
 
+#include <algorithm>
 #include <map>
 #include <set>
 #include <unordered_map>
+#include <variant>
 
 namespace ssid::translators {
 
@@ -88,6 +90,25 @@ formats::uff::UffFile mode_set_to_uff(const ModeSet& set, const std::vector<form
     f.datasets.push_back(std::move(m));
   }
   return f;
+}
+
+NodeSegments trace_segments(const formats::uff::UffFile& file) {
+  std::set<std::pair<std::int64_t, std::int64_t>> out;
+  for (const auto& d : file.datasets)
+    if (const auto* t = std::get_if<formats::uff::TraceLine82>(&d))
+      for (std::size_t k = 1; k < t->nodes.size(); ++k)
+        if (t->nodes[k - 1] != 0 && t->nodes[k] != 0 && t->nodes[k - 1] != t->nodes[k])
+          out.insert(std::minmax(t->nodes[k - 1], t->nodes[k]));
+  return {out.begin(), out.end()};
+}
+
+NodeSegments segments_in_grids(const NodeSegments& segments, const NodeMapping& mapping) {
+  std::set<std::pair<std::int64_t, std::int64_t>> out;
+  for (const auto& [a, b] : segments) {
+    const auto ga = mapping.grid_of(a), gb = mapping.grid_of(b);
+    if (ga && gb && *ga != *gb) out.insert(std::minmax(*ga, *gb));
+  }
+  return {out.begin(), out.end()};
 }
 
 std::vector<TestNode> test_nodes(const formats::uff::UffFile& file) {

@@ -51,6 +51,16 @@ formats::uff::UffFile mode_set_to_uff(const ModeSet& set, const std::vector<form
 /// The nodes of a universal file (datasets 15 and 2411) as the mapping takes them.
 std::vector<TestNode> test_nodes(const formats::uff::UffFile& file);
 
+/// Segments between two nodes, (smaller id, larger id), each once, sorted.
+using NodeSegments = std::vector<std::pair<std::int64_t, std::int64_t>>;
+
+/// The test geometry's trace lines (dataset 82; node 0 lifts the pen) as segments.
+NodeSegments trace_segments(const formats::uff::UffFile& file);
+
+/// `segments` between test nodes as segments between the grids they map to: those whose
+/// two nodes map to two different grids.
+NodeSegments segments_in_grids(const NodeSegments& segments, const NodeMapping& mapping);
+
 /// The measured DOFs named by the 58 functions of a file (response node and
 /// signed direction), each once, in file order: the sensors of an FRF test.
 std::vector<MeasuredDof> measured_dofs(const formats::uff::UffFile& file);
