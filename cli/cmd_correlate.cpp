@@ -18,6 +18,7 @@
 #include "cli/model_load.hpp"
 #include "cli/report/frf_comparison.hpp"
 #include "cli/report/report_data.hpp"
+#include "cli/report/tam_xor.hpp"
 #include "estimator/correlation/correlate.hpp"
 #include "estimator/correlation/measures.hpp"
 #include "estimator/pretest/measurement_coordinates.hpp"
@@ -52,58 +53,6 @@ nlohmann::json matrix_json(const Eigen::MatrixXd& m) {
     j.push_back(row);
   }
   return j;
-}
-
-/// The deck's K and M in coordinates where each test DOF `dofs` (grids, measured
-/// directions ±1..±3 in basic) is one coordinate (measurement_coordinates.hpp: a
-/// direction not along the grid's displacement frame is a combination of its
-/// translations), and those coordinates' rows, in the order of `dofs`: what a
-/// test-analysis model condenses onto. Throws InputError saying why not: a rotational
-/// test DOF, a test grid whose translations are not in the analysis set (dependent or
-/// constrained).
-struct TestCoordinates {
-  Eigen::SparseMatrix<double> K, M;
-  std::vector<Eigen::Index> rows;
-};
-TestCoordinates test_coordinates(const translators::FeModel& model, const translators::FeOperators& op,
-                                 const std::vector<translators::MeasuredDof>& dofs) {
-  namespace pt = estimator::pretest;
-  std::map<std::int64_t, Eigen::Matrix3d> frame;
-  for (const auto& g : grid_positions(model)) frame[g.id] = g.frame;
-  std::vector<pt::SensorDirection> dirs;
-  std::vector<std::int64_t> test_grids;
-  for (const auto& d : dofs) {
-    const int axis = std::abs(d.direction);
-    if (axis < 1 || axis > 3)
-      throw formats::InputError(fmt::format("test DOF {}:{} is a rotation (the TAMs reduce onto translations)", d.node,
-                                            d.direction));
-    const auto f = frame.find(d.node);
-    if (f == frame.end()) throw formats::InputError(fmt::format("test DOF {}:{}: no grid {}", d.node, d.direction, d.node));
-    // The basic direction in the grid's displacement frame (the frame's columns are its axes in basic).
-    const Eigen::Vector3d e = (d.direction < 0 ? -1.0 : 1.0) * Eigen::Vector3d::Unit(axis - 1);
-    dirs.push_back({d.node, f->second.transpose() * e});
-    if (std::find(test_grids.begin(), test_grids.end(), d.node) == test_grids.end()) test_grids.push_back(d.node);
-  }
-  const auto a_set = a_set_dofs(model);
-  const pt::MeasurementCoordinates mc =
-      pt::measurement_coordinates(a_set, pt::translational_candidates(a_set, test_grids), dirs);
-  // The i-th direction given at a grid is its i-th directed candidate.
-  std::map<std::int64_t, std::vector<Eigen::Index>> rows_of;
-  for (const auto& c : mc.candidates)
-    if (c.directed) rows_of[c.dof.point].push_back(c.row);
-  std::map<std::int64_t, std::size_t> used;
-  TestCoordinates tc{mc.congruent(op.K), mc.congruent(op.M), {}};
-  for (const auto& d : dofs) tc.rows.push_back(rows_of.at(d.node).at(used[d.node]++));
-  return tc;
-}
-
-/// The reduced mass of a test-analysis model ("guyan" or "irs") on the test DOFs of `tc`.
-/// Throws InputError when the reduction fails.
-Eigen::MatrixXd tam_mass(const std::string& kind, const TestCoordinates& tc) {
-  const estimator::ReducedModel r =
-      kind == "guyan" ? estimator::guyan_reduce(tc.K, tc.M, tc.rows) : estimator::irs_reduce(tc.K, tc.M, tc.rows);
-  if (r.status != estimator::ReductionStatus::Ok) throw formats::InputError(r.message);
-  return r.M;
 }
 
 }  // namespace
@@ -151,14 +100,7 @@ int cmd_correlate(const Args& args) {
   }
   std::vector<std::string> tams;
   if (vm.count("tam")) {
-    std::stringstream ss(vm["tam"].as<std::string>());
-    for (std::string t; std::getline(ss, t, ',');) {
-      if (t != "guyan" && t != "irs") {
-        print_error("--tam: expected guyan and/or irs (comma-separated), got \"" + t + "\"");
-        return 2;
-      }
-      if (std::find(tams.begin(), tams.end(), t) == tams.end()) tams.push_back(t);
-    }
+    if (!report::parse_tams(vm["tam"].as<std::string>(), tams)) return 2;
     if (!from_deck) {
       print_error("--tam needs the deck's stiffness and mass: give a deck as the first argument");
       return 2;
@@ -324,23 +266,10 @@ int cmd_correlate(const Args& args) {
     j["cross_orthogonality"] = report::cross_orthogonality_json(c.fe.shapes, c.fe.modal_mass, c.fe.numbers,
                                                                 c.test.shapes, c.test.numbers, accepted);
     // Guyan and IRS need K and M: the analysis shapes at the test DOFs are those of
-    // synthetic_test (each basic direction's component), the same coordinates tam_mass
-    // reduces onto (made once for every TAM asked).
-    std::optional<TestCoordinates> tc;
-    for (const auto& t : tams) {
-      nlohmann::json x;
-      try {
-        if (!tc) tc = test_coordinates(*lm.model, *op_kept, c.dofs);
-        x = report::cross_orthogonality_json(c.fe.shapes, tam_mass(t, *tc), c.fe.numbers,
-                                             c.test.shapes, c.test.numbers, accepted,
-                                             t == "guyan" ? "Guyan (static condensation of the deck's K, M onto the test DOFs)"
-                                                          : "IRS (Guyan corrected for the omitted DOFs' inertia, O'Callahan)");
-      } catch (const formats::InputError& e) {
-        x = {{"unavailable", e.what()}};
-        problems.push_back("--tam " + t + ": " + e.what());
-      }
-      j["cross_orthogonality_tam"][t] = x;
-    }
+    // synthetic_test (each basic direction's component), the coordinates the TAMs reduce onto.
+    if (!tams.empty())
+      j["cross_orthogonality_tam"] = report::tam_cross_orthogonality_json(
+          tams, *lm.model, *op_kept, c.dofs, c.fe.shapes, c.fe.numbers, c.test.shapes, c.test.numbers, accepted, problems);
   }
   // FE FRFs over the measured ones: --frf's file, or with --report the test file's own.
   std::optional<uff::UffFile> frf_file;
@@ -354,8 +283,8 @@ int cmd_correlate(const Args& args) {
     for (int i = 0; i < fe_modes.size(); ++i) unit_modes.col(i) /= std::sqrt(fe_modes.generalized_mass(i));
     const report::FrfDamping damping{test.frequency_hz, test.damping, test.numbers, frf_opt->zeta_fallback, 0.1};
     j["frf_comparison"] = report::frf_comparison_json(*frf_file, nodes, mo,
-                                                      {{"analysis", lm.model.get(), fe_modes.eigenvalues, unit_modes}}, damping,
-                                                      frf_opt->max_frfs, problems);
+                                                      {{"analysis", lm.model.get(), fe_modes.eigenvalues, unit_modes}},
+                                                      damping, frf_opt->max_frfs, problems);
   }
   j["problems"] = problems;
 

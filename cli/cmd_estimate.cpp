@@ -11,6 +11,7 @@
 #include "cli/progress_lines.hpp"
 #include "cli/report/frf_comparison.hpp"
 #include "cli/report/report_data.hpp"
+#include "cli/report/tam_xor.hpp"
 #include "estimator/study/deck_study.hpp"
 #include "formats/deck_writer.hpp"
 #include "formats/parse_error.hpp"
@@ -88,6 +89,9 @@ int cmd_estimate(const Args& args) {
       "problem", po::value<std::string>(),
       "estimate from this problem file (ssid translate) instead of DECK MEASURED.unv: imported operators, Taylor model")(
       "quiet,q", "no progress lines on stderr (each cycle's J and frequency error, the time left)");
+  desc.add_options()("tam", po::value<std::string>(),
+                     "cross-orthogonality at the estimate also with these test-analysis models' masses on the sensor "
+                     "DOFs, guyan and/or irs (comma-separated; first configuration; JSON cross_orthogonality_tam)");
   report::add_frf_options(desc,
                           "measured FRFs (universal file, dataset 58) to lay the deck's FRFs at the prior mean and at "
                           "the estimate over (first configuration; JSON frf_comparison, the report's FRF figures)");
@@ -96,7 +100,7 @@ int cmd_estimate(const Args& args) {
   po::variables_map vm;
   int rc = 0;
   if (!parse_options(args, "ssid estimate DECK MEASURED.unv [--study FILE] [--json FILE] [--report FILE.html] [--frf FRF.unv "
-                     "[--frf-damping Z] [--frf-max N]] | ssid estimate --problem FILE [--json FILE]",
+                     "[--frf-damping Z] [--frf-max N]] [--tam guyan,irs] | ssid estimate --problem FILE [--json FILE]",
                      desc, pos, vm, rc))
     return rc;
   if (!vm.count("deck") && !vm.count("problem")) {
@@ -105,6 +109,8 @@ int cmd_estimate(const Args& args) {
   }
   const std::optional<report::FrfOptions> frf_opt = report::frf_options(vm);
   if (!frf_opt) return kExitBadInput;
+  std::vector<std::string> tams;
+  if (vm.count("tam") && !report::parse_tams(vm["tam"].as<std::string>(), tams)) return kExitBadInput;
   estimator::EstimationProblem problem = load_problem(vm, true);
   // The measured FRFs before the estimate: a bad file is reported before the cycles run.
   std::optional<formats::uff::UffFile> frf_file;
@@ -128,12 +134,15 @@ int cmd_estimate(const Args& args) {
     return kExitInterrupted;
   }
   nlohmann::json j = estimator::result_json(problem, result);
-  std::vector<std::string> frf_notes;
+  std::vector<std::string> notes;
   if (frf_file)
     j["frf_comparison"] = report::estimate_frf_comparison(
         *frf_file, problem.configurations.front(), problem.prior.mean, result.update.r, frf_opt->zeta_fallback,
-        frf_opt->max_frfs, frf_notes);
-  for (const auto& n : frf_notes) std::cerr << "note: " << n << "\n";
+        frf_opt->max_frfs, notes);
+  if (!tams.empty())
+    j["cross_orthogonality_tam"] = report::estimate_tam_json(problem.configurations.front(), result.update.r,
+                                                             j["configurations"][0]["pairs"], tams, notes);
+  for (const auto& n : notes) std::cerr << "note: " << n << "\n";
   if (vm.count("report")) report::write_estimate_report(vm["report"].as<std::string>(), args, vm, problem, result, j);
   if (json_path == "-") {
     write_json("-", j);

@@ -1422,6 +1422,8 @@ std::string html_report(const json& j) {
                         "; outlined: the pairs of the update.",
                     "");
     if (j.contains("cross_orthogonality")) s += xor_figure(j["cross_orthogonality"], true);
+    if (j.contains("cross_orthogonality_tam"))
+      for (const auto& [tam, x] : j["cross_orthogonality_tam"].items()) s += xor_figure(x, true, "fig-xor-" + tam);
     s += "</section>\n<section id=\"frequencies\">\n<h2>Frequencies before and after the update</h2>\n";
     const json* before = j.contains("initial_pairs") ? &j["initial_pairs"] : nullptr;
     s += frequency_figure(j["pairs"], before, 5.0, "at the estimate");

@@ -751,3 +751,43 @@ TEST_CASE("the samples' reports render in headless Chromium", "[cli][report][bro
   check_in_browser(pretest_report().path, 10);
   check_in_browser(identify_report().path, 1, 600);
 }
+
+TEST_CASE("ssid estimate --tam: Guyan and IRS cross-orthogonality at the estimate, as correlate gives the updated deck",
+          "[cli][report][tam]") {
+  // correlate --tam is checked against a dense condensation (test_cli_correlate_deck.cpp);
+  // the estimate's figures must be the same on the deck update-deck writes from its result.
+  const Report e = run_report("estimate_tam", "estimate -q " + src("samples/mpi_rod.bdf") + " " +
+                                                  src("samples/estimate/measured.unv") + " --study " +
+                                                  src("samples/estimate/study.json") + " --tam guyan,irs");
+  const fs::path updated = scratch() / "estimate_tam_updated.bdf", cj = scratch() / "estimate_tam_correlate.json";
+  REQUIRE(run_ssid("update-deck " + src("samples/mpi_rod.bdf") + " " + (scratch() / "estimate_tam.json").string() +
+                   " -o " + updated.string()).code == 0);
+  REQUIRE(run_ssid("correlate " + updated.string() + " " + src("samples/estimate/measured.unv") +
+                   " --tam guyan,irs --json " + cj.string()).code == 0);
+  const json c = json::parse(cli_slurp(cj));
+  for (const char* tam : {"guyan", "irs"}) {
+    INFO(tam);
+    const json& xe = e.j["cross_orthogonality_tam"][tam];
+    const json& xc = c["cross_orthogonality_tam"][tam];
+    REQUIRE(!xe.contains("unavailable"));
+    REQUIRE(!xc.contains("unavailable"));
+    CHECK(xe["pairs"].size() == e.j["configurations"][0]["pairs"].size());
+    const auto fe_e = xe["fe_modes"].get<std::vector<int>>(), fe_c = xc["fe_modes"].get<std::vector<int>>();
+    const auto t_e = xe["test_modes"].get<std::vector<int>>(), t_c = xc["test_modes"].get<std::vector<int>>();
+    std::size_t compared = 0;
+    for (std::size_t i = 0; i < fe_e.size(); ++i) {
+      const auto ic = std::find(fe_c.begin(), fe_c.end(), fe_e[i]) - fe_c.begin();
+      if (ic == static_cast<long>(fe_c.size())) continue;
+      for (std::size_t k = 0; k < t_e.size(); ++k) {
+        const auto kc = std::find(t_c.begin(), t_c.end(), t_e[k]) - t_c.begin();
+        if (kc == static_cast<long>(t_c.size())) continue;
+        // The updated deck's DESVARs are written to the card's digits: 1e-8 absolute.
+        CHECK(xe["matrix"][i][k].get<double>() ==
+              Approx(xc["matrix"][static_cast<std::size_t>(ic)][static_cast<std::size_t>(kc)].get<double>()).margin(1e-8));
+        ++compared;
+      }
+    }
+    CHECK(compared >= 20 * 20);
+    CHECK(e.html.find(std::string("id=\"fig-xor-") + tam + "\"") != std::string::npos);
+  }
+}
