@@ -1117,6 +1117,16 @@ std::vector<std::complex<double>> complex_values(const json& p) {
   return v;
 }
 
+/// The menu that shows one FRF figure (figures with data-frf = the record's index) or all.
+std::string frf_menu(const json& records) {
+  std::string s = "<div class=\"controls\">FRF <select id=\"frf\"><option value=\"all\">all</option>";
+  std::size_t k = 0;
+  for (const auto& r : records)
+    s += fmt::format("<option value=\"{}\">response {} / reference {}</option>", k++, dof_pair(r["response"]),
+                     dof_pair(r["reference"]));
+  return s + "</select></div>\n";
+}
+
 /// The measured FRFs against those of the identified modal model (the seed's Figure 4:
 /// the synthesized FRFs laid over the measured ones), one figure per FRF with its FRAC,
 /// a menu to show one.
@@ -1129,13 +1139,8 @@ std::string frf_fit_section(const json& fit) {
                    "the lines: 1 when the two have the same shape.</p>\n",
                    esc(fit["model"].get<std::string>()), significant(fit["band_hz"][0], 4), significant(fit["band_hz"][1], 4),
                    significant(fit["fit_error"], 3));
-  s += "<div class=\"controls\">FRF <select id=\"frf\"><option value=\"all\">all</option>";
+  s += frf_menu(fit["records"]);
   std::size_t k = 0;
-  for (const auto& r : fit["records"])
-    s += fmt::format("<option value=\"{}\">response {} / reference {}</option>", k++, dof_pair(r["response"]),
-                     dof_pair(r["reference"]));
-  s += "</select></div>\n";
-  k = 0;
   for (const auto& r : fit["records"]) {
     const std::string title = "response " + dof_pair(r["response"]) + " / reference " + dof_pair(r["reference"]);
     const std::vector<FrfCurve> curves{{"measured", "#c0392b", "measured", hz, complex_values(r["measured"]), ""},
@@ -1169,13 +1174,8 @@ std::string frf_comparison_section(const json& c, const std::string& title) {
   if (!c["left_out"].empty())
     s += fmt::format("<p class=\"note\">{} FRF(s) not drawn, e.g. {}.</p>\n", c["left_out"].size(),
                      esc(c["left_out"][0].get<std::string>()));
-  s += "<div class=\"controls\">FRF <select id=\"frf\"><option value=\"all\">all</option>";
+  s += frf_menu(c["frfs"]);
   std::size_t k = 0;
-  for (const auto& r : c["frfs"])
-    s += fmt::format("<option value=\"{}\">response {} / reference {}</option>", k++, dof_pair(r["response"]),
-                     dof_pair(r["reference"]));
-  s += "</select></div>\n";
-  k = 0;
   for (const auto& r : c["frfs"]) {
     const std::vector<double> hz = r["hz"].get<std::vector<double>>();
     std::vector<FrfCurve> curves{{"measured", "#c0392b", "measured", hz, complex_values(r["measured"]), ""}};
