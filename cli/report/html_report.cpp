@@ -491,7 +491,7 @@ std::string single_shape_svg(const std::string& id, const std::string& label, do
                              const std::vector<View>& vs, const std::vector<Placement>& pl,
                              const std::vector<std::pair<std::string, std::string>>& behind, const std::string& cls,
                              const Lines& lines, const Points& grids, const Points& shape, double amp,
-                             const std::string& title) {
+                             const std::string& title, const std::string& pre = "") {
   std::string svg = fmt::format("<svg id=\"{}\" class=\"shapes\" xmlns=\"http://www.w3.org/2000/svg\" viewBox=\"0 0 {} {}\" "
                                 "width=\"{}\" height=\"{}\" role=\"img\" aria-label=\"{}\">\n",
                                 id, px(w), px(h), px(w), px(h), esc(label));
@@ -499,10 +499,11 @@ std::string single_shape_svg(const std::string& id, const std::string& label, do
     svg += fmt::format("<g class=\"view\" data-view=\"{}\"{}>\n<g transform=\"translate(0 0)\"><rect x=\"0.5\" y=\"0.5\" "
                        "width=\"{}\" height=\"{}\" fill=\"none\" stroke=\"#ddd\"/>",
                        vs[v].name, v ? " style=\"display:none\"" : "", px(w - 1), px(h - 1));
-    for (const auto& [prefix, c] : behind) svg += fmt::format("<use href=\"#{}-{}\" class=\"{}\"/>\n", prefix, vs[v].name, c);
-    svg += fmt::format("<path class=\"deformed {}\" data-base=\"wire-{}\" d=\"{}\"/>\n<text x=\"8\" y=\"16\" "
+    for (const auto& [prefix, c] : behind)
+      svg += fmt::format("<use href=\"#{}{}-{}\" class=\"{}\"/>\n", pre, prefix, vs[v].name, c);
+    svg += fmt::format("<path class=\"deformed {}\" data-base=\"{}wire-{}\" d=\"{}\"/>\n<text x=\"8\" y=\"16\" "
                        "font-size=\"12\">{}</text></g>\n</g>\n",
-                       cls, vs[v].name, lines_d(lines, grids, &shape, amp, pl[v]), esc(title));
+                       cls, pre, vs[v].name, lines_d(lines, grids, &shape, amp, pl[v]), esc(title));
   }
   return svg + "</svg>\n";
 }
@@ -512,14 +513,15 @@ std::string single_shape_svg(const std::string& id, const std::string& label, do
 /// the analysis panel's), beside the MEMS coefficients α of every test mode.
 std::string mems_figure(const json& sh, std::size_t k, const Points& grids,
                         const std::vector<std::pair<std::int64_t, std::int64_t>>& test_lines, double amp,
-                        const std::vector<View>& vs, const std::vector<Placement>& pl, double w, double h) {
+                        const std::vector<View>& vs, const std::vector<Placement>& pl, double w, double h,
+                        const std::string& pre = "") {
   const json& m = sh["mems"];
   const Points err = read_points(m["error"]);
   const int fm = sh["fe_mode"], tm = sh["test_mode"];
   const std::string svg =
-      single_shape_svg(fmt::format("mems-{}-svg", k), fmt::format("error mode of analysis mode {}", fm), w, h, vs, pl,
+      single_shape_svg(fmt::format("{}mems-{}-svg", pre, k), fmt::format("error mode of analysis mode {}", fm), w, h, vs, pl,
                        {{"undeformed", "undeformed"}, {"wire", "wire0"}}, "error", test_lines, grids, err, amp,
-                       fmt::format("error mode ê, e² = {}", significant(m["error_squared"], 4)));
+                       fmt::format("error mode ê, e² = {}", significant(m["error_squared"], 4)), pre);
   // The coefficients α_i of the unit-norm test shapes.
   std::vector<double> a{0.0};
   for (const auto& r : m["alpha"]) a.push_back(r[1]);
@@ -541,15 +543,17 @@ std::string mems_figure(const json& sh, std::size_t k, const Points& grids,
   if (cats.size() > 30)
     for (std::size_t i = 1; i < cats.size(); i += 2) cats[i].second.clear();
   c.set_x_categories(cats);
+  // A later configuration's figures (`pre` not empty) stay out of the pair menu: always shown.
   return fmt::format(
-      "<figure id=\"mems-{0}\" class=\"mems\" data-pair=\"{0}\" data-error-squared=\"{1}\" data-mac-superposition=\"{2}\" "
+      "<figure id=\"{12}mems-{0}\" class=\"mems\"{13} data-error-squared=\"{1}\" data-mac-superposition=\"{2}\" "
       "data-pair-error-squared=\"{3}\">\n{4}{5}<figcaption>Pair {6}, MEMS (the seed's Eqs. 2–3 and Figure 4): analysis mode {7} "
       "fitted by every test mode (each scaled to unit norm) in the least-squares sense. Left: the error mode ê = φ_a − Σ α_i φ_e_i "
       "on the test's wire frame, at the analysis panel's amplitude; right: the coefficients α_i (red: test mode {8}, the pair's). "
       "e² = {9}, MAC of the superposition {10}; with the pair's test shape alone e² = {11}.</figcaption>\n</figure>\n",
       k, exact(m["error_squared"]), exact(m["mac_superposition"]), exact(m["pair_error_squared"]), svg,
-      c.svg(fmt::format("mems-{}-alpha-svg", k), "MEMS coefficients"), k + 1, fm, tm, significant(m["error_squared"], 4),
-      fixed(m["mac_superposition"], 4), significant(m["pair_error_squared"], 4));
+      c.svg(fmt::format("{}mems-{}-alpha-svg", pre, k), "MEMS coefficients"), k + 1, fm, tm,
+      significant(m["error_squared"], 4), fixed(m["mac_superposition"], 4), significant(m["pair_error_squared"], 4), pre,
+      pre.empty() ? fmt::format(" data-pair=\"{}\"", k) : std::string());
 }
 
 /// The diagonal of the grids' bounding box: the structure's size, against which the
@@ -578,7 +582,9 @@ std::string view_menu(const std::vector<View>& vs, bool animate) {
   return s + "</div>\n";
 }
 
-std::string shapes_section(const json& j) {
+/// `pre` prefixes every id (a later configuration's section: "c2-"); only the first
+/// section (pre empty) has the view and pair menus, which the page's script finds by id.
+std::string shapes_section(const json& j, const std::string& pre = "", const std::string& title = "Mode shapes") {
   if (!j.contains("geometry") || !j.contains("shapes") || j["shapes"].empty()) return "";
   const json& g = j["geometry"];
   const Points grids = read_points(g["grids"]);
@@ -589,7 +595,7 @@ std::string shapes_section(const json& j) {
   const auto vs = views();
   const std::vector<Placement> pl = placements(vs, grids, w, h);
 
-  std::string s = "<section id=\"shapes\">\n<h2>Mode shapes</h2>\n" + view_menu(vs, true);
+  std::string s = "<section id=\"" + pre + "shapes\">\n<h2>" + esc(title) + "</h2>\n" + (pre.empty() ? view_menu(vs, true) : "");
   s += "<p class=\"note\">Analysis (blue, left) on the deck's elements; test (red, right) on the test's wire frame "
        "(test grids joined where the deck's elements join them), scaled onto the analysis shape by the least-squares "
        "factor; grey: the undeformed structure (dashed red: the test's undeformed wire frame). The largest displacement "
@@ -598,18 +604,20 @@ std::string shapes_section(const json& j) {
   // The undeformed drawings, once per view, used by every pair.
   s += "<svg width=\"0\" height=\"0\" style=\"position:absolute\" aria-hidden=\"true\"><defs>\n";
   for (std::size_t v = 0; v < vs.size(); ++v)
-    s += fmt::format("<path id=\"undeformed-{0}\" d=\"{1}\"/>\n<path id=\"wire-{0}\" d=\"{2}\"/>\n", vs[v].name,
-                     lines_d(lines, grids, nullptr, 0, pl[v]), lines_d(test_lines, grids, nullptr, 0, pl[v]));
+    s += fmt::format("<path id=\"{3}undeformed-{0}\" d=\"{1}\"/>\n<path id=\"{3}wire-{0}\" d=\"{2}\"/>\n", vs[v].name,
+                     lines_d(lines, grids, nullptr, 0, pl[v]), lines_d(test_lines, grids, nullptr, 0, pl[v]), pre);
   s += "</defs></svg>\n";
   // The pair shown: every pair by default and in print; one through the selector or an anchor.
-  s += "<div class=\"controls\">pair <select id=\"pair\"><option value=\"all\">all</option>";
-  for (std::size_t k = 0; k < j["shapes"].size(); ++k)
-    s += fmt::format("<option value=\"{}\">{}: analysis {} / test {}</option>", k, k + 1, j["shapes"][k]["fe_mode"].get<int>(),
-                     j["shapes"][k]["test_mode"].get<int>());
-  s += "</select> <span class=\"note\">go to:";
-  for (std::size_t k = 0; k < j["shapes"].size(); ++k)
-    s += fmt::format(" <a href=\"#shape-{0}\">pair {1}</a> (<a href=\"#mems-{0}\">MEMS</a>)", k, k + 1);
-  s += "</span></div>\n";
+  if (pre.empty()) {
+    s += "<div class=\"controls\">pair <select id=\"pair\"><option value=\"all\">all</option>";
+    for (std::size_t k = 0; k < j["shapes"].size(); ++k)
+      s += fmt::format("<option value=\"{}\">{}: analysis {} / test {}</option>", k, k + 1,
+                       j["shapes"][k]["fe_mode"].get<int>(), j["shapes"][k]["test_mode"].get<int>());
+    s += "</select> <span class=\"note\">go to:";
+    for (std::size_t k = 0; k < j["shapes"].size(); ++k)
+      s += fmt::format(" <a href=\"#shape-{0}\">pair {1}</a> (<a href=\"#mems-{0}\">MEMS</a>)", k, k + 1);
+    s += "</span></div>\n";
+  }
   std::size_t k = 0;
   for (const auto& sh : j["shapes"]) {
     const Points fe = read_points(sh["fe"]), test = read_points(sh["test"]);
@@ -617,20 +625,20 @@ std::string shapes_section(const json& j) {
     const int fm = sh["fe_mode"], tm = sh["test_mode"];
     const double fhz = sh["fe_hz"], thz = sh["test_hz"], mac = sh["mac"];
     std::string svg = fmt::format(
-        "<svg id=\"shape-{}-svg\" class=\"shapes\" xmlns=\"http://www.w3.org/2000/svg\" viewBox=\"0 0 {} {}\" width=\"{}\" "
+        "<svg id=\"{}shape-{}-svg\" class=\"shapes\" xmlns=\"http://www.w3.org/2000/svg\" viewBox=\"0 0 {} {}\" width=\"{}\" "
         "height=\"{}\" role=\"img\" aria-label=\"analysis mode {} and test mode {}\">\n",
-        k, px(2 * w), px(h), px(2 * w), px(h), fm, tm);
+        pre, k, px(2 * w), px(h), px(2 * w), px(h), fm, tm);
     for (std::size_t v = 0; v < vs.size(); ++v) {
       svg += fmt::format("<g class=\"view\" data-view=\"{}\"{}>\n", vs[v].name, v ? " style=\"display:none\"" : "");
       auto panel = [&](double x0, const Points& shape, const std::vector<std::pair<std::int64_t, std::int64_t>>& ls,
                        const std::string& cls, const std::string& title) {
         // The shape at its largest deflection; the page's script swings it through the
         // undeformed drawing (base) to the opposite deflection: the projection is linear.
-        const std::string base = (cls == "test" ? "wire-" : "undeformed-") + std::string(vs[v].name);
+        const std::string base = pre + (cls == "test" ? "wire-" : "undeformed-") + std::string(vs[v].name);
         std::string p = fmt::format("<g transform=\"translate({} 0)\"><rect x=\"0.5\" y=\"0.5\" width=\"{}\" height=\"{}\" "
-                                    "fill=\"none\" stroke=\"#ddd\"/><use href=\"#undeformed-{}\" class=\"undeformed\"/>\n",
-                                    px(x0), px(w - 1), px(h - 1), vs[v].name);
-        if (cls == "test") p += fmt::format("<use href=\"#wire-{}\" class=\"wire0\"/>\n", vs[v].name);
+                                    "fill=\"none\" stroke=\"#ddd\"/><use href=\"#{}undeformed-{}\" class=\"undeformed\"/>\n",
+                                    px(x0), px(w - 1), px(h - 1), pre, vs[v].name);
+        if (cls == "test") p += fmt::format("<use href=\"#{}wire-{}\" class=\"wire0\"/>\n", pre, vs[v].name);
         p += fmt::format("<path class=\"deformed {}\" data-base=\"{}\" d=\"{}\"/>\n<text x=\"8\" y=\"16\" "
                          "font-size=\"12\">{}</text></g>\n",
                          cls, base, lines_d(ls, grids, &shape, amp, pl[v]), esc(title));
@@ -641,12 +649,13 @@ std::string shapes_section(const json& j) {
       svg += "</g>\n";
     }
     svg += "</svg>\n";
-    s += fmt::format("<figure id=\"shape-{}\" class=\"shape\" data-pair=\"{}\" data-fe-mode=\"{}\" data-test-mode=\"{}\" data-fe-hz=\"{}\" "
+    s += fmt::format("<figure id=\"{}shape-{}\" class=\"shape\"{} data-fe-mode=\"{}\" data-test-mode=\"{}\" data-fe-hz=\"{}\" "
                      "data-test-hz=\"{}\" data-mac=\"{}\">\n{}<figcaption>Pair {}: analysis mode {} ({} Hz) and test mode {} ({} "
                      "Hz), MAC {}, error {} %.</figcaption>\n</figure>\n",
-                     k, k, fm, tm, exact(fhz), exact(thz), exact(mac), svg, k + 1, fm, significant(fhz, 6), tm, significant(thz, 6),
-                     fixed(mac, 4), fixed((fhz - thz) / thz * 100, 3));
-    if (sh.contains("mems")) s += mems_figure(sh, k, grids, test_lines, amp, vs, pl, w, h);
+                     pre, k, pre.empty() ? fmt::format(" data-pair=\"{}\"", k) : std::string(), fm, tm, exact(fhz), exact(thz),
+                     exact(mac), svg, k + 1, fm, significant(fhz, 6), tm, significant(thz, 6), fixed(mac, 4),
+                     fixed((fhz - thz) / thz * 100, 3));
+    if (sh.contains("mems")) s += mems_figure(sh, k, grids, test_lines, amp, vs, pl, w, h, pre);
     ++k;
   }
   return s + "</section>\n";
@@ -1440,7 +1449,15 @@ std::string html_report(const json& j) {
   } else if (cmd == "pretest") {
     s += pretest_sections(j);
   }
-  s += shapes_section(j) + notes_section(j);
+  s += shapes_section(j);
+  if (j.contains("configuration_shapes"))  // estimate's second and later configurations
+    for (std::size_t k = 0; k < j["configuration_shapes"].size(); ++k) {
+      const json& c = j["configuration_shapes"][k];
+      s += shapes_section(c, fmt::format("c{}-", k + 2),
+                          "Mode shapes: configuration " + std::to_string(k + 2) +
+                              (c.value("configuration", "").empty() ? "" : " (" + c["configuration"].get<std::string>() + ")"));
+    }
+  s += notes_section(j);
   s += "<p class=\"note\">Every number in this report is in the JSON result of the same run (";
   s += esc(j.contains("run") ? j["run"].value("command", "") : "") + "); the report draws it.</p>\n";
   s += kScript;

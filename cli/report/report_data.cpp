@@ -357,6 +357,46 @@ namespace ssid::cli::report {
 
 /// Adds the run, the geometry and the pairs' shapes at the estimate (first
 /// configuration; one more eigen-solve) to `j` and writes the report.
+namespace {
+
+/// The shapes of configuration `c`'s pairs (`pairs`: its JSON pairs) at parameters `r`,
+/// added to `out` (add_shapes: "geometry", "shapes"), and, for the first configuration,
+/// the cross-orthogonality. False when the configuration's deck is not there to draw
+/// (a problem file's run, a deck moved away, or one whose a-set is no longer the estimate's).
+bool configuration_shapes(const estimator::PreparedConfiguration& c, const nlohmann::json& pairs, const Eigen::VectorXd& r,
+                          bool cross_orthogonality, nlohmann::json& out) {
+  auto* om = dynamic_cast<estimator::OperatorModel*>(c.model.get());
+  if (!om || c.deck.empty() || !std::ifstream(c.deck)) return false;
+  const LoadedModel lm = load_model(c.deck);
+  std::vector<std::pair<std::int64_t, int>> dofs;
+  for (const auto& d : a_set_dofs(*lm.model)) dofs.emplace_back(d.point, d.component);
+  if (dofs != c.dofs) return false;  // not the estimate's deck: its a-set must be the same, in the same order
+  const estimator::ModalSolution sol = om->solve(r);
+  std::vector<ShapePair> sp;
+  for (const auto& p : pairs) {
+    const int fe = p["fe_mode"], test = p["test_mode"];
+    const auto t = std::find(c.test_numbers.begin(), c.test_numbers.end(), test) - c.test_numbers.begin();
+    if (fe < 1 || fe > sol.sensor_shapes.cols() || t >= static_cast<long>(c.test.size())) continue;
+    sp.push_back({fe, test, p["fe_hz"], p["test_hz"], p["mac"], fe - 1, sol.sensor_shapes.col(fe - 1),
+                  c.test[static_cast<std::size_t>(t)].shape});
+  }
+  Eigen::MatrixXd test_set(sol.sensor_shapes.rows(), static_cast<Eigen::Index>(c.test.size()));
+  for (std::size_t k = 0; k < c.test.size(); ++k) test_set.col(static_cast<Eigen::Index>(k)) = c.test[k].shape;
+  add_shapes(out, *lm.model, om->modes(), dofs_of_labels(c.sensor_labels), sp, test_set, c.test_numbers, c.test_lines);
+  if (cross_orthogonality) {
+    // The eigen-solver's modes are mass-normalised: unit generalised masses.
+    std::vector<int> fe_numbers;
+    for (Eigen::Index i = 0; i < sol.sensor_shapes.cols(); ++i) fe_numbers.push_back(static_cast<int>(i) + 1);
+    std::vector<std::pair<int, int>> paired;
+    for (const auto& p : sp) paired.emplace_back(p.fe_mode, p.test_mode);
+    out["cross_orthogonality"] = cross_orthogonality_json(
+        sol.sensor_shapes, std::vector<double>(fe_numbers.size(), 1.0), fe_numbers, test_set, c.test_numbers, paired);
+  }
+  return true;
+}
+
+}  // namespace
+
 void write_estimate_report(const std::string& path, const Args& args, const boost::program_options::variables_map& vm,
                            const estimator::EstimationProblem& problem, const estimator::EstimationResult& result,
                            nlohmann::json& j) {
@@ -364,34 +404,12 @@ void write_estimate_report(const std::string& path, const Args& args, const boos
   for (const char* k : {"deck", "measured", "study", "problem", "frf"})
     if (vm.count(k)) inputs.push_back(vm[k].as<std::string>());
   j["run"] = run_json("estimate", args, inputs);
-  const auto& c = problem.configurations.front();
-  auto* om = dynamic_cast<estimator::OperatorModel*>(c.model.get());
-  if (om && !c.deck.empty() && std::ifstream(c.deck)) {
-    const LoadedModel lm = load_model(c.deck);
-    std::vector<std::pair<std::int64_t, int>> dofs;
-    for (const auto& d : a_set_dofs(*lm.model)) dofs.emplace_back(d.point, d.component);
-    if (dofs == c.dofs) {  // the same deck as the estimate's: its a-set in the same order
-      const estimator::ModalSolution sol = om->solve(result.update.r);
-      std::vector<ShapePair> sp;
-      for (const auto& p : j["configurations"][0]["pairs"]) {
-        const int fe = p["fe_mode"], test = p["test_mode"];
-        const auto t = std::find(c.test_numbers.begin(), c.test_numbers.end(), test) - c.test_numbers.begin();
-        if (fe < 1 || fe > sol.sensor_shapes.cols() || t >= static_cast<long>(c.test.size())) continue;
-        sp.push_back({fe, test, p["fe_hz"], p["test_hz"], p["mac"], fe - 1, sol.sensor_shapes.col(fe - 1),
-                      c.test[static_cast<std::size_t>(t)].shape});
-      }
-      Eigen::MatrixXd test_set(sol.sensor_shapes.rows(), static_cast<Eigen::Index>(c.test.size()));
-      for (std::size_t k = 0; k < c.test.size(); ++k) test_set.col(static_cast<Eigen::Index>(k)) = c.test[k].shape;
-      add_shapes(j, *lm.model, om->modes(), dofs_of_labels(c.sensor_labels), sp, test_set, c.test_numbers, c.test_lines);
-      // The eigen-solver's modes are mass-normalised: unit generalised masses.
-      std::vector<int> fe_numbers;
-      for (Eigen::Index i = 0; i < sol.sensor_shapes.cols(); ++i) fe_numbers.push_back(static_cast<int>(i) + 1);
-      std::vector<std::pair<int, int>> pairs;
-      for (const auto& p : sp) pairs.emplace_back(p.fe_mode, p.test_mode);
-      j["cross_orthogonality"] =
-          cross_orthogonality_json(sol.sensor_shapes, std::vector<double>(fe_numbers.size(), 1.0), fe_numbers, test_set,
-                                   c.test_numbers, pairs);
-    }
+  configuration_shapes(problem.configurations.front(), j["configurations"][0]["pairs"], result.update.r, true, j);
+  // The second and later configurations' shapes (their own decks: bare, with a mass, ...).
+  for (std::size_t k = 1; k < problem.configurations.size() && k < j["configurations"].size(); ++k) {
+    nlohmann::json c{{"configuration", problem.configurations[k].name}};
+    if (configuration_shapes(problem.configurations[k], j["configurations"][k]["pairs"], result.update.r, false, c))
+      j["configuration_shapes"].push_back(c);
   }
   write_report(path, j);
 }

@@ -131,9 +131,11 @@ std::vector<translators::MeasuredDof> dofs_of_labels(const std::vector<std::stri
 namespace ssid::cli::report {
 
 /// `ssid estimate --report`: adds "run" (inputs: deck, measured file, study or
-/// problem file), the first configuration's "geometry" and the "shapes" of its
-/// pairs at the estimate (one more eigen-solve) to `j`, and writes the report.
-/// Shapes need the deck: a problem file's run (or a deck no longer there) gets none.
+/// problem file, FRF file), the first configuration's "geometry" and the "shapes" of its
+/// pairs at the estimate (one more eigen-solve) to `j`, each later configuration's as
+/// "configuration_shapes": [{"configuration" (its name), "geometry", "shapes"}], and
+/// writes the report. Shapes need the deck: a problem file's run (or a deck no longer
+/// there) gets none.
 void write_estimate_report(const std::string& path, const Args& args, const boost::program_options::variables_map& vm,
                            const estimator::EstimationProblem& problem, const estimator::EstimationResult& result,
                            nlohmann::json& j);

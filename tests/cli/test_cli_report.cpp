@@ -791,3 +791,58 @@ TEST_CASE("ssid estimate --tam: Guyan and IRS cross-orthogonality at the estimat
     CHECK(e.html.find(std::string("id=\"fig-xor-") + tam + "\"") != std::string::npos);
   }
 }
+
+TEST_CASE("ssid estimate --report: the shapes of every configuration", "[cli][report][configurations]") {
+  // Two configurations sharing the parameters: the sample (bare) and the same truss with
+  // 5 kg at ball 41, its "measured" modes the truth deck's with that mass (ssid modes --uff,
+  // as the sample's script writes them).
+  const fs::path dir = scratch();
+  const fs::path truth = dir / "cfg_truth.bdf", mass_truth = dir / "cfg_truth_mass.bdf", mass_deck = dir / "cfg_mass.bdf",
+                 mass_unv = dir / "cfg_mass.unv", study = dir / "cfg_study.json";
+  REQUIRE(run_ssid("update-deck " + src("samples/mpi_rod.bdf") + " " + src("samples/estimate/truth.json") + " -o " +
+                   truth.string()).code == 0);
+  auto with_mass = [](const std::string& deck) {
+    const auto at = deck.rfind("ENDDATA");
+    REQUIRE(at != std::string::npos);
+    return deck.substr(0, at) + "CONM2   9001    41              5.0\n" + deck.substr(at);
+  };
+  std::ofstream(mass_truth) << with_mass(cli_slurp(truth));
+  std::ofstream(mass_deck) << with_mass(cli_slurp(src("samples/mpi_rod.bdf")));
+  std::string sensors;
+  for (int g = 1; g <= 79; g += 2) sensors += (sensors.empty() ? "" : ",") + std::to_string(g);
+  REQUIRE(run_ssid("modes " + mass_truth.string() + " --uff " + mass_unv.string() + " --sensors " + sensors).code == 0);
+  json s = json::parse(cli_slurp(src("samples/estimate/study.json")));
+  s["configurations"] = json::array({{{"name", "bare"}, {"deck", src("samples/mpi_rod.bdf")},
+                                      {"measured", src("samples/estimate/measured.unv")}},
+                                     {{"name", "mass"}, {"deck", mass_deck.string()}, {"measured", mass_unv.string()}}});
+  std::ofstream(study) << s.dump(2);
+  const Report r = run_report("estimate_configurations", "estimate -q " + src("samples/mpi_rod.bdf") + " " +
+                                                             src("samples/estimate/measured.unv") + " --study " + study.string());
+  const json& j = r.j;
+  REQUIRE(j["configurations"].size() == 2);
+  REQUIRE(j["configuration_shapes"].size() == 1);
+  const json& c2 = j["configuration_shapes"][0];
+  CHECK(c2["configuration"] == "mass");
+  REQUIRE(c2["shapes"].size() == j["configurations"][1]["pairs"].size());
+  for (std::size_t k = 0; k < c2["shapes"].size(); ++k) {
+    CHECK(c2["shapes"][k]["fe_mode"] == j["configurations"][1]["pairs"][k]["fe_mode"]);
+    CHECK(c2["shapes"][k]["test_mode"] == j["configurations"][1]["pairs"][k]["test_mode"]);
+    // Drawn in its own section, with ids of its own and out of the first configuration's pair menu.
+    const std::string id = "<figure id=\"c2-shape-" + std::to_string(k) + "\"";
+    const auto at = r.html.find(id);
+    REQUIRE(at != std::string::npos);
+    const Attributes a = attributes_of(r.html.substr(at + 8, r.html.find('>', at) - at - 8));
+    CHECK(num(a, "data-mac") == c2["shapes"][k]["mac"].get<double>());
+    CHECK(a.count("data-pair") == 0);
+  }
+  CHECK(r.html.find("<section id=\"c2-shapes\">") != std::string::npos);
+  CHECK(r.html.find("Mode shapes: configuration 2 (mass)") != std::string::npos);
+  // Every deformed drawing's base exists (the animation swings each about it).
+  for (std::size_t at = r.html.find("data-base=\""); at != std::string::npos; at = r.html.find("data-base=\"", at + 1)) {
+    const std::string base = r.html.substr(at + 11, r.html.find('"', at + 11) - at - 11);
+    CHECK(r.html.find("id=\"" + base + "\"") != std::string::npos);
+  }
+  // The first configuration's shapes are as without a second one.
+  CHECK(j["shapes"].size() == j["configurations"][0]["pairs"].size());
+  check_in_browser(r.path, 30);
+}
