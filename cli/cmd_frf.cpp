@@ -61,21 +61,6 @@ std::vector<translators::Dof> parse_dofs(const std::vector<std::string>& values,
   return out;
 }
 
-const char* quantity_name(id::FrfQuantity q) {
-  return q == id::FrfQuantity::Displacement ? "displacement" : q == id::FrfQuantity::Velocity ? "velocity"
-                                                                                                : "acceleration";
-}
-/// Dataset 58's specific data type of the ordinate numerator.
-int quantity_code(id::FrfQuantity q) {
-  return q == id::FrfQuantity::Displacement ? 8 : q == id::FrfQuantity::Velocity ? 11 : 12;
-}
-/// The FRF's unit in the deck's units.
-std::string quantity_unit(id::FrfQuantity q) {
-  return q == id::FrfQuantity::Displacement ? "length/force"
-         : q == id::FrfQuantity::Velocity   ? "length/s/force"
-                                            : "length/s²/force";
-}
-
 /// Modal damping of each FE mode: from the identified modes of `path` (the nearest in
 /// frequency within `tol` relative, each identified mode used once, closest pairs first),
 /// the rest `fallback` (NaN: the mean of the identified ζ). `source` says which per mode.
@@ -255,14 +240,11 @@ int cmd_frf(const Args& args) {
                                      f->y.size(), f->abscissa().empty() ? 0.0 : f->abscissa().front(),
                                      first->where.str()));
     // The measured FRFs' quantity, from the ordinate numerator's data type.
-    std::optional<id::FrfQuantity> mq;
     const int code = first->axes[1].specific_data_type;
-    if (code == 8) mq = id::FrfQuantity::Displacement;
-    if (code == 11) mq = id::FrfQuantity::Velocity;
-    if (code == 12) mq = id::FrfQuantity::Acceleration;
+    const std::optional<id::FrfQuantity> mq = id::quantity_of_data_type(code);
     if (quantity && mq && *quantity != *mq)
       throw InputError(fmt::format("{}: the measured FRFs are of {} (ordinate type {}), --quantity asks for {}",
-                                   first->where.str(), quantity_name(*mq), code, quantity_name(*quantity)));
+                                   first->where.str(), id::quantity_name(*mq), code, id::quantity_name(*quantity)));
     if (!quantity && mq) quantity = mq;
     if (!quantity)
       std::cerr << fmt::format("note: {}: the measured ordinate's data type is {} (not 8, 11 or 12): synthesizing "
@@ -345,19 +327,19 @@ int cmd_frf(const Args& args) {
   // stdout: the modes and the FRFs' peaks.
   text << fmt::format("{}: {} mode(s) ({}), mass-normalised; {} FRF(s) of {} per force from drive {},{}, {} "
                            "line(s) {}…{} Hz\n",
-                           lm.path, er.size(), source, responses.size(), quantity_name(q), drive.point, drive.component,
+                           lm.path, er.size(), source, responses.size(), id::quantity_name(q), drive.point, drive.component,
                            f.size(), estimator::significant(f.front(), 6), estimator::significant(f.back(), 6));
   text << "mode   frequency (Hz)   damping (%)  damping from\n";
   for (int r = 0; r < er.size(); ++r)
     text << fmt::format("{:4d} {:16.6f} {:13.4f}  {}\n", r + 1, fe_hz(r), 100 * mm.zeta(r),
                              zeta_source[static_cast<std::size_t>(r)]);
-  const std::string unit = quantity_unit(q);
+  const std::string unit = id::quantity_unit(q);
   text << fmt::format("\nresponse    peak |H| ({})   at (Hz){}\n", unit, measured ? "   measured peak   at (Hz)     FRAC" : "");
 
   nlohmann::json j;
   j["deck"] = lm.path;
   j["drive"] = {drive.point, drive.component};
-  j["quantity"] = quantity_name(q);
+  j["quantity"] = id::quantity_name(q);
   j["unit"] = unit + " (the deck's units)";
   j["frequency_hz"] = f;
   j["modes"] = nlohmann::json::array();
@@ -409,7 +391,7 @@ int cmd_frf(const Args& args) {
 
     uff::Function58 fn;
     fn.id_lines = {"ssid frf: modal superposition (Eq. 2) of " + lm.path,
-                   fmt::format("{} modes, {} per force", er.size(), quantity_name(q)), "NONE", "NONE", "NONE"};
+                   fmt::format("{} modes, {} per force", er.size(), id::quantity_name(q)), "NONE", "NONE", "NONE"};
     fn.function_type = 4;
     fn.function_id = static_cast<std::int64_t>(o + 1);
     fn.response_node = responses[o].point;
@@ -427,9 +409,9 @@ int cmd_frf(const Args& args) {
     fn.axes[0].specific_data_type = 18;  // frequency
     fn.axes[0].label = "Frequency";
     fn.axes[0].units = "Hz";
-    fn.axes[1].specific_data_type = quantity_code(q);
+    fn.axes[1].specific_data_type = id::quantity_data_type(q);
     fn.axes[1].length_exponent = 1;
-    fn.axes[1].label = quantity_name(q);
+    fn.axes[1].label = id::quantity_name(q);
     fn.axes[2].specific_data_type = 13;  // excitation force
     fn.axes[2].force_exponent = 1;
     fn.axes[2].label = "force";

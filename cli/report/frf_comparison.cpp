@@ -24,24 +24,6 @@ namespace uff = formats::uff;
 namespace id = estimator::identification;
 using formats::InputError;
 
-/// The ordinate numerator's data type (8, 11, 12) as the quantity synthesized; nullopt for others.
-std::optional<id::FrfQuantity> quantity_of(const uff::Function58& f) {
-  switch (f.axes[1].specific_data_type) {
-    case 8: return id::FrfQuantity::Displacement;
-    case 11: return id::FrfQuantity::Velocity;
-    case 12: return id::FrfQuantity::Acceleration;
-    default: return std::nullopt;
-  }
-}
-const char* quantity_text(id::FrfQuantity q) {
-  return q == id::FrfQuantity::Displacement ? "displacement" : q == id::FrfQuantity::Velocity ? "velocity" : "acceleration";
-}
-const char* unit_text(id::FrfQuantity q) {
-  return q == id::FrfQuantity::Displacement ? "length/force"
-         : q == id::FrfQuantity::Velocity   ? "length/s/force"
-                                            : "length/s²/force";
-}
-
 /// Per analysis mode, ζ and where it came from (FrfDamping's rule).
 std::pair<Eigen::VectorXd, std::vector<std::string>> modal_damping(const Eigen::VectorXd& hz, const FrfDamping& d,
                                                                    const std::string& file) {
@@ -204,7 +186,7 @@ nlohmann::json frf_comparison_json(const uff::UffFile& measured, std::vector<tra
       left_out.push_back(f.where.str() + ": the reference DOF is constrained in the model (no force enters there)");
       continue;
     }
-    const auto q = quantity_of(f);
+    const auto q = id::quantity_of_data_type(f.axes[1].specific_data_type);
     if (!q && !noted_quantity) {
       problems.push_back(fmt::format("{}: ordinate data type {} (not 8, 11 or 12): the analysis FRFs are receptance",
                                      f.where.str(), f.axes[1].specific_data_type));
@@ -233,8 +215,8 @@ nlohmann::json frf_comparison_json(const uff::UffFile& measured, std::vector<tra
                        {"response_grid", *mapping.grid_of(f.response_node)},
                        {"reference_grid", *mapping.grid_of(f.reference_node)},
                        {"at", f.where.str()},
-                       {"quantity", quantity_text(quantity)},
-                       {"unit", std::string(unit_text(quantity)) + " (the deck's units)"},
+                       {"quantity", id::quantity_name(quantity)},
+                       {"unit", std::string(id::quantity_unit(quantity)) + " (the deck's units)"},
                        {"hz", hz},
                        {"measured", {{"re", re}, {"im", im}}},
                        {"analyses", nlohmann::json::array()}};

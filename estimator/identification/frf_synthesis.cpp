@@ -13,6 +13,25 @@ namespace ssid::estimator::identification {
 using formats::InputError;
 using cd = std::complex<double>;
 
+const char* quantity_name(FrfQuantity q) {
+  return q == FrfQuantity::Displacement ? "displacement" : q == FrfQuantity::Velocity ? "velocity" : "acceleration";
+}
+
+const char* quantity_unit(FrfQuantity q) {
+  return q == FrfQuantity::Displacement ? "length/force" : q == FrfQuantity::Velocity ? "length/s/force" : "length/s²/force";
+}
+
+int quantity_data_type(FrfQuantity q) { return q == FrfQuantity::Displacement ? 8 : q == FrfQuantity::Velocity ? 11 : 12; }
+
+std::optional<FrfQuantity> quantity_of_data_type(int data_type) {
+  switch (data_type) {
+    case 8: return FrfQuantity::Displacement;
+    case 11: return FrfQuantity::Velocity;
+    case 12: return FrfQuantity::Acceleration;
+    default: return std::nullopt;
+  }
+}
+
 Eigen::MatrixXcd synthesize_frf(const Eigen::Ref<const Eigen::VectorXd>& frequency_hz, const ModalFrfModel& modes,
                                 FrfQuantity quantity) {
   const Eigen::Index nm = modes.eigenvalue.size(), no = modes.response.rows();

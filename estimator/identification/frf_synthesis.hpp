@@ -14,6 +14,15 @@ namespace ssid::estimator::identification {
 /// (velocity per force) or accelerance (acceleration per force).
 enum class FrfQuantity { Displacement, Velocity, Acceleration };
 
+/// "displacement", "velocity" or "acceleration".
+const char* quantity_name(FrfQuantity q);
+/// The FRF's unit in the units of the model: "length/force", "length/s/force", "length/s²/force".
+const char* quantity_unit(FrfQuantity q);
+/// UFF dataset 58's specific data type of the ordinate numerator: 8, 11 or 12.
+int quantity_data_type(FrfQuantity q);
+/// The quantity of a dataset 58 ordinate numerator's data type (8, 11, 12); nullopt for another.
+std::optional<FrfQuantity> quantity_of_data_type(int data_type);
+
 /// Modes as the synthesis needs them: mass-normalised shapes (φᵀMφ = 1) at the
 /// response DOFs and at the drive DOF, with their eigenvalues and damping ratios.
 struct ModalFrfModel {

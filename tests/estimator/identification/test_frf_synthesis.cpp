@@ -6,6 +6,9 @@
 #include <Eigen/Dense>
 #include <cmath>
 #include <complex>
+#include <optional>
+#include <string>
+#include <vector>
 
 #include "estimator/identification/frf_synthesis.hpp"
 #include "formats/parse_error.hpp"
@@ -120,4 +123,32 @@ TEST_CASE("FRF synthesis refuses what has no answer", "[identification][frf_synt
                     "FRF synthesis: mode 2 has damping ratio -0.1 (expected ≥ 0)");
   m.zeta.resize(1);
   CHECK_THROWS_AS(synthesize_frf(Eigen::VectorXd::Constant(1, f), m), ssid::formats::InputError);
+}
+
+TEST_CASE("damping partners: nearest pairs first, each mode once, within the tolerance", "[identification][frf_synthesis]") {
+  // Relative distances: (10, 10.5) 0.048, (20, 19) 0.053, (30.5, 31) 0.016 — and (20, 19)
+  // would lose to nothing; 45 Hz has no measured mode within 10 %.
+  const auto p = damping_partners(Eigen::Vector4d(10, 20, 30.5, 45), {10.5, 31, 19}, 0.1);
+  REQUIRE(p.size() == 4);
+  CHECK(p[0] == std::optional<std::size_t>(0));
+  CHECK(p[1] == std::optional<std::size_t>(2));
+  CHECK(p[2] == std::optional<std::size_t>(1));
+  CHECK_FALSE(p[3]);
+  // Two analysis modes equally near one measured mode: the lower takes it, the other none.
+  const auto q = damping_partners(Eigen::Vector2d(9.9, 10.1), {10.0}, 0.05);
+  CHECK(q[0] == std::optional<std::size_t>(0));
+  CHECK_FALSE(q[1]);
+  // A nearer analysis mode wins over the file order.
+  const auto r = damping_partners(Eigen::Vector2d(9.0, 10.05), {10.0}, 0.2);
+  CHECK_FALSE(r[0]);
+  CHECK(r[1] == std::optional<std::size_t>(0));
+  CHECK(damping_partners(Eigen::Vector2d(1, 2), {}, 0.1) == std::vector<std::optional<std::size_t>>(2));
+}
+
+TEST_CASE("FRF quantities and dataset 58's data types", "[identification][frf_synthesis]") {
+  for (const FrfQuantity q : {FrfQuantity::Displacement, FrfQuantity::Velocity, FrfQuantity::Acceleration})
+    CHECK(quantity_of_data_type(quantity_data_type(q)) == q);
+  CHECK(quantity_data_type(FrfQuantity::Acceleration) == 12);  // UFF 58 record 9: 8 displacement, 11 velocity, 12 acceleration
+  CHECK_FALSE(quantity_of_data_type(13));                       // excitation force
+  CHECK(std::string(quantity_unit(FrfQuantity::Velocity)) == "length/s/force");
 }
