@@ -115,6 +115,12 @@ int cmd_estimate(const Args& args) {
   // The measured FRFs before the estimate: a bad file is reported before the cycles run.
   std::optional<formats::uff::UffFile> frf_file;
   if (vm.count("frf")) frf_file = formats::uff::read_uff(vm["frf"].as<std::string>());
+  // Both need the deck's geometry and K, M: refused before the cycles, not after.
+  if ((frf_file || !tams.empty()) && !problem.configurations.front().fe) {
+    print_error(std::string(frf_file ? "--frf" : "--tam") +
+                " needs the deck: a problem file's estimate has only its operators' Taylor model (give DECK MEASURED.unv)");
+    return kExitBadInput;
+  }
   const std::string json_path = vm.count("json") ? vm["json"].as<std::string>() : "";
   const std::string diagnose_args = vm.count("deck") && vm.count("measured")
                                         ? vm["deck"].as<std::string>() + " " + vm["measured"].as<std::string>()

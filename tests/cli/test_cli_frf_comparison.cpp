@@ -257,6 +257,13 @@ TEST_CASE("ssid estimate --frf: FRFs at the prior mean and at the estimate again
     CHECK(after > 0.99);
   }
   CHECK(r.out.find("FRAC estimate") != std::string::npos);
+  // A problem file carries no deck to place the FRFs on: refused before the cycles run.
+  const fs::path prob = scratch("pelas.ssidprob");
+  REQUIRE(run_ssid("translate " + deck.string() + " " + test.string() + " -o " + prob.string()).code == 0);
+  const CliResult p = run_ssid("estimate --problem " + prob.string() + " --frf " + meas.string());
+  CHECK(p.code == 2);
+  CHECK(p.err.find("--frf needs the deck") != std::string::npos);
+  CHECK(p.out.empty());
   const std::string html = cli_slurp(rep);
   CHECK(html.find("FRFs before and after the update") != std::string::npos);
   CHECK(html.find("data-frac-before=\"") != std::string::npos);
