@@ -7,7 +7,8 @@
 ///   large field: name ends in '*'; field 1 = columns 1-8, four fields of 16 columns
 ///                (9-72), field 10 = columns 73-80; continuation lines start with '*'.
 ///   free field:  a comma within the first 10 columns; fields separated by commas;
-///                "NAME*," makes it large (four fields per line).
+///                "NAME*," makes it large (four fields per line); commas after field 10
+///                with nothing between them end the line (a trailing comma).
 /// A line whose field 1 starts with '+' or '*', or is blank, continues the card
 /// above it. Tabs advance to the next multiple of 8 columns; '$' starts a comment.
 #include <algorithm>
@@ -120,6 +121,10 @@ void split_line(std::string_view data, Arena& arena, LineFields& lf, std::string
         per_row = lf.large ? 4 : 8;
       } else if (k == per_row + 1) {
         lf.marker = part;  // field 10
+      } else if (k > per_row + 1 && part.empty() && data.find_first_not_of(", \t", start) == std::string_view::npos) {
+        // Nothing but commas after field 10: a line ended with a comma, as in decks MSC
+        // Nastran ran (pyNastran's conedg01e: "CORD2R, 5, , 0.0, …, 1.0, +C1,"). Not a field.
+        break;
       } else {
         lf.data.push_back(part);
       }

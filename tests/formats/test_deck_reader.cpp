@@ -121,6 +121,28 @@ TEST_CASE("free field, lower case, tabs, and mixed formats in one deck", "[deck]
   CHECK(d.cards[3].field(5) == "9.");
 }
 
+TEST_CASE("free field: a line ended by a comma after its continuation marker", "[deck]") {
+  // As in a deck MSC Nastran ran (pyNastran's models/other/conedg01e.bdf): field 10 holds
+  // the marker and a comma follows it. Something after field 10 is still a field too many.
+  const char* text =
+      "CORD2R, 5, , 0.0, 0.0, 0.0, 0.0, 0.0, 1.0, +C1,\n"
+      "+C1, 0.0, 1.0, 1.0\n"
+      "GRID,7,,1.,2.,3.,,,,,\n";
+  Deck d = read_deck_text(text, "t.bdf");
+  REQUIRE(d.cards.size() == 2);
+  CHECK(d.cards[0].name == "CORD2R");
+  CHECK(d.cards[0].field(8) == "1.0");
+  CHECK(d.cards[0].field(9) == "0.0");  // the continuation's first field
+  CHECK(d.cards[0].field(11) == "1.0");
+  CHECK(d.cards[0].field(12).empty());
+  CHECK(d.cards[1].field(5) == "3.");
+  CHECK(render_file(d, 0) == text);  // written back as read
+  // A value after field 10 is kept as data (the card's reader then finds a field too many).
+  const Deck e = read_deck_text("CORD2R, 5, , 0.0, 0.0, 0.0, 0.0, 0.0, 1.0, +C1, 7\n+C1, 0.0, 1.0, 1.0\n", "t.bdf");
+  REQUIRE(e.cards.size() == 1);
+  CHECK(e.cards[0].field(9) == "7");
+}
+
 TEST_CASE("executive, case control and bulk sections; text after ENDDATA kept", "[deck]") {
   const char* text =
       "ID TEST\nSOL 103\nCEND\nTITLE = X\nSPC = 1\nMETHOD=10\nBEGIN BULK\n"
