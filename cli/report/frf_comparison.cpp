@@ -11,6 +11,7 @@
 #include <stdexcept>
 
 #include "cli/model_load.hpp"
+#include "cli/report/report_data.hpp"
 #include "estimator/identification/frf_synthesis.hpp"
 #include "estimator/reporting/number_text.hpp"
 #include "formats/deck.hpp"
@@ -255,11 +256,7 @@ nlohmann::json estimate_frf_comparison(const uff::UffFile& measured, const estim
   std::vector<FrfAnalysis> analyses;
   for (const auto& [label, r] : {std::pair<const char*, const Eigen::VectorXd*>{"prior mean", &prior_mean},
                                  std::pair<const char*, const Eigen::VectorXd*>{"estimate", &estimate}}) {
-    estimator::Operators ops = c.assemble(*r);
-    translators::FeOperators op;
-    op.K = std::move(ops.K);
-    op.M = std::move(ops.M);
-    analyses.push_back(deck_analysis(label, *c.fe, op, problems));
+    analyses.push_back(deck_analysis(label, *c.fe, operators_at(c, *r), problems));
   }
   std::vector<double> test_hz;
   for (const auto& m : c.test) test_hz.push_back(m.frequency_hz);

@@ -397,6 +397,14 @@ bool configuration_shapes(const estimator::PreparedConfiguration& c, const nlohm
 
 }  // namespace
 
+translators::FeOperators operators_at(const estimator::PreparedConfiguration& c, const Eigen::VectorXd& r) {
+  estimator::Operators ops = c.assemble(r);
+  translators::FeOperators op;
+  op.K = std::move(ops.K);
+  op.M = std::move(ops.M);
+  return op;
+}
+
 void write_estimate_report(const std::string& path, const Args& args, const boost::program_options::variables_map& vm,
                            const estimator::EstimationProblem& problem, const estimator::EstimationResult& result,
                            nlohmann::json& j) {

@@ -130,6 +130,11 @@ std::vector<translators::MeasuredDof> dofs_of_labels(const std::vector<std::stri
 
 namespace ssid::cli::report {
 
+/// The a-set K and M of configuration `c`'s deck at parameters `r` (its exact
+/// re-assembly), as the deck-side code takes them: what the estimate's FRF overlays and
+/// TAMs are computed from. `c.assemble` must be set (a deck's configuration).
+translators::FeOperators operators_at(const estimator::PreparedConfiguration& c, const Eigen::VectorXd& r);
+
 /// `ssid estimate --report`: adds "run" (inputs: deck, measured file, study or
 /// problem file, FRF file), the first configuration's "geometry" and the "shapes" of its
 /// pairs at the estimate (one more eigen-solve) to `j`, each later configuration's as

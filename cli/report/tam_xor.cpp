@@ -102,10 +102,7 @@ nlohmann::json estimate_tam_json(const estimator::PreparedConfiguration& c, cons
   if (!c.fe || !c.assemble || !om)
     throw formats::InputError("--tam needs the deck's K and M: a problem file's estimate has only its operators' Taylor model");
   const estimator::ModalSolution sol = om->solve(r);  // mass-normalised: unit generalised masses
-  estimator::Operators ops = c.assemble(r);
-  translators::FeOperators op;
-  op.K = std::move(ops.K);
-  op.M = std::move(ops.M);
+  const translators::FeOperators op = operators_at(c, r);
   std::vector<int> fe_numbers;
   for (Eigen::Index i = 0; i < sol.sensor_shapes.cols(); ++i) fe_numbers.push_back(static_cast<int>(i) + 1);
   Eigen::MatrixXd test(sol.sensor_shapes.rows(), static_cast<Eigen::Index>(c.test.size()));
