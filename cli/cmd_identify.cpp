@@ -22,6 +22,7 @@
 #include <sstream>
 #include <utility>
 #include <variant>
+#include <unistd.h>
 
 #include "cli/cli_util.hpp"
 #include "cli/progress_lines.hpp"
@@ -319,11 +320,17 @@ Identified era_identified(const std::vector<Eigen::MatrixXd>& Y, double dt, int 
 }
 
 /// ERA on FRFs: the impulse response over one period (markov_from_frf), its first half
-/// (the least wrap-around); then LSFD with the modes' poles for their FRFs.
+/// (the least wrap-around) from its second sample on; then LSFD with the modes' poles
+/// for their FRFs. The first sample is left out because it holds the FRF's direct
+/// term: an accelerance tends to a constant (the mass line) above its modes, an
+/// impulse at t = 0 that is no C AᵏB, and a Hankel matrix holding it realizes
+/// nothing but over-damped poles. From the second on, Y[k] = C Aᵏ⁻¹ (A B): the same
+/// poles and output shapes (the participations gain each pole's e^{λΔt}, a factor
+/// LSFD's residues absorb).
 Identified era_modes(const FrfSet& s, int max_order, const id::PlscfOptions& band, const id::StabilisationOptions& so) {
   const auto Y = id::markov_from_frf(s.lines, s.df);
   const double dt = 1.0 / (static_cast<double>(Y.size()) * s.df);
-  const std::vector<Eigen::MatrixXd> head(Y.begin(), Y.begin() + static_cast<std::ptrdiff_t>(Y.size() / 2));
+  const std::vector<Eigen::MatrixXd> head(Y.begin() + 1, Y.begin() + static_cast<std::ptrdiff_t>(Y.size() / 2));
   std::vector<id::OrderPoles> poles;
   id::StabilisationResult st;
   Identified r = era_identified(head, dt, max_order, so, frf_sum(s), poles, st);
@@ -492,8 +499,10 @@ void print_frf_fit(std::ostream& o, const nlohmann::json& fit) {
 }
 
 /// `--subsets "N:D,N:D;N:D"`: subsets of the response records named by their DOFs
-/// (semicolon between subsets, comma within), as 0-based columns of `responses`.
-std::vector<std::vector<int>> parse_subsets(const std::string& text, const std::vector<Dof>& responses) {
+/// (semicolon between subsets, comma within), as 0-based columns of `responses`;
+/// `option` names the option in messages (--responses gives one subset this way).
+std::vector<std::vector<int>> parse_subsets(const std::string& text, const std::vector<Dof>& responses,
+                                            const std::string& option = "--subsets") {
   std::vector<std::vector<int>> out;
   std::stringstream all(text);
   for (std::string item; std::getline(all, item, ';');) {
@@ -510,20 +519,20 @@ std::vector<std::vector<int>> parse_subsets(const std::string& text, const std::
         dir = std::stoi(dof.substr(colon + 1), &b);
         if (a != colon || b != dof.size() - colon - 1) throw std::invalid_argument("trailing text");
       } catch (const std::logic_error&) {
-        throw formats::InputError(fmt::format("--subsets: \"{}\": expected NODE:DIRECTION, e.g. 12:3", dof));
+        throw formats::InputError(fmt::format("{}: \"{}\": expected NODE:DIRECTION, e.g. 12:3", option, dof));
       }
       const auto it = std::find(responses.begin(), responses.end(), Dof{node, dir});
       if (it == responses.end())
-        throw formats::InputError(fmt::format("--subsets: {}:{} is not a response record of the file", node, dir));
+        throw formats::InputError(fmt::format("{}: {}:{} is not a response record of the file", option, node, dir));
       const int col = static_cast<int>(it - responses.begin());
       if (std::find(subset.begin(), subset.end(), col) != subset.end())
-        throw formats::InputError(fmt::format("--subsets: {}:{} twice in one subset", node, dir));
+        throw formats::InputError(fmt::format("{}: {}:{} twice in one subset", option, node, dir));
       subset.push_back(col);
     }
-    if (subset.empty()) throw formats::InputError("--subsets: an empty subset in \"" + text + "\"");
+    if (subset.empty()) throw formats::InputError(option + ": an empty subset in \"" + text + "\"");
     out.push_back(subset);
   }
-  if (out.empty()) throw formats::InputError("--subsets: no subset given");
+  if (out.empty()) throw formats::InputError(option + ": no subset given");
   return out;
 }
 
@@ -620,6 +629,73 @@ Identified armax_modes(const TimeSet& t, const std::vector<id::ArmaxRun>& runs, 
   return r;
 }
 
+/// `--method armax` on time histories `t` (read from `path`): the records --responses
+/// names (default all), the runs of the order rule (all of them at s, m, then --subsets
+/// or each alone), refused before it starts when a run would hold more than half this
+/// machine's memory; the modes into `r`, their DOFs into `responses`.
+void armax_modes_of(const TimeSet& all_records, const po::variables_map& vm, const std::string& path,
+                    std::ostream& text, Identified& r, std::vector<Dof>& responses,
+                    const id::StabilisationOptions& so, std::vector<std::string>& warnings) {
+  TimeSet t = all_records;
+  if (vm.count("responses")) {
+    const auto chosen = parse_subsets(vm["responses"].as<std::string>(), all_records.responses, "--responses");
+    if (chosen.size() != 1)
+      throw formats::InputError("--responses: one list of records (comma between them), got " +
+                                std::to_string(chosen.size()) + " (';' separates --subsets' lists)");
+    t.responses.clear();
+    t.y.resize(all_records.y.rows(), static_cast<Eigen::Index>(chosen[0].size()));
+    for (std::size_t k = 0; k < chosen[0].size(); ++k) {
+      t.responses.push_back(all_records.responses[static_cast<std::size_t>(chosen[0][k])]);
+      t.y.col(static_cast<Eigen::Index>(k)) = all_records.y.col(chosen[0][k]);
+    }
+    text << fmt::format("ARMAX on {} of them (--responses); ", t.responses.size());
+  }
+  responses = t.responses;
+  const auto p = static_cast<int>(t.responses.size());
+  if (p < 2)
+    throw formats::InputError(path + ": --method armax needs at least two response records (the order rule "
+                                     "compares the identification from all of them with each one's)");
+  const int s = vm.count("ar-order") ? vm["ar-order"].as<int>() : (12 + p - 1) / p;
+  const int m = vm.count("arx-order") ? vm["arx-order"].as<int>() : (90 + p - 1) / p;
+  std::vector<std::vector<int>> subsets;
+  if (vm.count("subsets")) subsets = parse_subsets(vm["subsets"].as<std::string>(), t.responses);
+  id::ArmaxOptions options;
+  options.ar_order = s;
+  options.arx_order = m;
+  const std::vector<id::ArmaxRun> runs = armax_runs(p, options, subsets);
+  // A run that cannot fit is refused now, with what would, rather than ended by the
+  // allocator (or the kernel) after minutes.
+  const double memory = static_cast<double>(::sysconf(_SC_PHYS_PAGES)) * static_cast<double>(::sysconf(_SC_PAGE_SIZE));
+  for (const auto& run : runs) {
+    const double need = id::armax_memory_bytes(t.y.rows(), static_cast<Eigen::Index>(run.outputs.size()),
+                                               static_cast<Eigen::Index>(t.forces.size()), run.options.ar_order);
+    if (memory > 0 && need > memory / 2)
+      throw formats::InputError(fmt::format(
+          "{}: --method armax on {} response record(s) at AR order {} would hold {:.1f} GiB in its step 3 (it grows as "
+          "p³ × samples; this machine has {:.1f} GiB): choose a few records with --responses (the paper used 1 or 2), "
+          "or identify all of them with --method era or plscf",
+          path, run.outputs.size(), run.options.ar_order, need / 1073741824.0, memory / 1073741824.0));
+  }
+  if (subsets.empty()) {
+    text << fmt::format("ARMAX orders s = {}, m = {} on all responses, then {}, {} on each\n", s, m,
+                        runs.back().options.ar_order, runs.back().options.arx_order);
+  } else {
+    text << fmt::format("ARMAX orders s = {}, m = {} on all responses, then on {} subset(s):", s, m, subsets.size());
+    for (std::size_t k = 1; k < runs.size(); ++k) {
+      std::string names;
+      for (int c : runs[k].outputs) names += (names.empty() ? "" : ",") + dof_text(t.responses[static_cast<std::size_t>(c)]);
+      text << fmt::format(" {{{}}} at {}, {};", names, runs[k].options.ar_order, runs[k].options.arx_order);
+    }
+    text << "\n";
+  }
+  try {
+    r = armax_modes(t, runs, so, warnings);
+  } catch (const formats::InputError& e) {
+    // The estimator names the records by column; the file is what the user can act on.
+    throw formats::InputError(path + ": " + e.what());
+  }
+}
+
 int identify_modes(const Args& args) {
   po::options_description desc("ssid identify modes options");
   desc.add_options()("file", po::value<std::string>()->required(),
@@ -640,6 +716,9 @@ int identify_modes(const Args& args) {
       "segment", po::value<int>()->default_value(1024), "era, plscf on time histories: Welch segment, samples")(
       "ar-order", po::value<int>(), "armax: AR order s with all p responses (default ⌈12/p⌉)")(
       "arx-order", po::value<int>(), "armax: prior ARX order m with all p responses (default ⌈90/p⌉)")(
+      "responses", po::value<std::string>(),
+      "armax: the response records it uses, e.g. \"1:1,2:1,3:3\" (NODE:DIRECTION; default: all). Its step 3 "
+      "grows as p³ in memory: a few responses, not a test's hundreds; the shapes are then at these DOFs only")(
       "subsets", po::value<std::string>(),
       "armax: the order rule's runs besides all responses, as subsets of the response records, e.g. "
       "\"1:1,2:1;2:1,3:1\" (NODE:DIRECTION, ';' between subsets); a subset of q records runs at orders "
@@ -654,7 +733,7 @@ int identify_modes(const Args& args) {
   int rc = 0;
   if (!parse_options(args,
                      "ssid identify modes FILE.unv [--method armax|era|plscf] [--json OUT] [--uff OUT] [--svg OUT.svg] "
-                     "[--report OUT.html] [--geometry GEOMETRY.unv] [--max-order N] [--segment N] [--ar-order S] [--arx-order M] [--subsets LIST] [--min-hz F] [--max-hz F]",
+                     "[--report OUT.html] [--geometry GEOMETRY.unv] [--max-order N] [--segment N] [--ar-order S] [--arx-order M] [--responses LIST] [--subsets LIST] [--min-hz F] [--max-hz F]",
                      desc, pos, vm, rc))
     return rc;
   const std::string method = vm["method"].as<std::string>();
@@ -678,6 +757,10 @@ int identify_modes(const Args& args) {
       print_error(fmt::format("--{}: expected an order ≥ 1, got {}", name, vm[name].as<int>()));
       return 2;
     }
+  if (vm.count("responses") && method != "armax") {
+    print_error("--responses: chooses ARMAX's records (--method armax); era and plscf use every response");
+    return 2;
+  }
   if (vm.count("subsets") && method != "armax") {
     print_error("--subsets: the order rule's runs are ARMAX's (--method armax)");
     return 2;
@@ -760,35 +843,7 @@ int identify_modes(const Args& args) {
     } else {
       text << fmt::format("{} time histories: {} response(s), {} force(s), {} samples every {} s; ",
                           time_records.size(), p, t.forces.size(), t.y.rows(), t.dt);
-      if (p < 2)
-        throw formats::InputError(file.path + ": --method armax needs at least two response records (the order rule "
-                                              "compares the identification from all of them with each one's)");
-      const int s = vm.count("ar-order") ? vm["ar-order"].as<int>() : (12 + p - 1) / p;
-      const int m = vm.count("arx-order") ? vm["arx-order"].as<int>() : (90 + p - 1) / p;
-      std::vector<std::vector<int>> subsets;
-      if (vm.count("subsets")) subsets = parse_subsets(vm["subsets"].as<std::string>(), t.responses);
-      id::ArmaxOptions all;
-      all.ar_order = s;
-      all.arx_order = m;
-      const std::vector<id::ArmaxRun> runs = armax_runs(p, all, subsets);
-      if (subsets.empty()) {
-        text << fmt::format("ARMAX orders s = {}, m = {} on all responses, then {}, {} on each\n", s, m,
-                            runs.back().options.ar_order, runs.back().options.arx_order);
-      } else {
-        text << fmt::format("ARMAX orders s = {}, m = {} on all responses, then on {} subset(s):", s, m, subsets.size());
-        for (std::size_t k = 1; k < runs.size(); ++k) {
-          std::string names;
-          for (int c : runs[k].outputs) names += (names.empty() ? "" : ",") + dof_text(t.responses[static_cast<std::size_t>(c)]);
-          text << fmt::format(" {{{}}} at {}, {};", names, runs[k].options.ar_order, runs[k].options.arx_order);
-        }
-        text << "\n";
-      }
-      try {
-        r = armax_modes(t, runs, so, warnings);
-      } catch (const formats::InputError& e) {
-        // The estimator names the records by column; the file is what the user can act on.
-        throw formats::InputError(file.path + ": " + e.what());
-      }
+      armax_modes_of(t, vm, file.path, text, r, responses, so, warnings);
     }
   }
 

@@ -232,6 +232,11 @@ void check_input(const Eigen::Ref<const MatrixXd>& outputs, const Eigen::Ref<con
 
 }  // namespace
 
+double armax_memory_bytes(Eigen::Index samples, Eigen::Index outputs, Eigen::Index inputs, int ar_order) {
+  const double r = static_cast<double>(samples), p = static_cast<double>(outputs), q = static_cast<double>(inputs);
+  return sizeof(double) * r * p * (p * p + p * q + ar_order * p * (p + q));
+}
+
 std::vector<ArmaxPole> armax_poles(const std::vector<Eigen::MatrixXd>& ar, double dt) {
   const Index p = ar.at(0).rows();
   const Index s = static_cast<Index>(ar.size()) - 1;

@@ -71,6 +71,12 @@ ArmaxModel identify_armax(const Eigen::Ref<const Eigen::MatrixXd>& outputs,
                           const Eigen::Ref<const Eigen::MatrixXd>& inputs, double dt,
                           const ArmaxOptions& options);
 
+/// Bytes the largest step (step 3's prefiltered regression: p² sequences U_αβ of p ×
+/// `samples` values and its regression matrix of samples·p rows by s·p·(p + q)
+/// columns) holds for `outputs` p, `inputs` q and AR order s: it grows as p³, so
+/// ARMAX is for a few responses (the paper's p = 1, 2), not a test's hundreds.
+double armax_memory_bytes(Eigen::Index samples, Eigen::Index outputs, Eigen::Index inputs, int ar_order);
+
 /// The poles and mode shapes of an AR matrix polynomial A_0 … A_s (A_0 = I):
 /// the p·s roots of det(Σ A_k z^{-k}) = 0 from the block companion matrix, each
 /// pair once, converted to Hz and damping ratio at sampling interval dt (s).
