@@ -374,8 +374,15 @@ void check_dvmrel1(const Dvmrel1& d, const BulkModel&, ResolveContext& ctx) {
   for (const auto& [dvid, coef] : d.terms) ctx.ids(IdSpace::Desvar).need(dvid, {}, d.card, 9, "DVID");
 }
 
-/// NASTRAN warns when the three given values disagree by more than 1 %.
+/// NASTRAN warns when the three given values disagree by more than 1 %, and when NU
+/// lies outside (-1.0, 0.5] beside a given E and G (USER WARNING MESSAGE 2251; the
+/// parser refuses it where NU derives a modulus).
 void check_mat1_moduli(const Mat1& mt, const BulkModel&, ResolveContext& ctx) {
+  if (mt.nu_given && !(mt.nu > -1.0 && mt.nu <= 0.5))
+    ctx.warning(mt.card, 4,
+                ctx.label(mt.card) + ": NU = " + std::to_string(mt.nu) +
+                    " is outside (-1.0, 0.5]; E and G are given and used as given (NASTRAN's USER WARNING MESSAGE "
+                    "2251)");
   if (mt.e_given && mt.g_given && mt.nu_given && mt.g > 0.0) {
     double ratio = mt.e / (2.0 * (1.0 + mt.nu) * mt.g);
     if (std::abs(1.0 - ratio) > 0.01)

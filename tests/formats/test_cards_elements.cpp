@@ -49,7 +49,14 @@ TEST_CASE("MAT1: E, G, NU derivation rule and defaults", "[cards][mat1]") {
 TEST_CASE("MAT1 errors name the field", "[cards][mat1][errors]") {
   CHECK(error_of("MAT1    1\n", parse_mat1) == "t.bdf:1: MAT1 1: E and G are both blank (give at least one)");
   CHECK(error_of("MAT1    1       2.1+11          .6\n", parse_mat1) ==
-        "t.bdf:1: MAT1 1 field 5 (NU): expected real in (-1.0, 0.5], got \".6\"");
+        "t.bdf:1: MAT1 1 field 5 (NU): expected real in (-1.0, 0.5] (E or G is derived from it), got \".6\"");
+  CHECK(error_of("MAT1    1               8.+10   -1.\n", parse_mat1) ==
+        "t.bdf:1: MAT1 1 field 5 (NU): expected real in (-1.0, 0.5] (E or G is derived from it), got \"-1.\"");
+  // With E and G given, NU out of range is NASTRAN's warning 2251, not an error (test_resolve.cpp).
+  const Mat1 odd = parse_text("MAT1    3       2.06+7  580000. 16.7586 .056\n", parse_mat1);
+  CHECK(odd.e == 2.06e7);
+  CHECK(odd.g == 580000.0);
+  CHECK(odd.nu == Approx(16.7586));
   CHECK(error_of("MAT1    1       -2.\n", parse_mat1) == "t.bdf:1: MAT1 1 field 3 (E): expected real >= 0.0, got \"-2.\"");
   CHECK(error_of("MAT1    1       2.1+11                  STEEL\n", parse_mat1) ==
         "t.bdf:1: MAT1 1 field 6 (RHO): expected real, got \"STEEL\"");

@@ -192,6 +192,15 @@ TEST_CASE("resolve: warnings — PARAM given twice, MAT1 E/G/NU inconsistent, PB
                });
 }
 
+TEST_CASE("resolve: MAT1 NU outside (-1, 0.5] beside a given E and G is NASTRAN's warning 2251", "[resolve]") {
+  // pyNastran's models/aero/freedlm (MSC Nastran ran it: USER WARNING MESSAGE 2251, ID 3).
+  auto got = problems_of("MAT1    3       2.06+7  580000. 16.7586 .056\n");
+  CHECK(got == std::vector<std::string>{
+                   "r.bdf:1: warning: MAT1 3: NU = 16.758600 is outside (-1.0, 0.5]; E and G are given and used as "
+                   "given (NASTRAN's USER WARNING MESSAGE 2251)",
+               });  // E = 2(1 + NU) G holds here (to 1.2e-6): no second warning
+}
+
 TEST_CASE("resolve: a clean deck has no problems; DMIG is counted as supported, not parsed", "[resolve]") {
   auto got = problems_of(
       "GRID    1               0.      0.      0.\n"
