@@ -8,7 +8,9 @@
 ///                (9-72), field 10 = columns 73-80; continuation lines start with '*'.
 ///   free field:  a comma within the first 10 columns; fields separated by commas;
 ///                "NAME*," makes it large (four fields per line); commas after field 10
-///                with nothing between them end the line (a trailing comma).
+///                with nothing between them end the line (a trailing comma). A line
+///                ended by a comma with no marker, followed by a line of bare values
+///                (its first field a number), is continued by it: fields 2-9 of a new row.
 /// A line whose field 1 starts with '+' or '*', or is blank, continues the card
 /// above it. Tabs advance to the next multiple of 8 columns; '$' starts a comment.
 #include <algorithm>
@@ -149,6 +151,28 @@ void split_line(std::string_view data, Arena& arena, LineFields& lf, std::string
   lf.marker = col(72, 8);
 }
 
+/// The data part of a line (comment removed) ends with a comma.
+bool ends_with_comma(std::string_view data) {
+  const std::string_view t = trim(data);
+  return !t.empty() && t.back() == ',';
+}
+
+/// A free-field line of bare values (its first field a number, never a card name or a
+/// continuation marker) after a free-field line ended by a comma: the values are fields
+/// 2-9 of a new row, a ninth value its field 10 (marker). Rewrites `lf` so.
+bool implicit_free_continuation(LineFields& lf) {
+  if (!lf.free || lf.first.empty()) return false;
+  const char c = lf.first[0];
+  if (!((c >= '0' && c <= '9') || c == '-' || c == '.')) return false;
+  lf.data.insert(lf.data.begin(), lf.first);
+  lf.first = {};
+  if (lf.data.size() > 8) {
+    if (lf.marker.empty()) lf.marker = lf.data[8];
+    lf.data.resize(8);
+  }
+  return true;
+}
+
 bool is_continuation(const LineFields& lf, std::string_view data) {
   if (!lf.first.empty()) return lf.first[0] == '+' || lf.first[0] == '*';
   return !is_blank(data);  // blank field 1 with data after it
@@ -171,6 +195,9 @@ struct Reader {
   /// The pending card's last line is the first half of a large-field row (fields
   /// 2-5): a large-field card cut after it has lost its continuation.
   bool pending_half = false;
+  /// The pending card's last line was free field, ended by a comma, with no marker: a
+  /// line of bare values may continue it (implicit_free_continuation).
+  bool pending_free_comma = false;
   std::uint32_t begin_bulk_line = 0;  ///< line of BEGIN BULK in the main file (0: none)
   LineFields lf;                                          ///< reused per line
   std::string scratch;
@@ -322,6 +349,18 @@ struct Reader {
         continue;
       }
       split_line(data, *deck.arena, lf, scratch);
+      if (pending && pending_file == fi && pending_free_comma && implicit_free_continuation(lf)) {
+        // A free-field line ended by a comma, with no continuation marker, continued by a
+        // line of bare values (pyNastran's contact.bdf, which MSC Nastran ran: "BSURF, 1,
+        // 1050, …, 1055," then "1054,1002,…,1131," rows of eight ids). The values are
+        // fields 2-9 of the next row; a card name never starts with a digit, so no line
+        // read as a card before is read otherwise.
+        add_rows(lf, l.number);
+        card.end = l.next;
+        pending_marker = std::string(lf.marker);
+        pending_free_comma = ends_with_comma(data) && lf.marker.empty();
+        continue;
+      }
       if (is_continuation(lf, data)) {
         if (!pending || pending_file != fi) {
           deck.problems.push_back({Problem::Severity::Error, deck.location(fi, l.number),
@@ -332,6 +371,7 @@ struct Reader {
         add_rows(lf, l.number);
         card.end = l.next;
         pending_marker = std::string(lf.marker);
+        pending_free_comma = lf.free && ends_with_comma(data) && lf.marker.empty();
         continue;
       }
       finish_card(fi, emitted, false);
@@ -348,6 +388,7 @@ struct Reader {
       fields.push_back(name);
       add_rows(lf, l.number);
       pending_marker = std::string(lf.marker);
+      pending_free_comma = lf.free && ends_with_comma(data) && lf.marker.empty();
     }
     if (section == Section::Bulk) {
       // The main file of a deck with BEGIN BULK ends inside the bulk data.

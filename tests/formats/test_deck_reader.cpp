@@ -143,6 +143,39 @@ TEST_CASE("free field: a line ended by a comma after its continuation marker", "
   CHECK(e.cards[0].field(9) == "7");
 }
 
+TEST_CASE("a free-field line ended by a comma is continued by a line of bare values", "[deck]") {
+  // As in a deck MSC Nastran ran (pyNastran's models/contact/contact.bdf): a BSURF list whose
+  // lines end with a comma and continue as rows of eight ids, no markers.
+  const char* text =
+      "BSURF, 1,1050,1133,1146,1125,1143,1055,$ first row\n"
+      "1054,1002,1025,1077,1194,1157,1164,1131,$\n"
+      "2118,1476,1216\n"
+      "GRID,7,,1.,2.,3.,\n"
+      "GRID,8,,4.,5.,6.\n";
+  Deck d = read_deck_text(text, "t.bdf");
+  REQUIRE(d.cards.size() == 3);
+  CHECK(d.problems.empty());
+  const Card& b = d.cards[0];
+  CHECK(b.name == "BSURF");
+  CHECK(b.field(1) == "1");
+  CHECK(b.field(7) == "1055");
+  CHECK(b.field(8).empty());       // the first line's trailing comma: an empty field 9
+  CHECK(b.field(9) == "1054");     // the next row's field 2
+  CHECK(b.field(16) == "1131");    // its field 9
+  CHECK(b.field(17) == "2118");    // the third row's field 2
+  CHECK(b.field(19) == "1216");
+  CHECK(b.fields().size() == 20);
+  // A card name never starts with a digit: a trailing comma before a card is only an empty field.
+  CHECK(d.cards[1].name == "GRID");
+  CHECK(d.cards[1].field(5) == "3.");
+  CHECK(d.cards[2].field(1) == "8");
+  CHECK(render_file(d, 0) == text);  // written back as read
+  // A line of bare values after a line with no trailing comma is what it was: an unknown card.
+  const Deck e = read_deck_text("BSURF, 1,1050,1133\n1054,1002\n", "t.bdf");
+  REQUIRE(e.cards.size() == 2);
+  CHECK(e.cards[1].name == "1054");
+}
+
 TEST_CASE("executive, case control and bulk sections; text after ENDDATA kept", "[deck]") {
   const char* text =
       "ID TEST\nSOL 103\nCEND\nTITLE = X\nSPC = 1\nMETHOD=10\nBEGIN BULK\n"
