@@ -270,25 +270,39 @@ fs::path identify(const SimulatedTest& test, const std::string& method, const fs
   return id;
 }
 
+/// The truth's modes at every ball with the library tests' noise (0.2 % frequency, 2 %
+/// of the RMS shape component), as UFF 55: the "exact modes" the identified ones face.
+fs::path exact_modes(const Case& truth, const fs::path& dir, unsigned seed) {
+  TestSpec exact;
+  exact.seed = seed;
+  const fs::path p = dir / "exact.unv";
+  formats::uff::write_uff(translators::mode_set_to_uff(synthetic_test(truth.fe, exact)), p.string());
+  return p;
+}
+
+/// A case's scratch folder, with the nominal rod deck ssid is given written in it.
+fs::path case_folder(const std::string& tag, const Case& nominal) {
+  const fs::path dir = cli_scratch(tag);
+  std::ofstream(dir / "rod.bdf") << deck_text(nominal.t, nominal.fe);
+  return dir;
+}
+
 }  // namespace
 
 TEST_CASE("a simulated MPI shaker test: ssid estimate recovers the parameters from the identified modes",
           "[cli][identify][estimate][mpi_test][slow]") {
-  const fs::path dir = cli_scratch("mpi_shaker_estimate");
   const Case nominal = rod_case();
-  std::ofstream(dir / "rod.bdf") << deck_text(nominal.t, nominal.fe);
+  const fs::path dir = case_folder("mpi_shaker_estimate", nominal);
   Case truth = rod_case();
   perturb(truth.fe, "STRUTA", 1.05);
   perturb(truth.fe, "JOINTM", 0.95);
   const SimulatedTest test = simulated_test(truth, dir, 2201);
   INFO("shakers at " << test.data.force_dofs[0].first << ":" << test.data.force_dofs[0].second << " and "
                      << test.data.force_dofs[1].first << ":" << test.data.force_dofs[1].second);
-  TestSpec exact;
-  exact.seed = 2202;
-  formats::uff::write_uff(translators::mode_set_to_uff(synthetic_test(truth.fe, exact)), (dir / "exact.unv").string());
+  const fs::path exact = exact_modes(truth, dir, 2202);
 
   for (const std::string source : {"exact", "era", "plscf"}) {
-    const fs::path modes = source == "exact" ? dir / "exact.unv" : identify(test, source, dir);
+    const fs::path modes = source == "exact" ? exact : identify(test, source, dir);
     const fs::path out = dir / ("e_" + source + ".json");
     const auto e = run_ssid("estimate " + (dir / "rod.bdf").string() + " " + modes.string() + " -q --json " + out.string());
     INFO(source << ": " << e.out << e.err);
@@ -308,22 +322,19 @@ TEST_CASE("a simulated MPI shaker test: ssid estimate recovers the parameters fr
 
 TEST_CASE("a simulated MPI shaker test: ssid diagnose names the hidden mass from the identified modes",
           "[cli][identify][diagnose][mpi_test][slow]") {
-  const fs::path dir = cli_scratch("mpi_shaker_diagnose");
   const Case nominal = rod_case();
-  std::ofstream(dir / "rod.bdf") << deck_text(nominal.t, nominal.fe);
+  const fs::path dir = case_folder("mpi_shaker_diagnose", nominal);
   Case truth = rod_case();
   perturb(truth.fe, "STRUTA", 1.05);
   const int grid = 29;     // the optics-boom tip ball
   const double mass = 2.0; // kg, about 1 % of the truss
   truth.fe.masses.push_back({9001, grid, mass, 0.0, "hidden"});
   const SimulatedTest test = simulated_test(truth, dir, 2203);
-  TestSpec exact;
-  exact.seed = 2204;
-  formats::uff::write_uff(translators::mode_set_to_uff(synthetic_test(truth.fe, exact)), (dir / "exact.unv").string());
+  const fs::path exact = exact_modes(truth, dir, 2204);
 
   const double strut_area = 1.05 * nominal_value(nominal, "STRUTA");
   for (const std::string source : {"exact", "era", "plscf"}) {
-    const fs::path modes = source == "exact" ? dir / "exact.unv" : identify(test, source, dir);
+    const fs::path modes = source == "exact" ? exact : identify(test, source, dir);
     const fs::path out = dir / ("d_" + source + ".json");
     const auto d = run_ssid("diagnose " + (dir / "rod.bdf").string() + " " + modes.string() + " -q --json " + out.string());
     INFO(source << ": " << d.out << d.err);
