@@ -192,7 +192,7 @@ TEST_CASE("resolve: warnings — PARAM given twice, MAT1 E/G/NU inconsistent, PB
                });
 }
 
-TEST_CASE("resolve: MAT1 NU outside (-1, 0.5] beside a given E and G is NASTRAN's warning 2251", "[resolve]") {
+TEST_CASE("resolve: a MAT1 NU out of range beside a given E and G is NASTRAN's warning 2251", "[resolve]") {
   // pyNastran's models/aero/freedlm (MSC Nastran ran it: USER WARNING MESSAGE 2251, ID 3).
   auto got = problems_of("MAT1    3       2.06+7  580000. 16.7586 .056\n");
   CHECK(got == std::vector<std::string>{
