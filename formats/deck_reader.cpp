@@ -159,16 +159,22 @@ bool ends_with_comma(std::string_view data) {
 
 /// A free-field line of bare values (its first field a number, never a card name or a
 /// continuation marker) after a free-field line ended by a comma: the values are fields
-/// 2-9 of a new row, a ninth value its field 10 (marker). Rewrites `lf` so.
+/// 2-9 of a new row, a ninth value its field 10 (marker), and any after that stay data,
+/// as after field 10 of any free-field line (the card's reader then finds a field too
+/// many). Rewrites `lf` so.
 bool implicit_free_continuation(LineFields& lf) {
   if (!lf.free || lf.first.empty()) return false;
   const char c = lf.first[0];
   if (!((c >= '0' && c <= '9') || c == '-' || c == '.')) return false;
+  // As split: first = value 1, data = values 2-9 then 11 on, marker = value 10.
   lf.data.insert(lf.data.begin(), lf.first);
   lf.first = {};
   if (lf.data.size() > 8) {
-    if (lf.marker.empty()) lf.marker = lf.data[8];
+    std::vector<std::string_view> beyond(lf.data.begin() + 9, lf.data.end());
+    if (!lf.marker.empty() || !beyond.empty()) beyond.insert(beyond.begin(), lf.marker);
+    lf.marker = lf.data[8];
     lf.data.resize(8);
+    lf.data.insert(lf.data.end(), beyond.begin(), beyond.end());
   }
   return true;
 }

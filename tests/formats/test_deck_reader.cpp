@@ -170,6 +170,14 @@ TEST_CASE("a free-field line ended by a comma is continued by a line of bare val
   CHECK(d.cards[1].field(5) == "3.");
   CHECK(d.cards[2].field(1) == "8");
   CHECK(render_file(d, 0) == text);  // written back as read
+  // Ten bare values: the ninth is the row's field 10 (a marker no line answers), the tenth
+  // stays data; none is dropped.
+  const Deck f = read_deck_text("BSURF, 1,1050,\n1,2,3,4,5,6,7,8,9,10\n", "t.bdf");
+  REQUIRE(f.cards.size() == 1);
+  CHECK(f.cards[0].field(16) == "8");
+  CHECK(f.cards[0].field(17) == "10");
+  REQUIRE(f.problems.size() == 1);
+  CHECK(f.problems[0].message.find("field 10 holds '9'") != std::string::npos);
   // A line of bare values after a line with no trailing comma is what it was: an unknown card.
   const Deck e = read_deck_text("BSURF, 1,1050,1133\n1054,1002\n", "t.bdf");
   REQUIRE(e.cards.size() == 2);
