@@ -378,7 +378,7 @@ void check_dvmrel1(const Dvmrel1& d, const BulkModel&, ResolveContext& ctx) {
 /// lies outside (-1.0, 0.5] beside a given E and G (USER WARNING MESSAGE 2251; the
 /// parser refuses it where NU derives a modulus).
 void check_mat1_moduli(const Mat1& mt, const BulkModel&, ResolveContext& ctx) {
-  if (mt.nu_given && !(mt.nu > -1.0 && mt.nu <= 0.5))
+  if (mt.nu_given && !mat1_nu_in_range(mt.nu))
     ctx.warning(mt.card, 4,
                 ctx.label(mt.card) + ": NU = " + std::to_string(mt.nu) +
                     " is outside (-1.0, 0.5]; E and G are given and used as given (NASTRAN's USER WARNING MESSAGE "

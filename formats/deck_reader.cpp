@@ -258,6 +258,14 @@ struct Reader {
     if (lf.data.size() < width) fields.resize(fields.size() + (width - lf.data.size()));
   }
 
+  /// What the pending card's last line `lf` (data part `data`) leaves open: the marker
+  /// its next line must answer, or, for a free-field line ended by a comma with no
+  /// marker, a line of bare values (implicit_free_continuation).
+  void note_line_end(const LineFields& lf, std::string_view data) {
+    pending_marker = std::string(lf.marker);
+    pending_free_comma = lf.free && ends_with_comma(data) && lf.marker.empty();
+  }
+
   void finish_card(std::uint32_t fi, std::uint32_t& emitted, bool at_end) {
     if (!pending) return;
     pending = false;
@@ -355,19 +363,13 @@ struct Reader {
         continue;
       }
       split_line(data, *deck.arena, lf, scratch);
-      if (pending && pending_file == fi && pending_free_comma && implicit_free_continuation(lf)) {
-        // A free-field line ended by a comma, with no continuation marker, continued by a
-        // line of bare values (pyNastran's contact.bdf, which MSC Nastran ran: "BSURF, 1,
-        // 1050, …, 1055," then "1054,1002,…,1131," rows of eight ids). The values are
-        // fields 2-9 of the next row; a card name never starts with a digit, so no line
-        // read as a card before is read otherwise.
-        add_rows(lf, l.number);
-        card.end = l.next;
-        pending_marker = std::string(lf.marker);
-        pending_free_comma = ends_with_comma(data) && lf.marker.empty();
-        continue;
-      }
-      if (is_continuation(lf, data)) {
+      // A free-field line ended by a comma, with no continuation marker, continued by a
+      // line of bare values (pyNastran's contact.bdf, which MSC Nastran ran: "BSURF, 1,
+      // 1050, …, 1055," then "1054,1002,…,1131," rows of eight ids). The values are
+      // fields 2-9 of the next row; a card name never starts with a digit, so no line
+      // read as a card before is read otherwise.
+      const bool implicit = pending && pending_file == fi && pending_free_comma && implicit_free_continuation(lf);
+      if (implicit || is_continuation(lf, data)) {
         if (!pending || pending_file != fi) {
           deck.problems.push_back({Problem::Severity::Error, deck.location(fi, l.number),
                                    "continuation line with no card before it (field 1 '" + std::string(lf.first) +
@@ -376,8 +378,7 @@ struct Reader {
         }
         add_rows(lf, l.number);
         card.end = l.next;
-        pending_marker = std::string(lf.marker);
-        pending_free_comma = lf.free && ends_with_comma(data) && lf.marker.empty();
+        note_line_end(lf, data);
         continue;
       }
       finish_card(fi, emitted, false);
@@ -393,8 +394,7 @@ struct Reader {
       card.name = std::string(name);
       fields.push_back(name);
       add_rows(lf, l.number);
-      pending_marker = std::string(lf.marker);
-      pending_free_comma = lf.free && ends_with_comma(data) && lf.marker.empty();
+      note_line_end(lf, data);
     }
     if (section == Section::Bulk) {
       // The main file of a deck with BEGIN BULK ends inside the bulk data.

@@ -16,7 +16,7 @@ Mat1 parse_mat1(const FieldReader& r) {
   // given NASTRAN only warns (MSC's USER WARNING MESSAGE 2251, "unreasonable or
   // inconsistent values of E, G or NU": pyNastran's freedlm, NU = 16.7586, ran) and
   // uses E and G as given: check_mat1_moduli says so.
-  if (nu && !(*nu > -1.0 && *nu <= 0.5) && !(e && g)) r.fail(4, "NU", "real in (-1.0, 0.5] (E or G is derived from it)");
+  if (nu && !mat1_nu_in_range(*nu) && !(e && g)) r.fail(4, "NU", "real in (-1.0, 0.5] (E or G is derived from it)");
   if (!e && !g) r.fail_card("E and G are both blank (give at least one)", 2);
   m.e_given = e.has_value();
   m.g_given = g.has_value();

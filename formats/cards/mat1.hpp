@@ -20,6 +20,9 @@
 
 namespace ssid::formats {
 
+/// NU within NASTRAN's range for MAT1, -1.0 < NU <= 0.5 (the QRG's field table).
+inline bool mat1_nu_in_range(double nu) { return nu > -1.0 && nu <= 0.5; }
+
 struct Mat1 {
   std::int64_t mid = 0;
   double e = 0.0, g = 0.0, nu = 0.0;  ///< after the derivation rule
