@@ -404,7 +404,7 @@ TEST_CASE("UFF: a binary file is called one; no raw byte reaches a message", "[u
   for (int i = 0; i < 300; ++i) zip += static_cast<char>((i * 37) & 0xff);
   CHECK(error_of(zip) == "bad.unv: not a universal file: byte 0x03 at line 1, column 3 is not text");
   // A PNG: its first line ("\x89PNG") holds no control byte, its second does.
-  const std::string png("\x89PNG\r\n\x1a\n\0\0\0\rIHDR\0\0\0\x10", 24);
+  const std::string png("\x89PNG\r\n\x1a\n\0\0\0\rIHDR\0\0\0\x10", 20);
   CHECK(error_of(png) == "bad.unv: not a universal file: byte 0x1A at line 2, column 1 is not text");
   // A control byte after a delimiter and a dataset number: the file is a universal
   // file with a damaged (or unmarked binary) dataset, located by line and column.
