@@ -10,6 +10,16 @@
 ///   github.com/nasa/NASTRAN-95): every "NAME - title" entry heading, extracted
 ///   from the file; the PARAM names of its PARAM section left out (they are
 ///   values of PARAM, not entries).
+/// - entries held by decks that MSC or Simcenter Nastran ran, with the run's .f06 or
+///   .op2 beside them (pyNastran's models/: contact, nonlinear control, damage,
+///   acoustics, random-variable and p-element geometry entries of recent editions,
+///   and older ones, MSC's grid and element generators GRIDG, CGEN, SPCG with
+///   their LIST and DELETE): ABSNMVS, ABSTRCT, ACPLNW, AMLREG, BCRPARA, BCSURF,
+///   CGEN, DELETE, DMNCON, DMRLAW, DVTREL1, EGRID, GRIDG, GROUP, LIST, MATDMG,
+///   NLCNTL2, NLCNTLG, PFASTT, PINTS, PLOADX, PLOTE, PLOTG, PLOTOPT, POINT, RANDVAR,
+///   SPCG, TABLEM5. They are
+///   known names kept verbatim; `ssid modes` refuses a deck holding one (it may
+///   change K or M), PLOADX aside (a load, card_traits.cpp).
 /// ENDDATA is in the list so that a misspelt ENDDATA gets it as a suggestion.
 /// The list errs on the inclusive side: a real name missing from it would make a
 /// real card an error, an extra name only keeps a misspelling of it verbatim.
@@ -98,6 +108,10 @@ const std::vector<std::string_view>& bulk_entry_names() {
     "TEMPRB", "TF", "TIC", "TIC3", "TICD", "TICEL", "TICREF", "TICS", "TIM", "TLOAD1", "TLOAD2", "TMCPARA", "TOPVAR",
     "TRANS", "TRIM", "TRIM2", "TSTEP", "TSTEP1", "TSTEPNL", "TTEMP", "UNBALNC", "USET", "USET1", "UXVEC", "VCCT",
     "VIEW", "VIEW3D",
+    // Held by decks MSC or Simcenter Nastran ran (see above).
+    "ABSNMVS", "ABSTRCT", "ACPLNW", "AMLREG", "BCRPARA", "BCSURF", "CGEN", "DELETE", "DMNCON", "DMRLAW", "DVTREL1",
+    "EGRID", "GRIDG", "GROUP", "LIST", "MATDMG", "NLCNTL2", "NLCNTLG", "PFASTT", "PINTS", "PLOADX", "PLOTE", "PLOTG",
+    "PLOTOPT", "POINT", "RANDVAR", "SPCG", "TABLEM5",
     };
     std::sort(v.begin(), v.end());
     return v;

@@ -52,6 +52,11 @@ struct Card {
   std::vector<FieldValue> values;  ///< when modified: values[0] is the name
   /// The fields as read, kept when the card is modified so unchanged values keep their text.
   std::vector<std::string_view> original_fields;
+  /// Free-field replication (a "=" or "=(n)" line, deck_reader.cpp): the index of the
+  /// card the chain of replicated cards starts from, set on that card and on every
+  /// card generated from it; -1 otherwise. Each generated card is derived from the one
+  /// before it, so the writer rewrites the whole chain when one of its cards changes.
+  std::int32_t replication_root = -1;
 
   /// Number of fields including the name.
   std::size_t size() const { return m_nfields; }

@@ -113,6 +113,11 @@ public:
     };
     return *this;
   }
+  /// Its property ids are in property family `family` (CardTraits::id_family).
+  Typed& family(const char* family) {
+    m_traits.id_family = family;
+    return *this;
+  }
   /// The same id on several cards of this kind is one thing, not a duplicate.
   Typed& repeats_allowed() {
     m_traits.repeats_allowed = true;
@@ -250,6 +255,13 @@ CardTraits verbatim(const char* name, IdSpace space, Effect effect,
   t.space = space;
   t.effect = effect;
   t.scalar_connection = connection;
+  return t;
+}
+
+/// A property card kept verbatim whose ids are in family `family` (CardTraits::id_family).
+CardTraits verbatim_property(const char* name, const char* family, Effect effect) {
+  CardTraits t = verbatim(name, IdSpace::Property, effect);
+  t.id_family = family;
   return t;
 }
 
@@ -500,16 +512,20 @@ std::vector<CardTraits> make_table() {
           .refers(&Prod::mid, 2, "MID", S::Material, {"MAT1"}),
       typed({"PBAR"}, &BulkModel::pbars, parse_pbar, write_pbar, E::StiffnessAndMass)
           .defines(S::Property, &Pbar::pid)
+          .family("bar")
           .refers(&Pbar::mid, 2, "MID", S::Material, {"MAT1"}),
       typed({"PBARL"}, &BulkModel::pbarls, parse_pbarl, write_pbarl, E::StiffnessAndMass)
           .defines(S::Property, &Pbarl::pid)
+          .family("bar")
           .refers(&Pbarl::mid, 2, "MID", S::Material, {"MAT1"})
           .checks(check_section_type<Pbarl>),
       typed({"PBEAM"}, &BulkModel::pbeams, parse_pbeam, write_pbeam, E::StiffnessAndMass)
           .defines(S::Property, &Pbeam::pid)
+          .family("beam")
           .refers(&Pbeam::mid, 2, "MID", S::Material, {"MAT1"}),
       typed({"PBEAML"}, &BulkModel::pbeamls, parse_pbeaml, write_pbeaml, E::StiffnessAndMass)
           .defines(S::Property, &Pbeaml::pid)
+          .family("beam")
           .refers(&Pbeaml::mid, 2, "MID", S::Material, {"MAT1"})
           .checks(check_section_type<Pbeaml>),
       typed({"PMASS"}, &BulkModel::pmasses, parse_pmass, write_pmass, E::Mass).defines(S::Property, &Pmass::pid),
@@ -599,9 +615,10 @@ std::vector<CardTraits> make_table() {
       ignored("PLOTPYR", other, S::PlotElement),
       ignored("PLOTHEX", other, S::PlotElement),
       // --- kept verbatim: properties, materials, coordinate systems, scalar points, design ------------
-      verbatim("PSHELL", S::Property, E::StiffnessAndMass),
-      verbatim("PCOMP", S::Property, E::StiffnessAndMass),
-      verbatim("PCOMPG", S::Property, E::StiffnessAndMass),
+      // CQUAD4, CTRIA3, ... accept PSHELL, PCOMP and PCOMPG (QRG CQUAD4, PID).
+      verbatim_property("PSHELL", "shell", E::StiffnessAndMass),
+      verbatim_property("PCOMP", "shell", E::StiffnessAndMass),
+      verbatim_property("PCOMPG", "shell", E::StiffnessAndMass),
       verbatim("PSOLID", S::Property, E::StiffnessAndMass),
       verbatim("PSHEAR", S::Property, E::StiffnessAndMass),
       verbatim("PTUBE", S::Property, E::StiffnessAndMass),
@@ -610,7 +627,7 @@ std::vector<CardTraits> make_table() {
       ignored("PDAMP", other, S::Property),
       ignored("PVISC", other, S::Property),
       verbatim("PBUSH1D", S::Property, E::Stiffness),
-      verbatim("PBCOMP", S::Property, E::StiffnessAndMass),
+      verbatim_property("PBCOMP", "beam", E::StiffnessAndMass),
       verbatim("PFAST", S::Property, E::Stiffness),
       verbatim("PWELD", S::Property, E::Stiffness),
       verbatim("MAT2", S::Material, E::StiffnessAndMass),
@@ -632,7 +649,7 @@ std::vector<CardTraits> make_table() {
   // --- kept verbatim, no id space: ignored in SOL 103 ------------------------------------------------
   const std::vector<std::pair<const char*, std::vector<const char*>>> groups = {
       {loads, {"FORCE", "FORCE1", "FORCE2", "MOMENT", "MOMENT1", "MOMENT2", "LOAD", "PLOAD", "PLOAD1", "PLOAD2",
-               "PLOAD4", "GRAV", "RFORCE", "TEMP", "TEMPD", "TEMPP1", "SPCD"}},
+               "PLOAD4", "PLOADX", "GRAV", "RFORCE", "TEMP", "TEMPD", "TEMPP1", "SPCD"}},
       {dynamic, {"DAREA", "DLOAD", "RLOAD1", "RLOAD2", "TLOAD1", "TLOAD2", "DPHASE", "DELAY", "FREQ", "FREQ1", "FREQ2",
                  "FREQ3", "FREQ4", "FREQ5", "TSTEP", "TABLED1", "TABLED2", "TABLED3", "TABLED4", "TABDMP1", "RANDPS",
                  "TABRND1", "TF", "NOLIN1", "NOLIN2", "NOLIN3", "NOLIN4"}},
@@ -668,6 +685,12 @@ const CardTraits* find_card_traits(const std::string& name) {
   }();
   auto it = by_name.find(name);
   return it == by_name.end() ? nullptr : it->second;
+}
+
+std::string id_family(IdSpace space, const std::string& name) {
+  if (space != IdSpace::Property) return {};
+  const CardTraits* t = find_card_traits(name);
+  return t && *t->id_family ? std::string(t->id_family) : name;
 }
 
 }  // namespace ssid::formats

@@ -105,6 +105,13 @@ struct CardTraits {
   /// The same id on several cards of this kind is one thing, not a duplicate
   /// (SPOINT remark: "duplicate scalar point numbers are allowed"; an SPC set).
   bool repeats_allowed = false;
+  /// Property cards: the property types one element chooses among ("bar": PBAR and
+  /// PBARL for CBAR); empty: the card's type alone. NASTRAN looks an element's
+  /// property up among the types the element accepts, so one id on two property
+  /// types of different families is no duplicate (MSC Nastran ran pyNastran's
+  /// dbxdra7 with PGAP 1 beside PBEAM 1, rs321h with PSHELL 1 beside PSOLID 1);
+  /// within a family the element could not tell them apart: a duplicate.
+  const char* id_family = "";
   ScalarConnection scalar_connection = ScalarConnection::None;
   /// The references resolve checks (the card's own checks come on top: scalar
   /// ends, list fields of nested records, DVPREL1's TYPE, warnings).
@@ -134,5 +141,10 @@ const std::vector<CardTraits>& card_traits();
 
 /// The entry that lists `name`, or nullptr.
 const CardTraits* find_card_traits(const std::string& name);
+
+/// The key under which card type `name` defines ids in `space`: two definitions of
+/// one id clash only under one key. The property family (CardTraits::id_family, or
+/// the type itself) in the property space; "" (one key) in every other space.
+std::string id_family(IdSpace space, const std::string& name);
 
 }  // namespace ssid::formats

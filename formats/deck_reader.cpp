@@ -13,12 +13,18 @@
 ///                (its first field a number), is continued by it: fields 2-9 of a new row.
 /// A line whose field 1 starts with '+' or '*', or is blank, continues the card
 /// above it. Tabs advance to the next multiple of 8 columns; '$' starts a comment.
+/// A line whose field 1 is "=", "=n" or "=(n)" replicates the card above it
+/// (replicate_fields).
 #include <algorithm>
+#include <cstdio>
+#include <cstdlib>
 #include <filesystem>
 #include <fstream>
+#include <optional>
 #include <sstream>
 
 #include "formats/deck.hpp"
+#include "formats/nastran_number.hpp"
 #include "formats/text_util.hpp"
 
 namespace ssid::formats {
@@ -179,6 +185,102 @@ bool implicit_free_continuation(LineFields& lf) {
   return true;
 }
 
+/// Free-field replication (MSC Nastran Quick Reference Guide, "Format of Bulk Data
+/// Entries", free field format). A line whose field 1 is "=" is a new entry built from
+/// the entry before it, field by field:
+///   "="          the field of the entry before;
+///   "=="         that field and every field after it;
+///   "*x", "*(x)" that field plus x: an integer increment for an integer field, a real
+///                one for a real field (the Guide: "x should be a real number for real
+///                fields or an integer for integer fields"); a blank field counts as zero
+///                (a deck MSC Nastran ran, pyNastran's dbxdra7.bdf, increments a blank
+///                GRID CD so; the Guide is silent);
+///   blank        a blank field; any other text is the field's value.
+/// Fields the line does not reach are blank. A line "=n" or "=(n)" alone makes n more
+/// entries, each from the one before by the last "=" line's fields. Only one-line
+/// entries are replicated: NASTRAN's continuation replication (incremented markers)
+/// is not read, and a replication line that would need it is an error.
+constexpr std::size_t kMaxReplicas = 100000;  ///< per "=(n)" line: garbage input must not exhaust memory
+
+/// The count of an "=n" or "=(n)" field; 0 when the text is not one.
+std::size_t replication_count(std::string_view first) {
+  std::string_view n = first.substr(1);
+  if (n.size() >= 2 && n.front() == '(' && n.back() == ')') n = trim(n.substr(1, n.size() - 2));
+  const auto v = parse_integer(n);
+  return v && *v > 0 && static_cast<std::uint64_t>(*v) <= kMaxReplicas ? static_cast<std::size_t>(*v) : 0;
+}
+
+/// The text of field `old` incremented by `spec` ("*x" or "*(x)"), or nullopt with `why`.
+std::optional<std::string> incremented(std::string_view old, std::string_view spec, std::string& why) {
+  std::string_view x = spec.substr(1);
+  if (x.size() >= 2 && x.front() == '(' && x.back() == ')') x = trim(x.substr(1, x.size() - 2));
+  const FieldKind xk = classify_field(x);
+  const FieldKind ok = classify_field(old);
+  if (xk != FieldKind::Integer && xk != FieldKind::Real) {
+    why = "'" + std::string(spec) + "' is not an increment (expected *x or *(x), x a number)";
+    return std::nullopt;
+  }
+  if (ok != FieldKind::Blank && ok != xk) {
+    why = std::string(xk == FieldKind::Integer ? "an integer" : "a real") + " increment '" + std::string(spec) +
+          "' on the field '" + std::string(old) + "' of the entry before, " +
+          (ok == FieldKind::Integer ? "an integer" : ok == FieldKind::Real ? "a real" : "text") +
+          " (NASTRAN: a real increment for a real field, an integer for an integer field)";
+    return std::nullopt;
+  }
+  if (xk == FieldKind::Integer) {
+    std::int64_t sum = 0;
+    if (__builtin_add_overflow(ok == FieldKind::Blank ? 0 : *parse_integer(old), *parse_integer(x), &sum)) {
+      why = "'" + std::string(old) + "' + " + std::string(x) + " overflows an integer";
+      return std::nullopt;
+    }
+    return std::to_string(sum);
+  }
+  // The sum as a decimal sum would give it: fifteen significant digits, so that
+  // -78.87 + 12.5 reads -66.37 and not the double's last-bit noise.
+  const double sum = (ok == FieldKind::Blank ? 0.0 : *parse_real(old)) + *parse_real(x);
+  char buf[40];
+  std::snprintf(buf, sizeof buf, "%.15g", sum);
+  const auto text = format_real_exact(std::strtod(buf, nullptr), 24);
+  if (!text) {
+    why = "'" + std::string(old) + "' + " + std::string(x) + " is not a finite real";
+    return std::nullopt;
+  }
+  return text;
+}
+
+/// The fields of an entry replicated from `prev` (fields 0-8, the name first) by a
+/// replication line's fields 2-9 (`specs`); false with `why` when one cannot be made.
+bool replicate_fields(const Card& prev, const std::vector<std::string_view>& specs, Arena& arena,
+                      std::vector<std::string_view>& out, std::string& why) {
+  out.assign(9, std::string_view());
+  out[0] = prev.field(0);
+  for (std::size_t i = 1; i <= 8; ++i) {
+    const std::string_view spec = i - 1 < specs.size() ? specs[i - 1] : std::string_view();
+    const std::string_view old = prev.field(i);
+    if (spec == "==") {
+      for (std::size_t j = i; j <= 8; ++j) out[j] = prev.field(j);
+      return true;
+    }
+    if (spec == "=") {
+      out[i] = old;
+    } else if (!spec.empty() && spec[0] == '*') {
+      auto t = incremented(old, spec, why);
+      if (!t) {
+        why = "field " + std::to_string(i + 1) + ": " + why;
+        return false;
+      }
+      out[i] = arena.copy(*t);
+    } else if (!spec.empty() && spec[0] == '=') {
+      why = "field " + std::to_string(i + 1) + ": '" + std::string(spec) +
+            "' is not a replication field (expected =, == or *x)";
+      return false;
+    } else {
+      out[i] = spec;
+    }
+  }
+  return true;
+}
+
 bool is_continuation(const LineFields& lf, std::string_view data) {
   if (!lf.first.empty()) return lf.first[0] == '+' || lf.first[0] == '*';
   return !is_blank(data);  // blank field 1 with data after it
@@ -205,6 +307,12 @@ struct Reader {
   /// line of bare values may continue it (implicit_free_continuation).
   bool pending_free_comma = false;
   std::uint32_t begin_bulk_line = 0;  ///< line of BEGIN BULK in the main file (0: none)
+  /// The last "=" line's fields 2-9, which an "=(n)" line repeats; valid while only
+  /// replication lines follow it.
+  std::vector<std::string_view> repl_specs;
+  bool repl_valid = false;
+  /// A replication line failed: the lines that replicate from it cannot be read either.
+  bool repl_failed = false;
   LineFields lf;                                          ///< reused per line
   std::string scratch;
 
@@ -369,6 +477,11 @@ struct Reader {
       // fields 2-9 of the next row; a card name never starts with a digit, so no line
       // read as a card before is read otherwise.
       const bool implicit = pending && pending_file == fi && pending_free_comma && implicit_free_continuation(lf);
+      if (!implicit && !lf.first.empty() && lf.first[0] == '=') {
+        finish_card(fi, emitted, false);
+        replicate(fi, l, emitted);
+        continue;
+      }
       if (implicit || is_continuation(lf, data)) {
         if (!pending || pending_file != fi) {
           deck.problems.push_back({Problem::Severity::Error, deck.location(fi, l.number),
@@ -382,6 +495,7 @@ struct Reader {
         continue;
       }
       finish_card(fi, emitted, false);
+      repl_valid = repl_failed = false;
       pending = true;
       pending_file = fi;
       card.file = fi;
@@ -408,6 +522,64 @@ struct Reader {
       f.chunks.push_back({Chunk::Kind::Verbatim, emitted, static_cast<std::uint32_t>(f.text.size()), 0});
     chain.pop_back();
     return fi;
+  }
+
+  /// A replication line (`lf`, line `l`): one entry for "=", n for "=(n)", each a card
+  /// of its own from the card before it. The first takes the line's text; the others
+  /// take none, so the file is written back as read. Errors are problems at the line.
+  void replicate(std::uint32_t fi, const Line& l, std::uint32_t& emitted) {
+    const std::string first(lf.first);
+    auto problem = [&](const std::string& msg) {
+      deck.problems.push_back({Problem::Severity::Error, deck.location(fi, l.number),
+                               "replication line '" + first + "': " + msg + "; not read"});
+      repl_failed = true;
+      repl_valid = false;
+    };
+    if (repl_failed) return problem("the replication line before it was not read");
+    if (deck.cards.empty() || deck.cards.back().file != fi)
+      return problem("no card before it to replicate");
+    const Card& prev = deck.cards.back();
+    if (prev.m_nrows > 1 || prev.size() > 9)
+      return problem("the card before it, " + prev.name + " " + std::string(prev.field(1)) + " at line " +
+                     std::to_string(prev.line) + ", has continuation lines, which ssid does not replicate");
+    const bool more = lf.data.size() > 8 || !lf.marker.empty();
+    std::size_t count = 1;
+    if (first == "=") {
+      if (more) return problem("a field 10 or more than nine fields: ssid replicates one-line entries only");
+      repl_specs.assign(lf.data.begin(), lf.data.end());
+    } else {
+      count = replication_count(first);
+      if (count == 0)
+        return problem("expected =, =n or =(n) with n from 1 to " + std::to_string(kMaxReplicas));
+      if (more || std::any_of(lf.data.begin(), lf.data.end(), [](std::string_view f) { return !f.empty(); }))
+        return problem("an =n line holds nothing else");
+      if (!repl_valid) return problem("no \"=\" line before it whose increments it could repeat");
+    }
+    std::vector<std::string_view> out;
+    std::string why;
+    for (std::size_t k = 0; k < count; ++k) {
+      const auto root = deck.cards.back().replication_root >= 0 ? deck.cards.back().replication_root
+                                                               : static_cast<std::int32_t>(deck.cards.size() - 1);
+      if (!replicate_fields(deck.cards.back(), repl_specs, *deck.arena, out, why))
+        return problem((count > 1 ? "entry " + std::to_string(k + 1) + " of " + std::to_string(count) + ", " : "") + why);
+      deck.cards.back().replication_root = root;
+      card = Card{};
+      card.name = deck.cards.back().name;
+      card.format = deck.cards.back().format;
+      card.file = fi;
+      card.line = l.number;
+      card.begin = k == 0 ? l.begin : l.next;
+      card.end = l.next;
+      card.replication_root = root;
+      fields = out;
+      rows.assign(1, {l.number, 1});
+      pending = true;
+      pending_file = fi;
+      pending_marker.clear();
+      pending_half = pending_free_comma = false;
+      finish_card(fi, emitted, false);
+    }
+    repl_valid = true;
   }
 
   /// With no ENDDATA, a card that runs to the end of the file is cut when its last

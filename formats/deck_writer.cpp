@@ -1,5 +1,6 @@
 #include "formats/deck_writer.hpp"
 
+#include <algorithm>
 #include <filesystem>
 #include <fstream>
 #include <stdexcept>
@@ -101,13 +102,34 @@ std::string format_card(const std::string& name, const std::vector<FieldValue>& 
 
 std::string render_file(const Deck& deck, std::size_t file) {
   const SourceFile& f = deck.files.at(file);
+  // A replicated card ("=" and "=(n)" lines, deck_reader.cpp) is derived from the card
+  // before it: when one card of a chain changed, every card of the chain is written
+  // out in full, so the cards after the change keep their values.
+  std::vector<std::int32_t> changed_chains;
+  for (const Chunk& c : f.chunks) {
+    if (c.kind != Chunk::Kind::Card) continue;
+    const Card& card = deck.cards[c.index];
+    if (card.modified && card.replication_root >= 0) changed_chains.push_back(card.replication_root);
+  }
   std::string out;
   out.reserve(f.text.size() + 256);
   for (const Chunk& c : f.chunks) {
     if (c.kind == Chunk::Kind::Card) {
       const Card& card = deck.cards[c.index];
+      const bool whole = card.replication_root >= 0 &&
+                         std::find(changed_chains.begin(), changed_chains.end(), card.replication_root) !=
+                             changed_chains.end();
+      if (whole && !card.modified) {
+        std::vector<FieldValue> values{card.name};
+        for (std::size_t i = 1; i < card.size(); ++i)
+          values.push_back(card.field(i).empty() ? FieldValue{} : FieldValue{std::string(card.field(i))});
+        out += format_card(card.name, values, FieldFormat::Free, f.newline, nullptr);
+        continue;
+      }
       if (card.modified) {
-        out += format_card(card.name, card.values, card.format, f.newline, card.end > card.begin ? &card : nullptr);
+        const bool keep_text = card.end > card.begin && !whole;
+        out += format_card(card.name, card.values, whole ? FieldFormat::Free : card.format, f.newline,
+                           keep_text ? &card : nullptr);
         continue;
       }
     }

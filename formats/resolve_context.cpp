@@ -1,5 +1,6 @@
 #include "formats/resolve_context.hpp"
 
+#include <algorithm>
 #include <array>
 
 namespace ssid::formats::detail {
@@ -19,15 +20,29 @@ std::string label(const Deck& deck, std::size_t card) {
 
 void IdRegistry::define(std::int64_t id, std::size_t card, bool repeatable, std::size_t field) {
   const Card& c = m_deck.cards[card];
-  auto [it, fresh] = m_defs.emplace(id, Def{card, &c.name, repeatable});
-  if (fresh || (repeatable && it->second.repeatable)) return;
+  std::string family = id_family(m_space, c.name);
+  auto it = m_defs.find(id);
+  if (it == m_defs.end()) {
+    m_defs.emplace(id, Def{card, &c.name, repeatable, std::move(family)});
+    return;
+  }
+  if (it->second.family == family) return clash(it->second, id, card, repeatable, field, std::move(family));
+  auto [b, e] = m_more.equal_range(id);
+  for (auto m = b; m != e; ++m)
+    if (m->second.family == family) return clash(m->second, id, card, repeatable, field, std::move(family));
+  m_more.emplace(id, Def{card, &c.name, repeatable, std::move(family)});
+}
+
+void IdRegistry::clash(Def& first_def, std::int64_t id, std::size_t card, bool repeatable, std::size_t field,
+                       std::string family) {
+  if (repeatable && first_def.repeatable) return;
   // Card types are defined in turn, not in deck order: the earlier card is the first definition.
   std::size_t later = card;
-  if (card < it->second.card) {
-    later = it->second.card;
-    it->second = Def{card, &c.name, repeatable};
+  if (card < first_def.card) {
+    later = first_def.card;
+    first_def = Def{card, &m_deck.cards[card].name, repeatable, std::move(family)};
   }
-  const Card& first = m_deck.cards[it->second.card];
+  const Card& first = m_deck.cards[first_def.card];
   const Card& dup = m_deck.cards[later];
   m_problems.push_back(error_at(m_deck, dup, field,
                                 "duplicate " + m_noun + " " + std::to_string(id) + " (" + dup.name +
@@ -47,8 +62,11 @@ void IdRegistry::need(std::int64_t id, const std::vector<std::string>& types, st
     return;
   }
   if (types.empty()) return;
-  for (const auto& t : types)
-    if (*d->type == t) return;
+  auto accepted = [&](const Def& def) { return std::find(types.begin(), types.end(), *def.type) != types.end(); };
+  if (accepted(*d)) return;
+  auto [b, e] = m_more.equal_range(id);
+  for (auto m = b; m != e; ++m)
+    if (accepted(m->second)) return;
   m_problems.push_back(error_at(m_deck, c, field,
                                 label(m_deck, by) + " refers to " + field_name + " " + std::to_string(id) +
                                     ", which is a " + *d->type + ", expected " + expect));
@@ -56,10 +74,8 @@ void IdRegistry::need(std::int64_t id, const std::vector<std::string>& types, st
 
 ResolveContext::ResolveContext(const Deck& deck, std::vector<Problem>& problems) : m_deck(deck), m_problems(problems) {
   m_spaces.reserve(kIdSpaceCount);
-  for (std::size_t s = 0; s < kIdSpaceCount; ++s)
-    m_spaces.emplace_back(deck, problems, id_space_noun(static_cast<IdSpace>(s)));
+  for (std::size_t s = 0; s < kIdSpaceCount; ++s) m_spaces.emplace_back(deck, problems, static_cast<IdSpace>(s));
 }
-
 void ResolveContext::need(const Reference& ref, std::int64_t id, std::size_t card) const {
   if (ref.zero_means_none && id <= 0) return;
   ids(ref.space).need(id, ref.expected, card, ref.field, ref.field_name);

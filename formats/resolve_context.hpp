@@ -26,31 +26,41 @@ public:
     std::size_t card;         ///< index in Deck::cards
     const std::string* type;  ///< card name
     bool repeatable;          ///< defined by a card whose repeats are no duplicate (SPOINT)
+    std::string family;       ///< id_family(space, type): definitions clash only within one
   };
 
-  IdRegistry(const Deck& deck, std::vector<Problem>& problems, std::string noun)
-      : m_deck(deck), m_problems(problems), m_noun(std::move(noun)) {}
+  IdRegistry(const Deck& deck, std::vector<Problem>& problems, IdSpace space)
+      : m_deck(deck), m_problems(problems), m_space(space), m_noun(id_space_noun(space)) {}
 
-  /// Adds `id` defined by card `card` (field `field`); a second definition is a
-  /// problem, unless both cards allow repeats (`repeatable`).
+  /// Adds `id` defined by card `card` (field `field`); a second definition in the
+  /// same family (id_family) is a problem, unless both cards allow repeats
+  /// (`repeatable`); one in another family is kept beside the first.
   void define(std::int64_t id, std::size_t card, bool repeatable = false, std::size_t field = 1);
 
+  /// The first definition of `id` (the only one outside the property space).
   const Def* find(std::int64_t id) const {
     auto it = m_defs.find(id);
     return it == m_defs.end() ? nullptr : &it->second;
   }
 
-  /// Checks that `id` exists and, when `types` is not empty, is one of them.
+  /// Checks that `id` exists and, when `types` is not empty, that one of its
+  /// definitions is one of them.
   /// Messages: "PROD 3 required by CROD 10 does not exist";
   /// "CROD 10 refers to PID 3, which is a PBAR, expected PROD".
   void need(std::int64_t id, const std::vector<std::string>& types, std::size_t by, std::size_t field,
             const char* field_name) const;
 
 private:
+  /// Card `card` defines `id` again where `first` did (same family).
+  void clash(Def& first, std::int64_t id, std::size_t card, bool repeatable, std::size_t field, std::string family);
+
   const Deck& m_deck;
   std::vector<Problem>& m_problems;
+  IdSpace m_space;
   std::string m_noun;
   std::unordered_map<std::int64_t, Def> m_defs;
+  /// Definitions of an id in m_defs from other families (property space only).
+  std::unordered_multimap<std::int64_t, Def> m_more;
 };
 
 /// What the cards' checks see: the deck, the id spaces, the problem list.

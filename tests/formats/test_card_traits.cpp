@@ -54,7 +54,7 @@ const std::map<std::string, IdSpace>& expected_spaces() {
 const std::set<std::string>& expected_ignored() {
   static const std::set<std::string> s = {
       "FORCE",   "FORCE1",  "FORCE2",  "MOMENT",  "MOMENT1", "MOMENT2", "LOAD",    "PLOAD",   "PLOAD1",  "PLOAD2",
-      "PLOAD4",  "GRAV",    "RFORCE",  "TEMP",    "TEMPD",   "TEMPP1",  "SPCD",    "DAREA",   "DLOAD",   "RLOAD1",
+      "PLOAD4",  "PLOADX",  "GRAV",    "RFORCE",  "TEMP",    "TEMPD",   "TEMPP1",  "SPCD",    "DAREA",   "DLOAD",   "RLOAD1",
       "RLOAD2",  "TLOAD1",  "TLOAD2",  "DPHASE",  "DELAY",   "FREQ",    "FREQ1",   "FREQ2",   "FREQ3",   "FREQ4",
       "FREQ5",   "TSTEP",   "TABLED1", "TABLED2", "TABLED3", "TABLED4", "TABDMP1", "RANDPS",  "TABRND1", "EPOINT",
       "TF",      "NOLIN1",  "NOLIN2",  "NOLIN3",  "NOLIN4",  "DRESP1",  "DRESP2",  "DCONSTR", "DOPTPRM", "DEQATN",
@@ -188,21 +188,22 @@ TEST_CASE("card traits: resolve defines each card's id in the space of its entry
   CHECK(checked >= 30);
 
   // Cards kept verbatim: one of each with id 7 in one deck; duplicates arise
-  // within a space and never across spaces.
+  // within a space (and in the property space within a family) and never across.
   std::string deck;
-  std::map<IdSpace, std::vector<std::string>> by_space;
+  std::map<std::pair<IdSpace, std::string>, std::vector<std::string>> by_space;
   std::size_t line = 0;
   std::map<std::string, std::size_t> line_of;
   for (const CardTraits& t : card_traits()) {
     if (t.typed() || t.space == IdSpace::None) continue;
     deck += t.names.front() + ",7\n";
     line_of[t.names.front()] = ++line;
-    by_space[expected_spaces().at(t.names.front())].push_back(t.names.front());
+    const IdSpace space = expected_spaces().at(t.names.front());
+    by_space[{space, id_family(space, t.names.front())}].push_back(t.names.front());
   }
   std::vector<std::string> expected;
-  for (const auto& [space, names] : by_space)
+  for (const auto& [key, names] : by_space)
     for (std::size_t k = 1; k < names.size(); ++k)
-      expected.push_back("r.bdf:" + std::to_string(line_of[names[k]]) + ": duplicate " + id_space_noun(space) +
+      expected.push_back("r.bdf:" + std::to_string(line_of[names[k]]) + ": duplicate " + id_space_noun(key.first) +
                          " 7 (" + names[k] + "; first defined by " + names[0] + " at r.bdf:" +
                          std::to_string(line_of[names[0]]) + ")");
   std::vector<std::string> got = problems_of(deck);
@@ -210,6 +211,7 @@ TEST_CASE("card traits: resolve defines each card's id in the space of its entry
   std::sort(expected.begin(), expected.end());
   CHECK(got == expected);
   CHECK(by_space.size() >= 8);
+  CHECK(by_space.at({IdSpace::Property, "shell"}) == std::vector<std::string>{"PSHELL", "PCOMP", "PCOMPG"});
 }
 
 TEST_CASE("card traits: the cards SOL 103 ignores are those the assembly noted before the table", "[card_traits]") {

@@ -184,6 +184,109 @@ TEST_CASE("a free-field line ended by a comma is continued by a line of bare val
   CHECK(e.cards[1].name == "1054");
 }
 
+namespace {
+std::vector<std::string> fields_of(const Card& c) {
+  std::vector<std::string> out;
+  for (std::string_view f : c.fields()) out.emplace_back(f);
+  return out;
+}
+using Fields = std::vector<std::string>;
+}  // namespace
+
+TEST_CASE("free-field replication: =, ==, *x and *(x), =n and =(n) lines", "[deck][replication]") {
+  // The rules of the Quick Reference Guide's free field format, values worked by hand:
+  // "=" copies a field, "==" it and all after it, "*x" adds x, "=n" makes n more entries
+  // with the last "=" line's increments; fields a line does not reach are blank.
+  const std::string text =
+      "GRID,101,17,1.0,10.5,,17,3456\n"
+      "=,*1,=,*0.2,==\n"
+      "=2\n"
+      "CBEAM,  201,    1,      201,    202,    10.,    45.,    0.\n"
+      "=,      *(1),   =,      *(1),   *(1),   ==\n"
+      "=(2) $ two more\n"
+      "$ a comment between\n"
+      "GRID,   123,    1,      25.,    -60.4,  0.,\n"
+      "=,      *(1),   =,      =,      *(14.8),=,      *(1)\n"
+      "RINGAX,1000,,5.0,0.0,,,123456\n"
+      "=,*(1),,=,*(0.2)\n"
+      "MAT1,1,1.0+7,,0.3\n";
+  Deck d = read_deck_text(text, "r.bdf");
+  INFO((d.problems.empty() ? std::string() : d.problems[0].str()));
+  CHECK(d.problems.empty());
+  REQUIRE(d.cards.size() == 13);
+  CHECK(fields_of(d.cards[1]) == Fields{"GRID", "102", "17", "1.2", "10.5", "", "17", "3456"});
+  CHECK(fields_of(d.cards[2]) == Fields{"GRID", "103", "17", "1.4", "10.5", "", "17", "3456"});
+  CHECK(fields_of(d.cards[3]) == Fields{"GRID", "104", "17", "1.6", "10.5", "", "17", "3456"});
+  CHECK(fields_of(d.cards[5]) == Fields{"CBEAM", "202", "1", "202", "203", "10.", "45.", "0."});
+  CHECK(fields_of(d.cards[7]) == Fields{"CBEAM", "204", "1", "204", "205", "10.", "45.", "0."});
+  // A blank field incremented counts as zero (CD of GRID 124); -60.4 + 14.8 = -45.6 exactly
+  // as a decimal sum, not the double's -45.599999999999994.
+  CHECK(fields_of(d.cards[9]) == Fields{"GRID", "124", "1", "25.", "-45.6", "0.", "1"});
+  // The field the line leaves blank is blank, the fields it does not reach too.
+  CHECK(fields_of(d.cards[11]) == Fields{"RINGAX", "1001", "", "5.0", ".2"});
+  CHECK(d.cards[12].name == "MAT1");  // a one-line card after a replication is a card
+  // Each replicated entry is a card at its line; the first of an "=n" line owns the
+  // line's text, so the deck is written back byte for byte.
+  CHECK(d.cards[2].line == 3);
+  CHECK(d.cards[3].line == 3);
+  CHECK(d.cards[7].line == 6);
+  CHECK(d.location(d.cards[7], 4).str() == "r.bdf:6");
+  CHECK(render_file(d, 0) == text);
+  CHECK(d.cards[0].replication_root == 0);
+  CHECK(d.cards[3].replication_root == 0);
+  CHECK(d.cards[4].replication_root == 4);
+  CHECK(d.cards[12].replication_root == -1);
+}
+
+TEST_CASE("a changed replicated card: its chain is written out in full, the values kept", "[deck][replication][writer]") {
+  const std::string text =
+      "GRID,1,,0.,0.,0.\n"
+      "=,*1,=,*1.5,==\n"
+      "=(2)\n"
+      "GRID,9,,9.,9.,9.\n";
+  Deck d = read_deck_text(text, "c.bdf");
+  REQUIRE(d.cards.size() == 5);
+  d.set_values(1, {std::string("GRID"), std::int64_t{2}, std::monostate{}, 1.5, 7.0, 0.0});
+  const std::string out = render_file(d, 0);
+  CHECK(out ==
+        "GRID,1,,0.,0.,0.\n"
+        "GRID,2,,1.5,7.,0.\n"
+        "GRID,3,,3.,0.,0.\n"
+        "GRID,4,,4.5,0.,0.\n"
+        "GRID,9,,9.,9.,9.\n");
+  // Re-read: the cards after the change keep the values they had, not values derived anew.
+  const Deck back = read_deck_text(out, "c2.bdf");
+  REQUIRE(back.cards.size() == 5);
+  CHECK(fields_of(back.cards[3]) == fields_of(d.cards[3]));
+}
+
+TEST_CASE("replication errors: file:line and what was expected, nothing made up", "[deck][replication][errors]") {
+  auto first_problem = [](const std::string& text) {
+    const Deck d = read_deck_text(text, "e.bdf");
+    return d.problems.empty() ? std::string() : d.problems[0].str();
+  };
+  CHECK(first_problem("=,*1\n") == "e.bdf:1: replication line '=': no card before it to replicate; not read");
+  CHECK(first_problem("GRID,1,,0.,0.,0.\n=(3)\n") ==
+        "e.bdf:2: replication line '=(3)': no \"=\" line before it whose increments it could repeat; not read");
+  CHECK(first_problem("GRID,1,,0.,0.,0.\n=,*1,=,=\n=(0)\n") ==
+        "e.bdf:3: replication line '=(0)': expected =, =n or =(n) with n from 1 to 100000; not read");
+  CHECK(first_problem("GRID,1,,0.,0.,0.\n=,*1,=,*1\n") ==
+        "e.bdf:2: replication line '=': field 4: an integer increment '*1' on the field '0.' of the entry "
+        "before, a real (NASTRAN: a real increment for a real field, an integer for an integer field); not read");
+  CHECK(first_problem("GRID,1,,0.,0.,0.\n=,*A\n") ==
+        "e.bdf:2: replication line '=': field 2: '*A' is not an increment (expected *x or *(x), x a number); not read");
+  CHECK(first_problem("CBAR,1,2,3,4,0.,0.,1.,,+B\n+B,,,,,\n=,*1,==\n") ==
+        "e.bdf:3: replication line '=': the card before it, CBAR 1 at line 1, has continuation lines, which ssid "
+        "does not replicate; not read");
+  // After a line that failed, the lines replicating from it fail too; an ordinary card resets.
+  const Deck d = read_deck_text("GRID,1,,0.,0.,0.\n=,*A\n=(2)\nGRID,5,,0.,0.,0.\n=,*1,==\n", "e.bdf");
+  REQUIRE(d.problems.size() == 2);
+  CHECK(d.problems[1].str() == "e.bdf:3: replication line '=(2)': the replication line before it was not read; not read");
+  REQUIRE(d.cards.size() == 3);
+  CHECK(d.cards[2].field(1) == "6");
+  CHECK(render_file(d, 0) == "GRID,1,,0.,0.,0.\n=,*A\n=(2)\nGRID,5,,0.,0.,0.\n=,*1,==\n");
+}
+
 TEST_CASE("executive, case control and bulk sections; text after ENDDATA kept", "[deck]") {
   const char* text =
       "ID TEST\nSOL 103\nCEND\nTITLE = X\nSPC = 1\nMETHOD=10\nBEGIN BULK\n"

@@ -1,5 +1,6 @@
 // resolve(): every problem kind, all reported at once with file:line of the referring card.
 #include "card_test_util.hpp"
+#include "formats/card_traits.hpp"
 
 using namespace card_test;
 
@@ -24,7 +25,7 @@ TEST_CASE("resolve: duplicate ids in each id space", "[resolve]") {
       "MAT1    1       2.1+11          .3\n"                    // 5
       "MAT1    1       7.+10           .3\n"                    // 6
       "PROD    3       1       1.\n"                            // 7
-      "PBAR    3       1       1.\n"                            // 8
+      "PROD    3       1       1.\n"                            // 8
       "CROD    5       3       1       2\n"                     // 9
       "CONM2   5       1               1.\n"                    // 10
       "RBE2    5       1       123     2\n"                     // 11
@@ -42,7 +43,7 @@ TEST_CASE("resolve: duplicate ids in each id space", "[resolve]") {
   CHECK(got == std::vector<std::string>{
                    "r.bdf:2: duplicate grid or scalar point 1 (GRID; first defined by GRID at r.bdf:1)",
                    "r.bdf:4: duplicate grid or scalar point 2 (GRID; first defined by SPOINT at r.bdf:3)",
-                   "r.bdf:8: duplicate property 3 (PBAR; first defined by PROD at r.bdf:7)",
+                   "r.bdf:8: duplicate property 3 (PROD; first defined by PROD at r.bdf:7)",
                    "r.bdf:6: duplicate material 1 (MAT1; first defined by MAT1 at r.bdf:5)",
                    // Grid 2 is first an SPOINT: structural elements need a GRID.
                    "r.bdf:9: CROD 5 refers to G2 2, which is a SPOINT, expected GRID",
@@ -93,6 +94,62 @@ TEST_CASE("resolve: element ids are unique within each family NASTRAN keeps apar
                       "r.bdf:6: duplicate rigid element 8 (RBAR; first defined by RBE2 at r.bdf:5)",
                       "r.bdf:8: duplicate plot element 9 (PLOTEL; first defined by PLOTEL at r.bdf:7)",
                   });
+}
+
+TEST_CASE("resolve: a property id is unique among the types one element chooses from, not across", "[resolve]") {
+  // An element's property is looked up among the types the element accepts (CBAR:
+  // PBAR, PBARL; CBEAM: PBEAM, PBEAML, PBCOMP; CQUAD4: PSHELL, PCOMP, PCOMPG). Decks MSC
+  // Nastran ran reuse ids across them: PGAP 1 beside PBEAM 1 (pyNastran's dbxdra7),
+  // PSHELL 1 beside PSOLID 1 (rs321h), PSOLID 100 beside PSHELL 100 (ac10901a).
+  auto across = problems_of(
+      "GRID    1               0.      0.      0.\n"
+      "GRID    2               1.      0.      0.\n"
+      "MAT1    1       2.1+11          .3\n"
+      "PGAP    1       .254\n"
+      "PBEAM   1       1       20.     6.67    166.7\n"
+      "PROD    1       1       1.\n"
+      "PSHELL  1       1       .1\n"
+      "PSOLID  1       1\n"
+      "PELAS   1       1000.\n"
+      "CBEAM   5       1       1       2       0.      0.      1.\n"
+      "CROD    6       1       1       2\n"
+      "CELAS1  7       1       1       1       2       1\n");
+  CHECK(across == std::vector<std::string>{});
+  auto within = problems_of(
+      "MAT1    1       2.1+11          .3\n"                    // 1
+      "PBAR    3       1       1.\n"                            // 2
+      "PBARL   3       1               ROD\n        .1\n"      // 3-4
+      "PSHELL  4       1       .1\n"                            // 5
+      "PCOMP   4\n"                                              // 6
+      "PBCOMP  5       1       1.\n"                            // 7
+      "PBEAM   5       1       1.\n");                          // 8
+  CHECK(within == std::vector<std::string>{
+                      "r.bdf:3: duplicate property 3 (PBARL; first defined by PBAR at r.bdf:2)",
+                      "r.bdf:6: duplicate property 4 (PCOMP; first defined by PSHELL at r.bdf:5)",
+                      "r.bdf:8: duplicate property 5 (PBEAM; first defined by PBCOMP at r.bdf:7)",
+                  });
+  // The reference still finds the right type among several, and names the first when none fits.
+  auto wrong = problems_of(
+      "GRID    1               0.      0.      0.\n"
+      "GRID    2               1.      0.      0.\n"
+      "MAT1    1       2.1+11          .3\n"
+      "PGAP    1       .254\n"
+      "PSHELL  1       1       .1\n"
+      "CBEAM   5       1       1       2       0.      0.      1.\n");
+  CHECK(wrong == std::vector<std::string>{
+                     "r.bdf:6: CBEAM 5 refers to PID 1, which is a PGAP, expected PBEAM/PBEAML/PBCOMP"});
+}
+
+TEST_CASE("card traits: the property types an element accepts are one family", "[resolve]") {
+  // Otherwise two of them could share an id and the element could not tell which is meant.
+  for (const CardTraits& t : card_traits())
+    for (const Reference& r : t.references) {
+      if (r.space != IdSpace::Property || r.expected.size() < 2) continue;
+      for (const std::string& type : r.expected) {
+        INFO(t.names[0] << " " << r.field_name << ": " << type);
+        CHECK(id_family(IdSpace::Property, type) == id_family(IdSpace::Property, r.expected[0]));
+      }
+    }
 }
 
 TEST_CASE("resolve: scalar points as NASTRAN defines them — repeated SPOINTs, points named by scalar elements",
