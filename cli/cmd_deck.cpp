@@ -46,6 +46,10 @@ int deck_summary(const Args& args) {
   j["problems"] = nlohmann::json::array();
   for (const auto& p : problems) j["problems"].push_back(p.str());
   j["total_cards"] = deck.cards.size();
+  j["partitions"] = nlohmann::json::array();  // BEGIN SUPER = n ... : bulk data kept verbatim
+  for (const auto& st : deck.statements)
+    if (st.section == formats::Section::Bulk)
+      j["partitions"].push_back({{"statement", st.text}, {"at", deck.location(st.file, st.line).str()}});
 
   if (vm.count("json") && vm["json"].as<std::string>() == "-") {
     write_json("-", j);
@@ -69,6 +73,10 @@ int deck_summary(const Args& args) {
     for (const auto& [name, n] : model.unsupported) verbatim += n;
     std::cout << "kept verbatim (no typed parser): " << verbatim << " card(s) of " << model.unsupported.size()
               << " type(s)\n";
+    for (const auto& st : deck.statements)
+      if (st.section == formats::Section::Bulk)
+        std::cout << "partition " << st.text << " at " << deck.location(st.file, st.line).str()
+                  << ": its bulk data kept verbatim, not read (ssid modes refuses it)\n";
     std::cout << "problems: " << problems.size() << " (" << errors << " error(s), " << problems.size() - errors
               << " warning(s); listed on stderr)\n";
     if (vm.count("json")) write_json(vm["json"].as<std::string>(), j);

@@ -258,11 +258,15 @@ CardTraits verbatim(const char* name, IdSpace space, Effect effect,
   return t;
 }
 
-/// A property card kept verbatim whose ids are in family `family` (CardTraits::id_family).
-CardTraits verbatim_property(const char* name, const char* family, Effect effect) {
-  CardTraits t = verbatim(name, IdSpace::Property, effect);
+/// `t` with its ids in family `family` (CardTraits::id_family).
+CardTraits in_family(CardTraits t, const char* family) {
   t.id_family = family;
   return t;
+}
+
+/// A property card kept verbatim whose ids are in family `family` (CardTraits::id_family).
+CardTraits verbatim_property(const char* name, const char* family, Effect effect) {
+  return in_family(verbatim(name, IdSpace::Property, effect), family);
 }
 
 /// A card kept verbatim that SOL 103 ignores, and why.
@@ -429,6 +433,8 @@ std::vector<CardTraits> make_table() {
   // trim requests act only in SOL 144-146.
   const char* aero = "aeroelasticity (SOL 144-146)";
   const char* other = "other solutions' data, output and bookkeeping";
+  // Conductivity and heat capacity: no stiffness or mass.
+  const char* heat = "heat transfer (SOL 153, 159)";
   // Read by DMAP and the aerodynamics; K2GG and M2GG select DMIG, which ssid assembles.
   const char* dmi = "direct matrix input by DMI";
 
@@ -635,6 +641,11 @@ std::vector<CardTraits> make_table() {
       verbatim("MAT8", S::Material, E::StiffnessAndMass),
       verbatim("MAT9", S::Material, E::StiffnessAndMass),
       verbatim("MAT10", S::Material, E::StiffnessAndMass),
+      // Thermal materials: heat-transfer decks (SOL 153, 159) give them to PROD, PBAR, ...
+      // A thermal material may share its id with the structural one it completes (MSC decks
+      // give MAT1 1 and MAT4 1 for one material: pyNastran's htrussx, plate_py).
+      in_family(ignored("MAT4", heat, S::Material), "thermal"),
+      in_family(ignored("MAT5", heat, S::Material), "thermal"),
       // CORD1x are ignored only while no grid refers to them (resolve would accept
       // the reference, the geometry refuses it).
       ignored("CORD1R", other, S::CoordinateSystem),
@@ -688,9 +699,9 @@ const CardTraits* find_card_traits(const std::string& name) {
 }
 
 std::string id_family(IdSpace space, const std::string& name) {
-  if (space != IdSpace::Property) return {};
   const CardTraits* t = find_card_traits(name);
-  return t && *t->id_family ? std::string(t->id_family) : name;
+  if (t && *t->id_family) return t->id_family;
+  return space == IdSpace::Property ? name : std::string();
 }
 
 }  // namespace ssid::formats

@@ -111,6 +111,8 @@ struct CardTraits {
   /// types of different families is no duplicate (MSC Nastran ran pyNastran's
   /// dbxdra7 with PGAP 1 beside PBEAM 1, rs321h with PSHELL 1 beside PSOLID 1);
   /// within a family the element could not tell them apart: a duplicate.
+  /// Materials: "thermal" for MAT4 and MAT5, which may share the id of the
+  /// structural material they complete; empty: the structural materials' one family.
   const char* id_family = "";
   ScalarConnection scalar_connection = ScalarConnection::None;
   /// The references resolve checks (the card's own checks come on top: scalar
@@ -143,8 +145,8 @@ const std::vector<CardTraits>& card_traits();
 const CardTraits* find_card_traits(const std::string& name);
 
 /// The key under which card type `name` defines ids in `space`: two definitions of
-/// one id clash only under one key. The property family (CardTraits::id_family, or
-/// the type itself) in the property space; "" (one key) in every other space.
+/// one id clash only under one key. CardTraits::id_family where set; otherwise the
+/// type itself in the property space and "" (one key) in every other space.
 std::string id_family(IdSpace space, const std::string& name);
 
 }  // namespace ssid::formats

@@ -19,7 +19,11 @@
 
 namespace ssid::formats {
 
-enum class Section : std::uint8_t { Executive, CaseControl, Bulk, AfterEnddata };
+/// Where a line sits. PartBulk: the bulk data of a part superelement or another
+/// partition (after `BEGIN SUPER = n`, `BEGIN BULK SUPER = n`, `BEGIN AUXMODEL = n`
+/// inside the bulk data), kept verbatim and not read as cards; the BEGIN line is
+/// a statement with section Bulk.
+enum class Section : std::uint8_t { Executive, CaseControl, Bulk, AfterEnddata, PartBulk };
 
 /// A piece of a file, in order: text copied as is, a card, or an INCLUDE.
 struct Chunk {

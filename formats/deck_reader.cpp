@@ -462,6 +462,23 @@ struct Reader {
       if (section == Section::AfterEnddata) continue;
 
       if (tdata.empty()) continue;  // comment or blank line: verbatim, may sit inside a card
+      // Partitioned bulk data (MSC Nastran: BEGIN SUPER = n, BEGIN BULK SUPER = n, BEGIN
+      // AUXMODEL = n, ... after the residual's bulk data): a part superelement's cards
+      // are a model of their own, with ids of their own, which ssid does not assemble.
+      // They are kept verbatim, to the ENDDATA, and the BEGIN line is a statement that
+      // `ssid modes` refuses by name.
+      if (iequals_prefix(tdata, "BEGIN") && tdata.size() > 5 && (tdata[5] == ' ' || tdata[5] == '\t')) {
+        if (section == Section::Bulk) finish_card(fi, emitted, false);
+        deck.statements.push_back({Section::Bulk, upper(tdata), fi, l.number});
+        section = Section::PartBulk;
+        continue;
+      }
+      if (section == Section::PartBulk) {
+        if (iequals_prefix(tdata, "ENDDATA") &&
+            (tdata.size() == 7 || tdata[7] == ' ' || tdata[7] == ',' || tdata[7] == '\t'))
+          section = Section::AfterEnddata;
+        continue;
+      }
       // ENDDATA in field 1; NASTRAN reads nothing after it, so later fields (pyNastran
       // writes a checksum there: "ENDDATA 58e050da") do not matter.
       if (iequals_prefix(tdata, "ENDDATA") &&
@@ -510,7 +527,7 @@ struct Reader {
       add_rows(lf, l.number);
       note_line_end(lf, data);
     }
-    if (section == Section::Bulk) {
+    if (section == Section::Bulk || section == Section::PartBulk) {
       // The main file of a deck with BEGIN BULK ends inside the bulk data.
       const bool no_enddata = parent < 0 && deck.has_bulk_marker;
       if (no_enddata) check_cut_card(text);

@@ -67,9 +67,16 @@ void IdRegistry::need(std::int64_t id, const std::vector<std::string>& types, st
   auto [b, e] = m_more.equal_range(id);
   for (auto m = b; m != e; ++m)
     if (accepted(m->second)) return;
-  m_problems.push_back(error_at(m_deck, c, field,
-                                label(m_deck, by) + " refers to " + field_name + " " + std::to_string(id) +
-                                    ", which is a " + *d->type + ", expected " + expect));
+  const std::string msg = label(m_deck, by) + " refers to " + field_name + " " + std::to_string(id) + ", which is a " +
+                          *d->type + ", expected " + expect;
+  // A material of another type is a warning: NASTRAN checks a material against its use
+  // only for the elements of the solution run (MSC Nastran ran pyNastran's bwb_saero_trim
+  // with an unused PBEAML on a MAT8, and heat-transfer decks give PROD a MAT4). The
+  // assembly refuses an element whose material it cannot use.
+  if (m_space == IdSpace::Material)
+    m_problems.push_back(warning_at(m_deck, c, field, msg + "; an element using it cannot be assembled"));
+  else
+    m_problems.push_back(error_at(m_deck, c, field, msg));
 }
 
 ResolveContext::ResolveContext(const Deck& deck, std::vector<Problem>& problems) : m_deck(deck), m_problems(problems) {

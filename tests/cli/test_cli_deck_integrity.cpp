@@ -4,6 +4,9 @@
 // Each test writes its own small decks.
 #include <catch2/catch.hpp>
 
+#include <fstream>
+#include <iterator>
+
 #include <nlohmann/json.hpp>
 #include <sstream>
 #include <unistd.h>
@@ -191,6 +194,39 @@ TEST_CASE("a card ssid cannot assemble: every command names the first one's file
     CHECK(r.code == 2);
     CHECK_THAT(r.err, Catch::EndsWith("ssid: error: " + msg));
   }
+}
+
+TEST_CASE("part superelement bulk data: deck summary reads the deck, modes names the BEGIN line", "[cli][integrity]") {
+  // As in decks MSC Nastran ran (pyNastran's see101ta, see101nd): the residual's bulk data,
+  // then BEGIN BULK SUPER = n and each part's cards, with ids of their own (GRID 1 again).
+  const fs::path dir = scratch();
+  const std::string text = rod_deck(ids(4), "BEGIN BULK SUPER = 1\n"
+                                            "GRID    1               5.      0.      0.\n"
+                                            "CRDO    100     1       1       2\n");
+  const fs::path deck = write(dir / "parts.bdf", text);
+  const std::string at = deck.string() + ":" + std::to_string(line_of(text, "BEGIN BULK SUPER"));
+  auto s = run_ssid("deck summary " + deck.string());
+  CHECK(s.code == 0);
+  CHECK(s.err.empty());  // the part's cards are not read: no duplicate GRID 1, no unknown CRDO
+  CHECK_THAT(s.out, Catch::Contains("partition BEGIN BULK SUPER = 1 at " + at +
+                                    ": its bulk data kept verbatim, not read (ssid modes refuses it)\n"));
+  auto m = run_ssid("modes " + deck.string());
+  CHECK(m.code == 2);
+  CHECK_THAT(m.err, Catch::EndsWith("ssid: error: " + at +
+                                    ": cannot assemble the model: BEGIN BULK SUPER = 1: the bulk data after it (a part "
+                                    "superelement or another partition) is kept verbatim and not assembled; ssid "
+                                    "assembles one structure: export K and M from NASTRAN (OP4 or DMIG) and build the "
+                                    "operators with `ssid assemble --import SPEC.json`\n"));
+  // Written back byte for byte, the part included.
+  auto w = run_ssid("deck write " + deck.string() + " -o " + (dir / "out" / "parts.bdf").string());
+  CHECK(w.code == 0);
+  std::ifstream in(dir / "out" / "parts.bdf", std::ios::binary);
+  CHECK(std::string(std::istreambuf_iterator<char>(in), {}) == text);
+  // A part that runs to the end of the file still lacks its ENDDATA.
+  const fs::path cut = write(dir / "cut.bdf", rod_deck(ids(4), "BEGIN SUPER = 2\nGRID    1\n", false));
+  auto c = run_ssid("deck summary " + cut.string());
+  CHECK(c.code == 2);
+  CHECK_THAT(c.err, Catch::Contains("missing ENDDATA"));
 }
 
 TEST_CASE("a case control selection with no card: the statement's file and line", "[cli][integrity]") {

@@ -34,7 +34,7 @@ const std::map<std::string, IdSpace>& expected_spaces() {
     put(IdSpace::Property, {"PROD",  "PBAR",   "PBARL", "PBEAM", "PBEAML", "PMASS", "PELAS", "PBUSH",
                             "PSHELL", "PCOMP", "PCOMPG", "PSOLID", "PSHEAR", "PTUBE", "PBEND", "PGAP",
                             "PDAMP", "PVISC", "PBUSH1D", "PBCOMP", "PFAST", "PWELD"});
-    put(IdSpace::Material, {"MAT1", "MAT2", "MAT3", "MAT8", "MAT9", "MAT10"});
+    put(IdSpace::Material, {"MAT1", "MAT2", "MAT3", "MAT8", "MAT9", "MAT10", "MAT4", "MAT5"});
     put(IdSpace::CoordinateSystem, {"CORD2R", "CORD2C", "CORD2S", "CORD1R", "CORD1C", "CORD1S", "CORD3G", "CORD3R"});
     put(IdSpace::SpcSet, {"SPC", "SPC1"});
     put(IdSpace::SpcaddSet, {"SPCADD"});
@@ -54,7 +54,7 @@ const std::map<std::string, IdSpace>& expected_spaces() {
 const std::set<std::string>& expected_ignored() {
   static const std::set<std::string> s = {
       "FORCE",   "FORCE1",  "FORCE2",  "MOMENT",  "MOMENT1", "MOMENT2", "LOAD",    "PLOAD",   "PLOAD1",  "PLOAD2",
-      "PLOAD4",  "PLOADX",  "GRAV",    "RFORCE",  "TEMP",    "TEMPD",   "TEMPP1",  "SPCD",    "DAREA",   "DLOAD",   "RLOAD1",
+      "PLOAD4",  "PLOADX",  "MAT4",    "MAT5",    "GRAV",    "RFORCE",  "TEMP",    "TEMPD",   "TEMPP1",  "SPCD",    "DAREA",   "DLOAD",   "RLOAD1",
       "RLOAD2",  "TLOAD1",  "TLOAD2",  "DPHASE",  "DELAY",   "FREQ",    "FREQ1",   "FREQ2",   "FREQ3",   "FREQ4",
       "FREQ5",   "TSTEP",   "TABLED1", "TABLED2", "TABLED3", "TABLED4", "TABDMP1", "RANDPS",  "TABRND1", "EPOINT",
       "TF",      "NOLIN1",  "NOLIN2",  "NOLIN3",  "NOLIN4",  "DRESP1",  "DRESP2",  "DCONSTR", "DOPTPRM", "DEQATN",

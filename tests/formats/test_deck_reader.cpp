@@ -287,6 +287,29 @@ TEST_CASE("replication errors: file:line and what was expected, nothing made up"
   CHECK(render_file(d, 0) == "GRID,1,,0.,0.,0.\n=,*A\n=(2)\nGRID,5,,0.,0.,0.\n=,*1,==\n");
 }
 
+TEST_CASE("partitioned bulk data: BEGIN SUPER and the part's cards kept verbatim, the line a statement", "[deck]") {
+  const std::string text =
+      "SOL 103\nCEND\nBEGIN BULK\n"
+      "GRID    1               0.      0.      0.\n"
+      "begin bulk super = 1\n"   // 5
+      "GRID    1               5.      0.      0.\n"
+      "BEGIN SUPER=2 $ another part\n"   // 7
+      "XYZZY   1\n"
+      "ENDDATA\n";
+  const Deck d = read_deck_text(text, "p.bdf");
+  CHECK(d.problems.empty());
+  REQUIRE(d.cards.size() == 1);  // the residual's GRID only
+  std::vector<std::pair<std::string, std::uint32_t>> parts;
+  for (const Statement& st : d.statements)
+    if (st.section == Section::Bulk) parts.emplace_back(st.text, st.line);
+  CHECK(parts == std::vector<std::pair<std::string, std::uint32_t>>{{"BEGIN BULK SUPER = 1", 5}, {"BEGIN SUPER=2", 7}});
+  CHECK(render_file(d, 0) == text);
+  // Cut inside a part: the missing ENDDATA is still an error.
+  const Deck cut = read_deck_text("CEND\nBEGIN BULK\nGRID    1\nBEGIN SUPER = 1\nGRID    1\n", "c.bdf");
+  REQUIRE(cut.problems.size() == 1);
+  CHECK(cut.problems[0].message.rfind("missing ENDDATA", 0) == 0);
+}
+
 TEST_CASE("executive, case control and bulk sections; text after ENDDATA kept", "[deck]") {
   const char* text =
       "ID TEST\nSOL 103\nCEND\nTITLE = X\nSPC = 1\nMETHOD=10\nBEGIN BULK\n"

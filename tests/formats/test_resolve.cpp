@@ -140,6 +140,16 @@ TEST_CASE("resolve: a property id is unique among the types one element chooses 
                      "r.bdf:6: CBEAM 5 refers to PID 1, which is a PGAP, expected PBEAM/PBEAML/PBCOMP"});
 }
 
+TEST_CASE("resolve: a thermal material may share the id of the structural one, not of another thermal one",
+          "[resolve]") {
+  // MSC decks give MAT1 1 and MAT4 1 for one material (pyNastran's htrussx, plate_py).
+  CHECK(problems_of("MAT1    1       2.1+11          .3\nMAT4    1       200.\nPROD    3       1       1.\n").empty());
+  CHECK(problems_of("MAT4    1       200.\nMAT5    1       200.\n") ==
+        std::vector<std::string>{"r.bdf:2: duplicate material 1 (MAT5; first defined by MAT4 at r.bdf:1)"});
+  CHECK(problems_of("MAT1    1       2.1+11          .3\nMAT8    1       1.+7    1.+7    .3\n") ==
+        std::vector<std::string>{"r.bdf:2: duplicate material 1 (MAT8; first defined by MAT1 at r.bdf:1)"});
+}
+
 TEST_CASE("card traits: the property types an element accepts are one family", "[resolve]") {
   // Otherwise two of them could share an id and the element could not tell which is meant.
   for (const CardTraits& t : card_traits())
@@ -220,7 +230,9 @@ TEST_CASE("resolve: dangling references of every kind and properties of the wron
                    "r.bdf:10: CELAS2 13: G2 9 is a scalar point (SPOINT), its component must be 0 or blank, got 3",
                    "r.bdf:11: CONM2 14 refers to G 9, which is a SPOINT, expected GRID",
                    "r.bdf:12: PBUSH 16 required by CBUSH 15 does not exist",
-                   "r.bdf:6: PROD 4 refers to MID 2, which is a MAT8, expected MAT1",
+                   // A material of another type: a warning (NASTRAN checks it only against the elements run).
+                   "r.bdf:6: warning: PROD 4 refers to MID 2, which is a MAT8, expected MAT1; an element using it "
+                   "cannot be assembled",
                    "r.bdf:5: MAT1 7 required by PBAR 3 does not exist",
                    "r.bdf:13: GRID 20 required by RBAR 16 does not exist",
                    "r.bdf:14: GRID 21 required by RBE3 17 does not exist",

@@ -70,9 +70,44 @@ el::BarSection dims_section(const std::string& type, const std::vector<double>& 
 
 }  // namespace
 
+namespace {
+
+/// NASTRAN keeps property ids apart by the types an element chooses among
+/// (formats::id_family: PROD 1 beside PBEAM 1 is no duplicate), but the property values
+/// of the assembly are keyed by id alone (property_values.hpp, DVPREL1 relations), so
+/// two assembled property types sharing an id are refused here rather than confused.
+void refuse_shared_property_ids(const formats::Deck& deck, const BulkModel& m) {
+  std::unordered_map<std::int64_t, std::size_t> first;  // pid -> card
+  auto claim = [&](std::int64_t pid, std::size_t card) {
+    auto [it, fresh] = first.emplace(pid, card);
+    if (fresh || deck.cards[it->second].name == deck.cards[card].name) return;  // PELAS 1 holding two entries
+    const std::size_t a = std::min(it->second, card), b = std::max(it->second, card);
+    throw ModelError(deck.location(deck.cards[b]),
+                     deck.cards[b].name + " " + std::to_string(pid) + " shares its id with " + deck.cards[a].name + " " +
+                         std::to_string(pid) + " at " +
+                         deck.location(deck.cards[a]).str() +
+                         ": NASTRAN keeps the two apart (an element looks its property up among its own types), "
+                         "ssid's assembly keys properties by id alone; give one of them another id");
+  };
+  auto all = [&](const auto& v) {
+    for (const auto& p : v) claim(p.pid, p.card);
+  };
+  all(m.prods);
+  all(m.pbars);
+  all(m.pbarls);
+  all(m.pbeams);
+  all(m.pbeamls);
+  all(m.pelases);
+  all(m.pmasses);
+  all(m.pbushes);
+}
+
+}  // namespace
+
 ElementSet::ElementSet(const formats::Deck& deck, const BulkModel& m, const ModelGeometry& geometry,
                        ElementSettings settings)
     : m_geometry(geometry), m_settings(settings) {
+  refuse_shared_property_ids(deck, m);
   index_by_pid(m.prods, m_prod);
   index_by_pid(m.pbars, m_pbar);
   index_by_pid(m.pbarls, m_pbarl);

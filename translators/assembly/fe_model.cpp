@@ -159,6 +159,12 @@ FeModel::FeModel(const Deck& deck, BulkModel model, AssemblyOptions options) : m
 
 /// Cards we do not assemble: harmless ones are noted, the others refused, at the first of them.
 void FeModel::refuse_unassembled_cards(const Deck& deck) {
+  for (const auto& st : deck.statements)
+    if (st.section == formats::Section::Bulk)
+      throw ModelError(deck.location(st.file, st.line),
+                       st.text + ": the bulk data after it (a part superelement or another partition) is kept "
+                                 "verbatim and not assembled; ssid assembles one structure: export K and M from "
+                                 "NASTRAN (OP4 or DMIG) and build the operators with `ssid assemble --import SPEC.json`");
   for (const auto& c : deck.cards) {
     if (c.name != "MDLPRM") continue;
     // MDLPRM, PARAM1, VAL1, PARAM2, VAL2, ... (pairs run on into continuations).

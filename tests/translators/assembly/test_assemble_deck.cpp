@@ -63,4 +63,20 @@ TEST_CASE("assemble_deck: what it refuses names the first card or statement at f
                     "CBAR    20      5       1       2       0.      1.      0.\nENDDATA\n") ==
         "d.bdf: cannot assemble the model: d.bdf:15: CBAR 20: section type BOX9 is not supported (ROD, TUBE, BAR, BOX, "
         "I, TUBE2, I1, CHAN, CHAN1, CHAN2, T, T1, T2, L, BOX1, CROSS, H, Z, HEXA, HAT, HAT1, DBOX are)");
+  // Two assembled property types with one id: NASTRAN keeps them apart, ssid's values by id would not.
+  CHECK(refusal(head + kRods + "PBEAM   1       2       1.-4    1.-8    1.-8            2.-8\n"
+                    "CBEAM   20      1       1       2       0.      1.      0.\nENDDATA\n") ==
+        "d.bdf:13: cannot assemble the model: PBEAM 1 shares its id with PROD 1 at d.bdf:9: NASTRAN keeps the two "
+        "apart (an element looks its property up among its own types), ssid's assembly keys properties by id "
+        "alone; give one of them another id");
+  // A material of another type: a warning for the reader, a refusal for an element that uses it.
+  const std::string thermal = "GRID    1               0.      0.      0.\n"
+                              "GRID    2               1.      0.      0.\n"
+                              "CROD    10      1       1       2\n"
+                              "PROD    1       4       1.-4\n"
+                              "MAT4    4       200.\n"
+                              "EIGRL   1                       2\nENDDATA\n";
+  CHECK(refusal("SOL 103\nCEND\nMETHOD = 1\nBEGIN BULK\n" + thermal) ==
+        "d.bdf: cannot assemble the model: d.bdf:7: CROD 10: MAT1 4 (of PROD 1) does not exist (only MAT1 materials are "
+        "assembled)");
 }
