@@ -25,9 +25,12 @@ namespace ssid::formats {
 /// a statement with section Bulk.
 enum class Section : std::uint8_t { Executive, CaseControl, Bulk, AfterEnddata, PartBulk };
 
-/// A piece of a file, in order: text copied as is, a card, or an INCLUDE.
+/// A piece of a file, in order: text copied as is, a card, an INCLUDE, or a
+/// continuation line of an earlier card that NASTRAN matched by its marker
+/// (Detached: `index` is that card; written as is, or not at all once the card
+/// changed, since the card is then written whole at its own place).
 struct Chunk {
-  enum class Kind : std::uint8_t { Verbatim, Card, Include };
+  enum class Kind : std::uint8_t { Verbatim, Card, Include, Detached };
   Kind kind = Kind::Verbatim;
   std::uint32_t begin = 0, end = 0;  ///< byte span in the file's text
   std::uint32_t index = 0;           ///< card index (Card) or file index (Include)

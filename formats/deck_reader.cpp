@@ -15,6 +15,10 @@
 /// above it. Tabs advance to the next multiple of 8 columns; '$' starts a comment.
 /// A line whose field 1 is "=", "=n" or "=(n)" replicates the card above it
 /// (replicate_fields).
+/// A continuation line whose field 1 is a marker of its own (two characters or more,
+/// "+R10201") that is not the field 10 of the card above it but of an earlier card
+/// continues that earlier card, as NASTRAN matches continuations by their markers
+/// (pyNastran's cqra00366, which MSC Nastran ran, has RBE1's "+R10201" after two GRIDs).
 #include <algorithm>
 #include <cstdio>
 #include <cstdlib>
@@ -22,6 +26,7 @@
 #include <fstream>
 #include <optional>
 #include <sstream>
+#include <unordered_map>
 
 #include "formats/deck.hpp"
 #include "formats/nastran_number.hpp"
@@ -313,6 +318,9 @@ struct Reader {
   bool repl_valid = false;
   /// A replication line failed: the lines that replicate from it cannot be read either.
   bool repl_failed = false;
+  /// Cards of this file whose last line's field 10 holds a marker no line has
+  /// answered yet, by marker: where a continuation with that marker goes.
+  std::unordered_map<std::string, std::size_t> open_markers;
   LineFields lf;                                          ///< reused per line
   std::string scratch;
 
@@ -395,6 +403,7 @@ struct Reader {
     card.m_nrows = static_cast<std::uint32_t>(rows.size());
     fields.clear();
     rows.clear();
+    if (!pending_marker.empty()) open_markers[pending_marker] = deck.cards.size();
     SourceFile& sf = deck.files[card.file];
     if (card.begin > emitted) sf.chunks.push_back({Chunk::Kind::Verbatim, emitted, card.begin, 0});
     sf.chunks.push_back({Chunk::Kind::Card, card.begin, card.end, static_cast<std::uint32_t>(deck.cards.size())});
@@ -499,6 +508,7 @@ struct Reader {
         replicate(fi, l, emitted);
         continue;
       }
+      if (!implicit && is_continuation(lf, data) && continues_earlier_card(fi, l, emitted)) continue;
       if (implicit || is_continuation(lf, data)) {
         if (!pending || pending_file != fi) {
           deck.problems.push_back({Problem::Severity::Error, deck.location(fi, l.number),
@@ -539,6 +549,44 @@ struct Reader {
       f.chunks.push_back({Chunk::Kind::Verbatim, emitted, static_cast<std::uint32_t>(f.text.size()), 0});
     chain.pop_back();
     return fi;
+  }
+
+  /// A continuation line `l` (split in `lf`) whose marker answers the field 10 of an
+  /// earlier card of this file rather than the card above: the line becomes that
+  /// card's next row, and a Detached chunk of it. The card above is finished first,
+  /// so the file's chunks stay in order. Small and free field only.
+  bool continues_earlier_card(std::uint32_t fi, const Line& l, std::uint32_t& emitted) {
+    const std::string_view m = lf.first;
+    if (m.size() < 2 || lf.large || (pending && pending_file == fi && m == pending_marker)) return false;
+    const auto it = open_markers.find(std::string(m));
+    if (it == open_markers.end()) return false;
+    const std::size_t idx = it->second;
+    if (deck.cards[idx].file != fi || deck.cards[idx].format == FieldFormat::Large) return false;
+    finish_card(fi, emitted, false);
+    Card& c = deck.cards[idx];
+    std::vector<std::string_view> f(c.fields().begin(), c.fields().end());
+    f.resize(1 + 8 * static_cast<std::size_t>(c.m_nrows));  // rows are 8 fields wide; blanks were trimmed
+    std::vector<std::pair<std::uint32_t, std::uint32_t>> r(c.m_rows, c.m_rows + c.m_nrows);
+    r.emplace_back(l.number, static_cast<std::uint32_t>(f.size()));
+    f.insert(f.end(), lf.data.begin(), lf.data.end());
+    if (lf.data.size() < 8) f.resize(f.size() + (8 - lf.data.size()));
+    while (f.size() > 1 && f.back().empty()) f.pop_back();
+    Arena& a = *deck.arena;
+    auto* fa = a.make_array<std::string_view>(f.size());
+    std::copy(f.begin(), f.end(), fa);
+    auto* ra = a.make_array<std::pair<std::uint32_t, std::uint32_t>>(r.size());
+    std::copy(r.begin(), r.end(), ra);
+    c.m_fields = fa;
+    c.m_nfields = static_cast<std::uint32_t>(f.size());
+    c.m_rows = ra;
+    c.m_nrows = static_cast<std::uint32_t>(r.size());
+    SourceFile& sf = deck.files[fi];
+    if (l.begin > emitted) sf.chunks.push_back({Chunk::Kind::Verbatim, emitted, l.begin, 0});
+    sf.chunks.push_back({Chunk::Kind::Detached, l.begin, l.next, static_cast<std::uint32_t>(idx)});
+    emitted = l.next;
+    open_markers.erase(it);
+    if (!lf.marker.empty()) open_markers[std::string(lf.marker)] = idx;
+    return true;
   }
 
   /// A replication line (`lf`, line `l`): one entry for "=", n for "=(n)", each a card

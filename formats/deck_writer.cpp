@@ -114,6 +114,7 @@ std::string render_file(const Deck& deck, std::size_t file) {
   std::string out;
   out.reserve(f.text.size() + 256);
   for (const Chunk& c : f.chunks) {
+    if (c.kind == Chunk::Kind::Detached && deck.cards[c.index].modified) continue;
     if (c.kind == Chunk::Kind::Card) {
       const Card& card = deck.cards[c.index];
       const bool whole = card.replication_root >= 0 &&

@@ -310,6 +310,42 @@ TEST_CASE("partitioned bulk data: BEGIN SUPER and the part's cards kept verbatim
   CHECK(cut.problems[0].message.rfind("missing ENDDATA", 0) == 0);
 }
 
+TEST_CASE("a continuation matched by its marker to an earlier card, as NASTRAN matches it", "[deck]") {
+  // As in a deck MSC Nastran ran (pyNastran's cqra00366): RBE1's continuation after two GRIDs.
+  const std::string text =
+      "RBE1    10201   10201   234     10202   123                             +R10201\n"
+      "GRID    10201           1.0     2.0     3.0             234\n"
+      "GRID    10202           4.0     6.0     15.0            123\n"
+      "+R10201 UM      10201   156     10202   456\n"
+      "FORCE   1       10201           1.0     1.0\n";
+  Deck d = read_deck_text(text, "m.bdf");
+  CHECK(d.problems.empty());
+  REQUIRE(d.cards.size() == 4);
+  CHECK(d.cards[0].name == "RBE1");
+  CHECK(d.cards[0].field(9) == "UM");
+  CHECK(d.cards[0].field(13) == "456");
+  CHECK(d.cards[0].line_of(9) == 4);
+  CHECK(d.cards[2].size() == 8);  // GRID 10202 keeps its own fields only
+  CHECK(d.cards[3].name == "FORCE");
+  CHECK(render_file(d, 0) == text);
+  // Changed, the card is written whole at its place and the detached line not at all.
+  std::vector<FieldValue> v{std::string("RBE1")};
+  for (std::size_t i = 1; i < d.cards[0].size(); ++i)
+    v.push_back(d.cards[0].field(i).empty() ? FieldValue{} : FieldValue{std::string(d.cards[0].field(i))});
+  v[2] = std::int64_t{10202};
+  d.set_values(0, v);
+  const Deck back = read_deck_text(render_file(d, 0), "m2.bdf");
+  REQUIRE(back.cards.size() == 4);
+  CHECK(back.cards[0].field(2) == "10202");
+  CHECK(back.cards[0].field(13) == "456");
+  CHECK(back.cards[2].size() == 8);
+  // A generic marker ("+") or the field 10 of the card above continues the card above, as before.
+  const Deck g = read_deck_text("RBE1    1       1       234     2       123                             +A\n"
+                                "GRID    2\n+       1.\n", "g.bdf");
+  REQUIRE(g.cards.size() == 2);
+  CHECK(g.cards[1].field(9) == "1.");
+}
+
 TEST_CASE("executive, case control and bulk sections; text after ENDDATA kept", "[deck]") {
   const char* text =
       "ID TEST\nSOL 103\nCEND\nTITLE = X\nSPC = 1\nMETHOD=10\nBEGIN BULK\n"
