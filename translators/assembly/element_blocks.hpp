@@ -55,6 +55,10 @@ class ElementSet {
   std::vector<ElementBlock> blocks(const formats::BulkModel& values) const;
   /// d/dt of the blocks at values + t·delta; only elements the delta touches.
   std::vector<ElementBlock> derivative_blocks(const formats::BulkModel& values, const ValueDelta& delta) const;
+  /// K, M of element `element` (an index into elements()) at the values of `values`.
+  ElementBlock block_of(std::size_t element, const formats::BulkModel& values) const {
+    return evaluate(element, values, nullptr);
+  }
 
  private:
   /// K, M of one element, or their derivative along `delta` when given.

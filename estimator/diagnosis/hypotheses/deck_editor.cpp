@@ -25,7 +25,7 @@ DeckEditor::DeckEditor(const std::string& text, const std::string& name)
   formats::resolve(*m_deck, m_bulk);
   // The largest id of each kind, over the id spaces of the card traits: every
   // element family shares one counter (generated ids stay unique across them).
-  std::int64_t g = 0, e = 0, p = 0, d = 0, r = 0, c = 0;
+  std::int64_t g = 0, e = 0, p = 0, d = 0, r = 0, c = 0, m = 0;
   for (const formats::CardTraits& t : formats::card_traits()) {
     if (!t.each_id) continue;
     std::int64_t* counter = nullptr;
@@ -39,6 +39,7 @@ DeckEditor::DeckEditor(const std::string& text, const std::string& name)
       case formats::IdSpace::Dvprel:
       case formats::IdSpace::Dvmrel: counter = &r; break;
       case formats::IdSpace::CoordinateSystem: counter = &c; break;
+      case formats::IdSpace::Material: counter = &m; break;
       default: break;
     }
     if (counter) t.each_id(m_bulk, [counter](std::int64_t id, std::size_t) { *counter = std::max(*counter, id); });
@@ -50,6 +51,7 @@ DeckEditor::DeckEditor(const std::string& text, const std::string& name)
   m_next_desvar = fresh(d);
   m_next_relation = fresh(r);
   m_next_coord = fresh(c);
+  m_next_material = fresh(m);
 }
 
 void DeckEditor::append(const std::vector<formats::FieldValue>& values) {

@@ -1,11 +1,26 @@
 /// \file local_stiffness.cpp
 /// local_stiffness: one member (or the joint in it) stiffer or softer than
-/// modelled — a loosened B-nut, a long fitting. The change is a CONROD in
-/// parallel with the element, between its two grids, of the element's material,
-/// its area ΔA = β designed by DVPREL1 (CONROD A = β). A negative ΔA softens.
-/// With e the unit vector from GA to GB, L the length and E the modulus:
+/// modelled — a loosened B-nut, a long fitting, a dented or thinner tube.
+///
+/// A rod (CROD, CONROD) or a beam element without its own PBAR gets a CONROD in
+/// parallel, between its two grids, of the element's material, its area ΔA = β
+/// designed by DVPREL1 (CONROD A = β). A negative ΔA softens. With e the unit
+/// vector from GA to GB, L the length and E the modulus:
 ///   ∂K/∂β = (E/L) [e eᵀ, −e eᵀ; −e eᵀ, e eᵀ] on the translations of GA, GB
 /// (rotated into each grid's displacement frame).
+///
+/// A CBAR with a PBAR carries its stiffness in bending and torsion as much as in
+/// tension, which an axial rod cannot change (on a frame, the softer member was
+/// then explained as flexible joints). It gets a PBAR of its own instead, a copy of
+/// its PBAR whose DVPREL1s are copied too (so at β = 0 it follows the deck's
+/// parameters as before), with a term added to each of A, I1, I2, I12, J:
+///   P(x, β) = P(x) + P₀ β   (P₀ the deck's value; β relative, prior N(0, f²), β ≥ −0.95)
+/// and NSM − ρA₀β, so that the mass stays as it was. At the deck's values the
+/// section scales by (1 + β), shear factors and all, so
+///   ∂K/∂β = K_e, the element's own stiffness matrix; ∂M/∂β = 0 (lumped mass).
+/// The written deck stays valid NASTRAN (no negative section, unlike a parallel
+/// element for a softer member). A CBAR inside an INCLUDE file cannot be changed:
+/// that hypothesis is not tested (the diagnosis notes why).
 #include <cmath>
 
 #include "estimator/diagnosis/hypotheses/extension_util.hpp"
@@ -19,6 +34,7 @@ struct Member {
   std::string type;
   std::int64_t eid = 0, pid = 0, mid = 0, ga = 0, gb = 0;
   double area = 0;
+  bool bar = false;  ///< a CBAR with a PBAR: the whole-section form (file comment)
 };
 
 std::vector<Member> members(const formats::BulkModel& b) {
@@ -39,7 +55,7 @@ std::vector<Member> members(const formats::BulkModel& b) {
     if (const auto* p = prod(e.pid)) out.push_back({"CROD", e.eid, e.pid, p->mid, e.g1, e.g2, p->a});
   for (const auto& e : b.conrods) out.push_back({"CONROD", e.eid, 0, e.mid, e.g1, e.g2, e.a});
   for (const auto& e : b.cbars)
-    if (const auto* p = pbar(e.pid)) out.push_back({"CBAR", e.eid, e.pid, p->mid, e.ga, e.gb, p->a});
+    if (const auto* p = pbar(e.pid)) out.push_back({"CBAR", e.eid, e.pid, p->mid, e.ga, e.gb, p->a, true});
   for (const auto& e : b.cbeams)
     if (const auto* p = pbeam(e.pid)) out.push_back({"CBEAM", e.eid, e.pid, p->mid, e.ga, e.gb, p->a});
   return out;
@@ -51,7 +67,10 @@ class LocalStiffness : public ModelExtension {
   std::string kind() const override { return "local_stiffness"; }
   std::string describe() const override {
     return "a rod (CONROD) in parallel with one element; parameter: its area dA [m^2] (negative: softer), prior N(0, (" +
-           std::to_string(m_options.stiffness_prior_fraction) + " x the element's area)^2), dA >= -0.95 A";
+           std::to_string(m_options.stiffness_prior_fraction) +
+           " x the element's area)^2), dA >= -0.95 A; a CBAR with a PBAR: a PBAR of its own, its section x (1 + b), "
+           "its mass kept, parameter b (the relative stiffness change), prior N(0, " +
+           std::to_string(m_options.stiffness_prior_fraction) + "^2), b >= -0.95";
   }
 
   std::vector<Candidate> candidates(const FeModel& nominal) const override {
@@ -70,6 +89,7 @@ class LocalStiffness : public ModelExtension {
   ExtendedDeck apply(const std::string& text, const std::string& name, const FeModel& nominal,
                      const Candidate& c) const override {
     const Member m = find(nominal.bulk(), c.ids.at(0));
+    if (m.bar) return apply_bar(text, name, c, m);
     DeckEditor ed(text, name);
     NewParameter p;
     p.label = detail::label("XK", m.eid);
@@ -95,6 +115,7 @@ class LocalStiffness : public ModelExtension {
 
   std::optional<ScreeningDerivative> screening(const FeModel& nominal, const Candidate& c) const override {
     const Member m = find(nominal.bulk(), c.ids.at(0));
+    if (m.bar) return screening_bar(nominal, m);
     const auto& ga = nominal.geometry().grid(m.ga, "local_stiffness");
     const auto& gb = nominal.geometry().grid(m.gb, "local_stiffness");
     const Eigen::Vector3d d = gb.x - ga.x;
@@ -123,6 +144,96 @@ class LocalStiffness : public ModelExtension {
   }
 
  private:
+  /// The whole-section form of a CBAR with a PBAR (file comment).
+  ExtendedDeck apply_bar(const std::string& text, const std::string& name, const Candidate& c, const Member& m) const {
+    DeckEditor ed(text, name);
+    const formats::BulkModel& b = ed.bulk();
+    const formats::Cbar* bar = nullptr;
+    for (const auto& e : b.cbars)
+      if (e.eid == m.eid) bar = &e;
+    const formats::Pbar* prop = nullptr;
+    for (const auto& p : b.pbars)
+      if (bar && p.pid == bar->pid) prop = &p;
+    if (!bar || !prop)
+      throw formats::InputError("local_stiffness: CBAR " + std::to_string(m.eid) + " and its PBAR are not in this "
+                                "configuration's deck");
+    double rho = 0;
+    for (const auto& x : b.mat1s)
+      if (x.mid == prop->mid) rho = x.rho;
+    NewParameter p;
+    p.label = detail::label("XK", m.eid);
+    p.prior_mean = 0.0;
+    p.prior_std = m_options.stiffness_prior_fraction;
+    p.lower = -0.95;
+    p.meaning = "relative stiffness change of CBAR " + std::to_string(m.eid) +
+                " (its section x (1 + this value), its mass kept; -0.1: 10 % softer)";
+    if (!c.start.empty()) p.start = c.start[0];
+    const double x0 = std::isnan(p.start) ? p.prior_mean : p.start;
+    ed.comment("ssid diagnose: local stiffness change of CBAR " + std::to_string(m.eid) +
+               " (a PBAR of its own, its section scaled, its mass kept)");
+    // The scaled fields, with the rate of each per unit β (NSM keeps ρA + NSM).
+    struct Scaled {
+      const char* name;
+      std::int64_t fid;
+      double formats::Pbar::*field;
+      double rate;
+    };
+    std::vector<Scaled> scaled = {{"A", 4, &formats::Pbar::a, prop->a},      {"I1", 5, &formats::Pbar::i1, prop->i1},
+                                  {"I2", 6, &formats::Pbar::i2, prop->i2},   {"J", 7, &formats::Pbar::j, prop->j},
+                                  {"I12", 19, &formats::Pbar::i12, prop->i12}, {"NSM", 8, &formats::Pbar::nsm, -rho * prop->a}};
+    formats::Pbar own = *prop;
+    own.pid = ed.new_property_id();
+    for (const auto& f : scaled) own.*(f.field) += f.rate * x0;
+    ed.append(formats::write_pbar(own));
+    formats::Cbar moved = *bar;
+    moved.pid = own.pid;
+    moved.pid_blank = false;  // a BAROR's PID would not be the new one
+    ed.change(bar->card, formats::write_cbar(moved));
+    const auto dv = ed.add_desvar(p, x0);
+    std::vector<bool> done(scaled.size(), false);
+    for (const auto& r : b.dvprel1s) {
+      if (r.type != "PBAR" || r.pid != prop->pid) continue;
+      formats::Dvprel1 copy = r;
+      copy.id = ed.new_relation_id();
+      copy.pid = own.pid;
+      for (std::size_t k = 0; k < scaled.size(); ++k)
+        if ((r.pname == scaled[k].name || (r.pname.empty() && r.fid == scaled[k].fid)) && scaled[k].rate != 0.0) {
+          copy.terms.push_back({dv, scaled[k].rate});
+          copy.pmin = -1e20;
+          done[k] = true;
+        }
+      ed.append(formats::write_dvprel1(copy));
+    }
+    for (std::size_t k = 0; k < scaled.size(); ++k)
+      if (!done[k] && scaled[k].rate != 0.0)
+        ed.add_dvprel1("PBAR", own.pid, scaled[k].name, dv, scaled[k].rate, (*prop).*(scaled[k].field), -1e20);
+    return {ed.text(), ed.parameters, "the stiffness of " + c.location.text + " changed by an unknown factor"};
+  }
+
+  /// ∂K/∂β of the whole-section form: the element's stiffness matrix at the deck's values.
+  ScreeningDerivative screening_bar(const FeModel& nominal, const Member& m) const {
+    if (m_values_for != &nominal) {  // the values the extended model starts from, once per model
+      m_values = nominal.values_at(nominal.initial_parameters());
+      m_values_for = &nominal;
+    }
+    const auto& els = nominal.elements().elements();
+    std::size_t k = 0;
+    while (k < els.size() && !(els[k].kind == translators::ElementKind::Cbar && els[k].eid == m.eid)) ++k;
+    if (k == els.size()) throw std::invalid_argument("local_stiffness: CBAR " + std::to_string(m.eid) + " not assembled");
+    const auto block = nominal.elements().block_of(k, m_values);
+    std::vector<Eigen::Triplet<double>> t;
+    for (Eigen::Index i = 0; i < block.k.rows(); ++i)
+      for (Eigen::Index j = 0; j < block.k.cols(); ++j)
+        if (block.k(i, j) != 0.0)
+          t.emplace_back(static_cast<int>(block.dofs[static_cast<std::size_t>(i)]),
+                         static_cast<int>(block.dofs[static_cast<std::size_t>(j)]), block.k(i, j));
+    ScreeningDerivative s;
+    s.dK.push_back(detail::to_aset(nominal, t));
+    s.dM.push_back(Eigen::SparseMatrix<double>(s.dK.back().rows(), s.dK.back().cols()));
+    s.prior_std.push_back(m_options.stiffness_prior_fraction);
+    return s;
+  }
+
   static Member find(const formats::BulkModel& b, std::int64_t eid) {
     for (const auto& m : members(b))
       if (m.eid == eid) return m;
@@ -134,6 +245,10 @@ class LocalStiffness : public ModelExtension {
     return buf;
   }
   ExtensionOptions m_options;
+  /// screening_bar's values of the nominal model at its initial parameters (the
+  /// screening runs on one thread, candidate after candidate).
+  mutable formats::BulkModel m_values;
+  mutable const FeModel* m_values_for = nullptr;
 };
 
 }  // namespace

@@ -86,6 +86,7 @@ class DeckEditor {
   std::int64_t new_desvar_id() { return m_next_desvar++; }
   std::int64_t new_relation_id() { return m_next_relation++; }
   std::int64_t new_coord_id() { return m_next_coord++; }
+  std::int64_t new_material_id() { return m_next_material++; }
 
   /// Appends a card from values (values[0] is the name).
   void append(const std::vector<formats::FieldValue>& values);
@@ -107,7 +108,7 @@ class DeckEditor {
   formats::BulkModel m_bulk;
   std::string m_appended;
   std::int64_t m_next_grid = 1, m_next_element = 1, m_next_property = 1, m_next_desvar = 1, m_next_relation = 1,
-               m_next_coord = 1;
+               m_next_coord = 1, m_next_material = 1;
 };
 
 /// The result of applying a candidate.

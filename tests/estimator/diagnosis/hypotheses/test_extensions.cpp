@@ -80,6 +80,62 @@ TEST_CASE("missing_mass and local_stiffness: screening derivatives are the exten
   }
 }
 
+TEST_CASE("local_stiffness of a CBAR: a PBAR of its own, its section x (1 + beta), scales bending as well",
+          "[translators][extensions]") {
+  Case c = frame_case();
+  c.fe.mat.rho = 2700.0;  // tubes with mass of their own: the change must keep it
+  const std::string text = deck_text(c.t, c.fe);
+  const Loaded nominal = load(text);
+  const auto kind = ext::make_local_stiffness({});
+  const auto cands = kind->candidates(*nominal.fe);
+  REQUIRE(cands.size() == 32);  // the frame's 32 members
+  const auto K0 = nominal.fe->operators(nominal.fe->initial_parameters(), false);
+  for (std::size_t i : {std::size_t{0}, std::size_t{17}, std::size_t{31}}) {
+    const auto& cand = cands[i];
+    CAPTURE(cand.location.text);
+    REQUIRE(cand.location.text.rfind("CBAR", 0) != std::string::npos);
+    const auto s = kind->screening(*nominal.fe, cand);
+    REQUIRE(s);
+    const ext::ExtendedDeck xd = kind->apply(text, "x.bdf", *nominal.fe, cand);
+    REQUIRE(xd.parameters.size() == 1);
+    CHECK(xd.parameters[0].prior_std == Approx(s->prior_std[0]));
+    CHECK(xd.parameters[0].lower == -0.95);
+    const Loaded extended = load(xd.text);
+    const auto ops = extended.fe->operators(extended.fe->initial_parameters(), true);
+    const Eigen::SparseMatrix<double> dK = ops.dK.back() - s->dK[0];
+    CHECK(max_abs(dK) <= 1e-9 * max_abs(ops.dK.back()));
+    CHECK(max_abs(ops.dM.back()) == 0.0);  // no mass added or removed
+    CHECK(max_abs(ops.K - K0.K) <= 1e-9 * max_abs(K0.K));
+    CHECK(max_abs(ops.M - K0.M) <= 1e-12 * max_abs(K0.M));
+    // The derivative carries the member's bending and torsion, not only its tension: on
+    // a rotation of a ball-surface grid, where an axial rod adds nothing.
+    const Eigen::MatrixXd d(s->dK[0]);
+    double rotational = 0;
+    const auto& gset = nominal.fe->geometry().gset();
+    const auto& a_to_g = nominal.fe->reduction().a_to_g;
+    for (Eigen::Index r = 0; r < d.rows(); ++r)
+      if (gset.at(a_to_g[static_cast<std::size_t>(r)]).component >= 4) rotational = std::max(rotational, std::abs(d(r, r)));
+    CHECK(rotational > 0);
+    // β = −0.5 halves the member: the extended K is K0 − 0.5 · K_e, the mass unchanged.
+    ext::Candidate half = cand;
+    half.start = {-0.5};
+    const Loaded h = load(kind->apply(text, "x.bdf", *nominal.fe, half).text);
+    const auto Oh = h.fe->operators(h.fe->initial_parameters(), false);
+    const Eigen::SparseMatrix<double> expect = K0.K - 0.5 * s->dK[0];
+    CHECK(max_abs(Oh.K - expect) <= 1e-9 * max_abs(K0.K));
+    CHECK(max_abs(Oh.M - K0.M) <= 1e-12 * max_abs(K0.M));
+    // The member still follows the deck's parameter (TUBEI designs I1, I2, J): at TUBEI x 2,
+    // with β = 0, the extended model is the nominal one.
+    const Loaded x = load(xd.text);
+    Eigen::VectorXd p = x.fe->initial_parameters();
+    Eigen::VectorXd pn = nominal.fe->initial_parameters();
+    p(0) *= 2;
+    pn(0) *= 2;
+    CHECK(max_abs(x.fe->operators(p, false).K - nominal.fe->operators(pn, false).K) <=
+          1e-9 * max_abs(K0.K));
+  }
+}
+
 TEST_CASE("support_dynamics: static rate kept, surge at sqrt(4k/m)/2pi, light spring gives the nominal modes",
           "[translators][extensions]") {
   const Case c = rod_case();
