@@ -20,13 +20,16 @@
 /// continues that earlier card, as NASTRAN matches continuations by their markers
 /// (pyNastran's cqra00366, which MSC Nastran ran, has RBE1's "+R10201" after two GRIDs).
 #include <algorithm>
+#include <cmath>
 #include <cstdio>
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
+#include <map>
 #include <optional>
 #include <sstream>
 #include <unordered_map>
+#include <unordered_set>
 
 #include "formats/deck.hpp"
 #include "formats/nastran_number.hpp"
@@ -159,7 +162,7 @@ void split_line(std::string_view data, Arena& arena, LineFields& lf, std::string
   } else {
     for (int k = 0; k < 8; ++k) lf.data.push_back(arena.copy_upper(col(8 + 8 * k, 8)));
   }
-  lf.marker = col(72, 8);
+  lf.marker = arena.copy_upper(col(72, 8));  // matched against field 1 of continuations, upper-cased
 }
 
 /// The data part of a line (comment removed) ends with a comma.
@@ -206,6 +209,10 @@ bool implicit_free_continuation(LineFields& lf) {
 /// entries are replicated: NASTRAN's continuation replication (incremented markers)
 /// is not read, and a replication line that would need it is an error.
 constexpr std::size_t kMaxReplicas = 100000;  ///< per "=(n)" line: garbage input must not exhaust memory
+constexpr std::size_t kMaxReplicasPerDeck = 200000;
+/// Continuation lines matched by marker to one earlier card: each copies the card's
+/// fields, so garbage input repeating one marker must not grow without bound.
+constexpr std::size_t kMaxDetachedRows = 256;  ///< in all: forty "=(100000)" lines of 10 bytes would be 4 million cards
 
 /// The count of an "=n" or "=(n)" field; 0 when the text is not one.
 std::size_t replication_count(std::string_view first) {
@@ -245,7 +252,8 @@ std::optional<std::string> incremented(std::string_view old, std::string_view sp
   const double sum = (ok == FieldKind::Blank ? 0.0 : *parse_real(old)) + *parse_real(x);
   char buf[40];
   std::snprintf(buf, sizeof buf, "%.15g", sum);
-  const auto text = format_real_exact(std::strtod(buf, nullptr), 24);
+  const double rounded = std::strtod(buf, nullptr);
+  const auto text = std::isfinite(sum) && std::isfinite(rounded) ? format_real_exact(rounded, 24) : std::nullopt;
   if (!text) {
     why = "'" + std::string(old) + "' + " + std::string(x) + " is not a finite real";
     return std::nullopt;
@@ -286,6 +294,21 @@ bool replicate_fields(const Card& prev, const std::vector<std::string_view>& spe
   return true;
 }
 
+/// A BEGIN line (upper case) that starts a partition of the bulk data: BEGIN [BULK]
+/// SUPER|AUXMODEL|AFPM|TRMC|ARBMODEL|MODULE [=] n (MSC Nastran's partitioned bulk data).
+bool is_partition(const std::string& u) {
+  std::istringstream in(u);
+  std::string word;
+  in >> word;  // BEGIN
+  if (!(in >> word)) return false;
+  if (word == "BULK" && !(in >> word)) return false;
+  const std::size_t eq = word.find('=');
+  const std::string key = eq == std::string::npos ? word : word.substr(0, eq);
+  for (const char* k : {"SUPER", "AUXMODEL", "AFPM", "TRMC", "ARBMODEL", "MODULE"})
+    if (key == k) return true;
+  return false;
+}
+
 bool is_continuation(const LineFields& lf, std::string_view data) {
   if (!lf.first.empty()) return lf.first[0] == '+' || lf.first[0] == '*';
   return !is_blank(data);  // blank field 1 with data after it
@@ -318,9 +341,18 @@ struct Reader {
   bool repl_valid = false;
   /// A replication line failed: the lines that replicate from it cannot be read either.
   bool repl_failed = false;
-  /// Cards of this file whose last line's field 10 holds a marker no line has
-  /// answered yet, by marker: where a continuation with that marker goes.
-  std::unordered_map<std::string, std::size_t> open_markers;
+  /// Cards whose last line's field 10 holds a marker no line has answered yet, by
+  /// file and marker: where a continuation with that marker goes.
+  std::map<std::pair<std::uint32_t, std::string>, std::size_t> open_markers;
+  /// Continuation lines attached to earlier cards so far, per card: each copies the
+  /// card's fields, so their number is bounded (kMaxDetachedRows).
+  std::unordered_map<std::size_t, std::size_t> detached_rows;
+  /// The pending card has a large-field line (half rows of four fields).
+  bool pending_large = false;
+  /// Cards with large-field lines: no continuation is matched to them by marker.
+  std::unordered_set<std::size_t> large_cards;
+  /// Entries replication has made in this deck (kMaxReplicasPerDeck).
+  std::size_t replicas_made = 0;
   LineFields lf;                                          ///< reused per line
   std::string scratch;
 
@@ -368,6 +400,7 @@ struct Reader {
     // Rows of the folded card are 8 fields wide; a large line fills half a row.
     if (!lf.large && (fields.size() - 1) % 8 != 0) fields.resize(fields.size() + (8 - (fields.size() - 1) % 8));
     pending_half = lf.large && (fields.size() - 1) % 8 == 0;
+    pending_large = pending_large || lf.large;
     rows.emplace_back(line_number, static_cast<std::uint32_t>(fields.size()));
     const std::size_t width = lf.large ? 4 : 8;
     fields.insert(fields.end(), lf.data.begin(), lf.data.end());
@@ -403,7 +436,9 @@ struct Reader {
     card.m_nrows = static_cast<std::uint32_t>(rows.size());
     fields.clear();
     rows.clear();
-    if (!pending_marker.empty()) open_markers[pending_marker] = deck.cards.size();
+    if (!pending_marker.empty()) open_markers[{card.file, pending_marker}] = deck.cards.size();
+    if (pending_large) large_cards.insert(deck.cards.size());
+    pending_large = false;
     SourceFile& sf = deck.files[card.file];
     if (card.begin > emitted) sf.chunks.push_back({Chunk::Kind::Verbatim, emitted, card.begin, 0});
     sf.chunks.push_back({Chunk::Kind::Card, card.begin, card.end, static_cast<std::uint32_t>(deck.cards.size())});
@@ -478,8 +513,14 @@ struct Reader {
       // `ssid modes` refuses by name.
       if (iequals_prefix(tdata, "BEGIN") && tdata.size() > 5 && (tdata[5] == ' ' || tdata[5] == '\t')) {
         if (section == Section::Bulk) finish_card(fi, emitted, false);
-        deck.statements.push_back({Section::Bulk, upper(tdata), fi, l.number});
-        section = Section::PartBulk;
+        const std::string u = upper(tdata);
+        if (is_partition(u)) {
+          deck.statements.push_back({Section::Bulk, u, fi, l.number});
+          section = Section::PartBulk;
+        } else {
+          deck.problems.push_back({Problem::Severity::Warning, deck.location(fi, l.number),
+                                   "'" + u + "' inside the bulk data (no SUPER, AUXMODEL, ... partition named): ignored"});
+        }
         continue;
       }
       if (section == Section::PartBulk) {
@@ -505,7 +546,7 @@ struct Reader {
       const bool implicit = pending && pending_file == fi && pending_free_comma && implicit_free_continuation(lf);
       if (!implicit && !lf.first.empty() && lf.first[0] == '=') {
         finish_card(fi, emitted, false);
-        replicate(fi, l, emitted);
+        replicate(fi, l, emitted, tdata);
         continue;
       }
       if (!implicit && is_continuation(lf, data) && continues_earlier_card(fi, l, emitted)) continue;
@@ -558,14 +599,29 @@ struct Reader {
   bool continues_earlier_card(std::uint32_t fi, const Line& l, std::uint32_t& emitted) {
     const std::string_view m = lf.first;
     if (m.size() < 2 || lf.large || (pending && pending_file == fi && m == pending_marker)) return false;
-    const auto it = open_markers.find(std::string(m));
+    const std::pair<std::uint32_t, std::string> key{fi, std::string(m)};
+    const auto it = open_markers.find(key);
     if (it == open_markers.end()) return false;
     const std::size_t idx = it->second;
-    if (deck.cards[idx].file != fi || deck.cards[idx].format == FieldFormat::Large) return false;
+    const Card& target = deck.cards[idx];
+    // Only cards of full 8-field rows (small or free field, no large-field half rows, no
+    // values past a row's field 9): the new row then starts at the next multiple of 8.
+    if (target.format == FieldFormat::Large || large_cards.count(idx)) return false;
+    for (std::uint32_t r = 0; r < target.m_nrows; ++r)
+      if ((target.m_rows[r].second - 1) % 8 != 0) return false;
+    const std::size_t row_start = 1 + 8 * static_cast<std::size_t>(target.m_nrows);
+    if (target.size() > row_start) return false;
+    if (++detached_rows[idx] > kMaxDetachedRows) {
+      deck.problems.push_back({Problem::Severity::Error, deck.location(fi, l.number),
+                               "continuation line '" + std::string(m) + "': more than " +
+                                   std::to_string(kMaxDetachedRows) + " continuation lines matched by marker to " +
+                                   target.name + " at line " + std::to_string(target.line) + "; not read"});
+      return true;  // kept verbatim, in the chunk of text around it
+    }
     finish_card(fi, emitted, false);
     Card& c = deck.cards[idx];
     std::vector<std::string_view> f(c.fields().begin(), c.fields().end());
-    f.resize(1 + 8 * static_cast<std::size_t>(c.m_nrows));  // rows are 8 fields wide; blanks were trimmed
+    f.resize(row_start);  // rows are 8 fields wide; trailing blanks were trimmed
     std::vector<std::pair<std::uint32_t, std::uint32_t>> r(c.m_rows, c.m_rows + c.m_nrows);
     r.emplace_back(l.number, static_cast<std::uint32_t>(f.size()));
     f.insert(f.end(), lf.data.begin(), lf.data.end());
@@ -584,16 +640,24 @@ struct Reader {
     if (l.begin > emitted) sf.chunks.push_back({Chunk::Kind::Verbatim, emitted, l.begin, 0});
     sf.chunks.push_back({Chunk::Kind::Detached, l.begin, l.next, static_cast<std::uint32_t>(idx)});
     emitted = l.next;
-    open_markers.erase(it);
-    if (!lf.marker.empty()) open_markers[std::string(lf.marker)] = idx;
+    open_markers.erase(key);  // finish_card may have added to the map: no iterator kept
+    if (!lf.marker.empty()) open_markers[{fi, std::string(lf.marker)}] = idx;
     return true;
   }
 
   /// A replication line (`lf`, line `l`): one entry for "=", n for "=(n)", each a card
   /// of its own from the card before it. The first takes the line's text; the others
   /// take none, so the file is written back as read. Errors are problems at the line.
-  void replicate(std::uint32_t fi, const Line& l, std::uint32_t& emitted) {
-    const std::string first(lf.first);
+  void replicate(std::uint32_t fi, const Line& l, std::uint32_t& emitted, std::string_view tdata) {
+    // An "=n" line is read whole, not in 8-column fields: "=(100000)" is nine characters.
+    const bool count_line = lf.first != "=";
+    std::string first(lf.first);
+    std::string_view rest;
+    if (count_line && !lf.free) {
+      const std::size_t end = std::min(tdata.find_first_of(" \t"), tdata.size());
+      first = upper(tdata.substr(0, end));
+      rest = trim(tdata.substr(end));
+    }
     auto problem = [&](const std::string& msg) {
       deck.problems.push_back({Problem::Severity::Error, deck.location(fi, l.number),
                                "replication line '" + first + "': " + msg + "; not read"});
@@ -616,10 +680,15 @@ struct Reader {
       count = replication_count(first);
       if (count == 0)
         return problem("expected =, =n or =(n) with n from 1 to " + std::to_string(kMaxReplicas));
-      if (more || std::any_of(lf.data.begin(), lf.data.end(), [](std::string_view f) { return !f.empty(); }))
-        return problem("an =n line holds nothing else");
+      const bool other = lf.free ? more || std::any_of(lf.data.begin(), lf.data.end(),
+                                                       [](std::string_view f) { return !f.empty(); })
+                                 : !rest.empty();
+      if (other) return problem("an =n line holds nothing else");
       if (!repl_valid) return problem("no \"=\" line before it whose increments it could repeat");
     }
+    if (replicas_made + count > kMaxReplicasPerDeck)
+      return problem("more than " + std::to_string(kMaxReplicasPerDeck) + " entries made by replication in this deck");
+    replicas_made += count;
     std::vector<std::string_view> out;
     std::string why;
     for (std::size_t k = 0; k < count; ++k) {

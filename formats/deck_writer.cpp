@@ -111,15 +111,20 @@ std::string render_file(const Deck& deck, std::size_t file) {
     const Card& card = deck.cards[c.index];
     if (card.modified && card.replication_root >= 0) changed_chains.push_back(card.replication_root);
   }
+  // A card of a changed chain is written in full; so is a changed card.
+  auto in_changed_chain = [&](const Card& card) {
+    return card.replication_root >= 0 &&
+           std::find(changed_chains.begin(), changed_chains.end(), card.replication_root) != changed_chains.end();
+  };
   std::string out;
   out.reserve(f.text.size() + 256);
   for (const Chunk& c : f.chunks) {
-    if (c.kind == Chunk::Kind::Detached && deck.cards[c.index].modified) continue;
+    // A continuation matched by marker belongs to a card written whole elsewhere.
+    if (c.kind == Chunk::Kind::Detached && (deck.cards[c.index].modified || in_changed_chain(deck.cards[c.index])))
+      continue;
     if (c.kind == Chunk::Kind::Card) {
       const Card& card = deck.cards[c.index];
-      const bool whole = card.replication_root >= 0 &&
-                         std::find(changed_chains.begin(), changed_chains.end(), card.replication_root) !=
-                             changed_chains.end();
+      const bool whole = in_changed_chain(card);
       if (whole && !card.modified) {
         std::vector<FieldValue> values{card.name};
         for (std::size_t i = 1; i < card.size(); ++i)

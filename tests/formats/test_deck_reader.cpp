@@ -346,6 +346,54 @@ TEST_CASE("a continuation matched by its marker to an earlier card, as NASTRAN m
   CHECK(g.cards[1].field(9) == "1.");
 }
 
+TEST_CASE("replication and marker matching on hostile input: bounded, and errors not exceptions",
+          "[deck][replication][errors]") {
+  // An increment past the largest double is an error at its line.
+  const Deck inf = read_deck_text("GRID,1,,1.E308\n=,*1,,*1.E308\n", "i.bdf");
+  REQUIRE(inf.problems.size() == 1);
+  CHECK(inf.problems[0].message.find("is not a finite real") != std::string::npos);
+  // At most 200 000 entries made by replication in a deck.
+  std::string many = "GRID,1\n=,*1\n";
+  for (int k = 0; k < 3; ++k) many += "=(100000)\n";
+  const Deck m = read_deck_text(many, "m.bdf");
+  REQUIRE(m.problems.size() == 2);  // 1 + 100000 made, the next 100000 would pass the bound
+  CHECK(m.problems[0].str() == "m.bdf:4: replication line '=(100000)': more than 200000 entries made by replication "
+                               "in this deck; not read");
+  CHECK(m.cards.size() == 100002);
+  // At most 256 continuation lines matched by marker to one earlier card.
+  std::string rows = "SET1,1,2,3,4,5,6,7,8,+A\nGRID,9\n";
+  for (int k = 0; k < 257; ++k) rows += "+A,1,,,,,,,,+A\n";
+  const Deck r = read_deck_text(rows, "r.bdf");
+  REQUIRE(r.problems.size() == 1);
+  CHECK(r.problems[0].str() == "r.bdf:259: continuation line '+A': more than 256 continuation lines matched by "
+                               "marker to SET1 at line 1; not read");
+  CHECK(render_file(r, 0) == rows);
+  // Markers match whatever their case; a large-field card takes no detached row.
+  const Deck lc = read_deck_text("RBE1    1       1       234     2       123                             +r1\n"
+                                 "GRID    2\n+r1     UM      1       156\n", "l.bdf");
+  REQUIRE(lc.cards.size() == 2);
+  CHECK(lc.cards[0].field(9) == "UM");
+  const Deck lg = read_deck_text("GRID*,1,,1.,2.,+G1\nGRID,2\n+G1,3.\n", "g.bdf");
+  REQUIRE(lg.cards.size() == 2);
+  CHECK(lg.cards[1].field(9) == "3.");  // not the large card's: continues the card above, as before
+  // A changed chain whose first card has a detached row: the row is written with its card, once.
+  Deck ch = read_deck_text("SET1,1,2,3,4,5,6,7,8,+A\n=,*1,==\nGRID,9\n+A,10\n", "c.bdf");
+  REQUIRE(ch.cards.size() == 3);
+  std::vector<FieldValue> v{std::string("SET1"), std::int64_t{5}};
+  ch.set_values(1, v);
+  const Deck back = read_deck_text(render_file(ch, 0), "c2.bdf");
+  REQUIRE(back.cards.size() == 3);
+  CHECK(back.cards[0].field(9) == "10");
+  CHECK(back.cards[2].name == "GRID");
+  CHECK(back.cards[2].size() == 2);
+  // BEGIN BULK inside the bulk data names no partition: a warning, the cards after it read.
+  const Deck bb = read_deck_text("CEND\nBEGIN BULK\nGRID,1\nBEGIN BULK\nGRID,2\nENDDATA\n", "b.bdf");
+  REQUIRE(bb.problems.size() == 1);
+  CHECK(bb.problems[0].str() == "b.bdf:4: warning: 'BEGIN BULK' inside the bulk data (no SUPER, AUXMODEL, ... "
+                                "partition named): ignored");
+  CHECK(bb.cards.size() == 2);
+}
+
 TEST_CASE("executive, case control and bulk sections; text after ENDDATA kept", "[deck]") {
   const char* text =
       "ID TEST\nSOL 103\nCEND\nTITLE = X\nSPC = 1\nMETHOD=10\nBEGIN BULK\n"

@@ -17,7 +17,8 @@
 ///   P(x, β) = P(x) + P₀ β   (P₀ the deck's value; β relative, prior N(0, f²), β ≥ −0.95)
 /// and NSM − ρA₀β, so that the mass stays as it was. At the deck's values the
 /// section scales by (1 + β), shear factors and all, so
-///   ∂K/∂β = K_e, the element's own stiffness matrix; ∂M/∂β = 0 (lumped mass).
+///   ∂K/∂β = K_e, the element's own stiffness matrix; ∂M/∂β = 0 with lumped mass (the
+///   rotary terms ρI of coupled mass or BARMASS move with I).
 /// The written deck stays valid NASTRAN (no negative section, unlike a parallel
 /// element for a softer member). A CBAR inside an INCLUDE file cannot be changed:
 /// that hypothesis is not tested (the diagnosis notes why).
@@ -89,7 +90,7 @@ class LocalStiffness : public ModelExtension {
   ExtendedDeck apply(const std::string& text, const std::string& name, const FeModel& nominal,
                      const Candidate& c) const override {
     const Member m = find(nominal.bulk(), c.ids.at(0));
-    if (m.bar) return apply_bar(text, name, c, m);
+    if (m.bar) return apply_bar(text, name, nominal, c, m);
     DeckEditor ed(text, name);
     NewParameter p;
     p.label = detail::label("XK", m.eid);
@@ -145,20 +146,28 @@ class LocalStiffness : public ModelExtension {
 
  private:
   /// The whole-section form of a CBAR with a PBAR (file comment).
-  ExtendedDeck apply_bar(const std::string& text, const std::string& name, const Candidate& c, const Member& m) const {
+  ExtendedDeck apply_bar(const std::string& text, const std::string& name, const FeModel& nominal,
+                         const Candidate& c, const Member& m) const {
     DeckEditor ed(text, name);
     const formats::BulkModel& b = ed.bulk();
     const formats::Cbar* bar = nullptr;
     for (const auto& e : b.cbars)
       if (e.eid == m.eid) bar = &e;
-    const formats::Pbar* prop = nullptr;
+    const formats::Pbar* card = nullptr;
     for (const auto& p : b.pbars)
-      if (bar && p.pid == bar->pid) prop = &p;
-    if (!bar || !prop)
+      if (bar && p.pid == bar->pid) card = &p;
+    if (!bar || !card)
       throw formats::InputError("local_stiffness: CBAR " + std::to_string(m.eid) + " and its PBAR are not in this "
                                 "configuration's deck");
+    // The rates are the section the model starts from: the card's values as its DVPREL1s
+    // set them at the initial DESVARs (and ρ likewise), so that the section scales by
+    // (1 + β) there and the screening's derivative (at the same values) is the deck's.
+    const formats::BulkModel start = nominal.values_at(nominal.initial_parameters());
+    const formats::Pbar* prop = card;
+    for (const auto& p : start.pbars)
+      if (p.pid == card->pid) prop = &p;
     double rho = 0;
-    for (const auto& x : b.mat1s)
+    for (const auto& x : start.mat1s)
       if (x.mid == prop->mid) rho = x.rho;
     NewParameter p;
     p.label = detail::label("XK", m.eid);
@@ -181,8 +190,9 @@ class LocalStiffness : public ModelExtension {
     std::vector<Scaled> scaled = {{"A", 4, &formats::Pbar::a, prop->a},      {"I1", 5, &formats::Pbar::i1, prop->i1},
                                   {"I2", 6, &formats::Pbar::i2, prop->i2},   {"J", 7, &formats::Pbar::j, prop->j},
                                   {"I12", 19, &formats::Pbar::i12, prop->i12}, {"NSM", 8, &formats::Pbar::nsm, -rho * prop->a}};
-    formats::Pbar own = *prop;
+    formats::Pbar own = *card;
     own.pid = ed.new_property_id();
+    for (const auto& f : scaled) own.*(f.field) = (*prop).*(f.field);  // the starting section
     for (const auto& f : scaled) own.*(f.field) += f.rate * x0;
     ed.append(formats::write_pbar(own));
     formats::Cbar moved = *bar;
@@ -192,7 +202,7 @@ class LocalStiffness : public ModelExtension {
     const auto dv = ed.add_desvar(p, x0);
     std::vector<bool> done(scaled.size(), false);
     for (const auto& r : b.dvprel1s) {
-      if (r.type != "PBAR" || r.pid != prop->pid) continue;
+      if (r.type != "PBAR" || r.pid != card->pid) continue;
       formats::Dvprel1 copy = r;
       copy.id = ed.new_relation_id();
       copy.pid = own.pid;
@@ -210,7 +220,10 @@ class LocalStiffness : public ModelExtension {
     return {ed.text(), ed.parameters, "the stiffness of " + c.location.text + " changed by an unknown factor"};
   }
 
-  /// ∂K/∂β of the whole-section form: the element's stiffness matrix at the deck's values.
+  /// ∂K/∂β, ∂M/∂β of the whole-section form at the deck's starting values: K and M of
+  /// the element are linear in a uniform scaling of its section (the shear ratio stays),
+  /// so they are the element's blocks with β = 1 less those with β = 0 (with coupled
+  /// mass or BARMASS the rotary terms ρI move with I: ∂M/∂β is not zero there).
   ScreeningDerivative screening_bar(const FeModel& nominal, const Member& m) const {
     if (m_values_for != &nominal) {  // the values the extended model starts from, once per model
       m_values = nominal.values_at(nominal.initial_parameters());
@@ -220,16 +233,35 @@ class LocalStiffness : public ModelExtension {
     std::size_t k = 0;
     while (k < els.size() && !(els[k].kind == translators::ElementKind::Cbar && els[k].eid == m.eid)) ++k;
     if (k == els.size()) throw std::invalid_argument("local_stiffness: CBAR " + std::to_string(m.eid) + " not assembled");
-    const auto block = nominal.elements().block_of(k, m_values);
-    std::vector<Eigen::Triplet<double>> t;
-    for (Eigen::Index i = 0; i < block.k.rows(); ++i)
-      for (Eigen::Index j = 0; j < block.k.cols(); ++j)
-        if (block.k(i, j) != 0.0)
-          t.emplace_back(static_cast<int>(block.dofs[static_cast<std::size_t>(i)]),
-                         static_cast<int>(block.dofs[static_cast<std::size_t>(j)]), block.k(i, j));
+    formats::Pbar* prop = nullptr;
+    for (auto& p : m_values.pbars)
+      if (p.pid == els[k].pid) prop = &p;
+    if (!prop) throw std::invalid_argument("local_stiffness: CBAR " + std::to_string(m.eid) + ": no PBAR");
+    double rho = 0;
+    for (const auto& x : m_values.mat1s)
+      if (x.mid == prop->mid) rho = x.rho;
+    const auto at0 = nominal.elements().block_of(k, m_values);
+    const formats::Pbar kept = *prop;  // β = 1 in place (only this element is evaluated), then restored
+    prop->a *= 2;
+    prop->i1 *= 2;
+    prop->i2 *= 2;
+    prop->i12 *= 2;
+    prop->j *= 2;
+    prop->nsm -= rho * kept.a;
+    const auto at1 = nominal.elements().block_of(k, m_values);
+    *prop = kept;
+    auto aset = [&](const Eigen::MatrixXd& d) {
+      std::vector<Eigen::Triplet<double>> t;
+      for (Eigen::Index i = 0; i < d.rows(); ++i)
+        for (Eigen::Index j = 0; j < d.cols(); ++j)
+          if (d(i, j) != 0.0)
+            t.emplace_back(static_cast<int>(at0.dofs[static_cast<std::size_t>(i)]),
+                           static_cast<int>(at0.dofs[static_cast<std::size_t>(j)]), d(i, j));
+      return detail::to_aset(nominal, t);
+    };
     ScreeningDerivative s;
-    s.dK.push_back(detail::to_aset(nominal, t));
-    s.dM.push_back(Eigen::SparseMatrix<double>(s.dK.back().rows(), s.dK.back().cols()));
+    s.dK.push_back(aset(at1.k - at0.k));
+    s.dM.push_back(aset(at1.m - at0.m));
     s.prior_std.push_back(m_options.stiffness_prior_fraction);
     return s;
   }

@@ -105,6 +105,7 @@ TEST_CASE("local_stiffness of a CBAR: a PBAR of its own, its section x (1 + beta
     const Eigen::SparseMatrix<double> dK = ops.dK.back() - s->dK[0];
     CHECK(max_abs(dK) <= 1e-9 * max_abs(ops.dK.back()));
     CHECK(max_abs(ops.dM.back()) == 0.0);  // no mass added or removed
+    CHECK(max_abs(s->dM[0]) <= 1e-12 * max_abs(K0.M));
     CHECK(max_abs(ops.K - K0.K) <= 1e-9 * max_abs(K0.K));
     CHECK(max_abs(ops.M - K0.M) <= 1e-12 * max_abs(K0.M));
     // The derivative carries the member's bending and torsion, not only its tension: on
@@ -134,6 +135,17 @@ TEST_CASE("local_stiffness of a CBAR: a PBAR of its own, its section x (1 + beta
     CHECK(max_abs(x.fe->operators(p, false).K - nominal.fe->operators(pn, false).K) <=
           1e-9 * max_abs(K0.K));
   }
+  // Coupled mass: the rotary terms ρI move with the section; the screening's ∂M/∂β is the deck's.
+  std::string coupled = text;
+  coupled.insert(coupled.find("ENDDATA"), "PARAM   COUPMASS1\n");
+  const Loaded cn = load(coupled);
+  REQUIRE(cn.fe->coupled_mass());
+  const auto s = kind->screening(*cn.fe, cands[5]);
+  REQUIRE(s);
+  const Loaded cx = load(kind->apply(coupled, "x.bdf", *cn.fe, cands[5]).text);
+  const auto ops = cx.fe->operators(cx.fe->initial_parameters(), true);
+  CHECK(max_abs(ops.dK.back() - s->dK[0]) <= 1e-9 * max_abs(ops.dK.back()));
+  CHECK(max_abs(ops.dM.back() - s->dM[0]) <= 1e-9 * std::max(max_abs(ops.dM.back()), 1e-30));
 }
 
 TEST_CASE("support_dynamics: static rate kept, surge at sqrt(4k/m)/2pi, light spring gives the nominal modes",
