@@ -15,9 +15,14 @@ namespace {
 
 const char* kDelimiter = "    -1\n";
 
+/// An integer in an Iw field. One wider than the field would run into the next and
+/// the file would not read back (fuzz finding uff-1): refused.
 void put_int(std::string& o, std::int64_t v, int width) {
   char buf[32];
-  std::snprintf(buf, sizeof buf, "%*lld", width, static_cast<long long>(v));
+  const int n = std::snprintf(buf, sizeof buf, "%*lld", width, static_cast<long long>(v));
+  if (n > width)
+    throw InputError("universal file: the integer " + std::string(buf) + " does not fit its I" + std::to_string(width) +
+                     " field (" + std::to_string(n) + " characters)");
   o += buf;
 }
 

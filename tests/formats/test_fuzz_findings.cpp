@@ -8,6 +8,7 @@
 #include <string>
 
 #include "formats/op4.hpp"
+#include "formats/uff.hpp"
 #include "formats/parse_error.hpp"
 #include "op4_test_util.hpp"
 
@@ -111,4 +112,24 @@ TEST_CASE("fuzz finding op4-2: a matrix of 10^8 rows and one column took seconds
   CHECK(b[0].real.nonZeros() == 2);
   CHECK(b[0].real.coeff(4, 0) == 2.5);
   CHECK(b[0].real.coeff(99, 0) == 7.0);
+}
+
+TEST_CASE("fuzz finding uff-1: an integer wider than its I10 field was written and did not read back", "[fuzz][uff]") {
+  // fuzz_uff, 26 minutes of the hour run on 2026-11-28: record 7's columns cut a number,
+  // so the reader took its values as whitespace-separated tokens and read the
+  // type-specific integer 14444444444444444; the writer put it in I10 as 17 characters,
+  // which ran into the field before it ("414444444444444444" read back as NREAL).
+  const std::string crash =
+      "    -1\n    55\nNONE\nNONE\nNONE\nNONE\nNONE\n"
+      "         0         2         2         8         2        3\n"
+      "         2         4         14444444444444444\n"
+      "-8.14913E-03 -202  7.97702 -2.81973E-02\n    -1\n";
+  const uff::UffFile file = uff::parse_uff(crash, "fuzz.unv");
+  try {
+    const std::string written = uff::format_uff(file, uff::Precision::Extended);
+    FAIL("written without an error:\n" << written);
+  } catch (const InputError& e) {
+    CHECK(std::string(e.what()) ==
+          "universal file: the integer 14444444444444444 does not fit its I10 field (17 characters)");
+  }
 }
