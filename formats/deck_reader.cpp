@@ -103,6 +103,12 @@ std::string_view strip_comment(std::string_view s) {
 
 bool is_blank(std::string_view s) { return trim(s).empty(); }
 
+/// ENDDATA in field 1 of a trimmed data part; NASTRAN reads nothing after it, so later
+/// fields (pyNastran writes a checksum there: "ENDDATA 58e050da") do not matter.
+bool is_enddata(std::string_view t) {
+  return iequals_prefix(t, "ENDDATA") && (t.size() == 7 || t[7] == ' ' || t[7] == ',' || t[7] == '\t');
+}
+
 /// The fields of one physical line: the first field (name or continuation
 /// marker) and the data fields that follow (texts in the deck's arena).
 struct LineFields {
@@ -209,10 +215,11 @@ bool implicit_free_continuation(LineFields& lf) {
 /// entries are replicated: NASTRAN's continuation replication (incremented markers)
 /// is not read, and a replication line that would need it is an error.
 constexpr std::size_t kMaxReplicas = 100000;  ///< per "=(n)" line: garbage input must not exhaust memory
+/// In all: forty "=(100000)" lines of 10 bytes would be 4 million cards.
 constexpr std::size_t kMaxReplicasPerDeck = 200000;
 /// Continuation lines matched by marker to one earlier card: each copies the card's
 /// fields, so garbage input repeating one marker must not grow without bound.
-constexpr std::size_t kMaxDetachedRows = 256;  ///< in all: forty "=(100000)" lines of 10 bytes would be 4 million cards
+constexpr std::size_t kMaxDetachedRows = 256;
 
 /// The count of an "=n" or "=(n)" field; 0 when the text is not one.
 std::size_t replication_count(std::string_view first) {
@@ -524,15 +531,11 @@ struct Reader {
         continue;
       }
       if (section == Section::PartBulk) {
-        if (iequals_prefix(tdata, "ENDDATA") &&
-            (tdata.size() == 7 || tdata[7] == ' ' || tdata[7] == ',' || tdata[7] == '\t'))
+        if (is_enddata(tdata))
           section = Section::AfterEnddata;
         continue;
       }
-      // ENDDATA in field 1; NASTRAN reads nothing after it, so later fields (pyNastran
-      // writes a checksum there: "ENDDATA 58e050da") do not matter.
-      if (iequals_prefix(tdata, "ENDDATA") &&
-          (tdata.size() == 7 || tdata[7] == ' ' || tdata[7] == ',' || tdata[7] == '\t')) {
+      if (is_enddata(tdata)) {
         finish_card(fi, emitted, true);
         section = Section::AfterEnddata;
         continue;

@@ -92,6 +92,8 @@ class FeModel {
   FeOperators operators(const Eigen::VectorXd& x, bool derivatives = true) const;
   /// Modes on the a-set expanded to the g-set: u_g = T u_a.
   Eigen::MatrixXd expand(const Eigen::MatrixXd& a_modes) const;
+  /// The g-set sum of element blocks: their K, or their M scaled by WTMASS.
+  SparseMatrix sum_blocks(const std::vector<ElementBlock>& blocks, bool mass) const;
 
  private:
   struct Relation {  ///< one DVPREL1/DVMREL1
@@ -102,8 +104,6 @@ class FeModel {
     std::vector<std::pair<std::size_t, double>> terms;  ///< (parameter index, coefficient)
     std::string label;
   };
-  SparseMatrix sum_blocks(const std::vector<ElementBlock>& blocks, bool mass) const;
-
   /// The constructor's phases, in order.
   struct ConstraintSelection {  ///< the SPC and MPC sets case control selects, and where
     std::optional<std::int64_t> spc, mpc;

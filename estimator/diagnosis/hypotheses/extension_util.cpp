@@ -19,6 +19,12 @@ double young_modulus(const formats::BulkModel& bulk, std::int64_t mid) {
   throw std::invalid_argument("MAT1 " + std::to_string(mid) + " not found");
 }
 
+double density(const formats::BulkModel& bulk, std::int64_t mid) {
+  for (const auto& m : bulk.mat1s)
+    if (m.mid == mid) return m.rho;
+  return 0.0;
+}
+
 std::string label(const std::string& prefix, std::int64_t id) {
   std::string s = prefix + std::to_string(id);
   if (s.size() > 8) s = prefix.substr(0, 1) + std::to_string(id % 10000000);

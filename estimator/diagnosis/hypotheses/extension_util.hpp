@@ -16,6 +16,9 @@ Eigen::SparseMatrix<double> to_aset(const FeModel& model, const std::vector<Eige
 /// Young's modulus of MAT1 `mid` (throws when absent).
 double young_modulus(const formats::BulkModel& bulk, std::int64_t mid);
 
+/// Density of MAT1 `mid`, 0 when absent (a member without a MAT1 carries no mass of its own).
+double density(const formats::BulkModel& bulk, std::int64_t mid);
+
 /// Short DESVAR label (≤ 8 characters): prefix + id.
 std::string label(const std::string& prefix, std::int64_t id);
 

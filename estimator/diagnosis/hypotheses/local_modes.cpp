@@ -67,12 +67,6 @@ std::vector<Rod> rods(const formats::BulkModel& b) {
   return out;
 }
 
-double density(const formats::BulkModel& b, std::int64_t mid) {
-  for (const auto& m : b.mat1s)
-    if (m.mid == mid) return m.rho;
-  return 0.0;
-}
-
 /// What the start and prior need of one strut.
 struct Strut {
   Rod rod;
@@ -100,7 +94,7 @@ Strut strut_of(const FeModel& model, const Rod& r, const std::map<std::int64_t, 
   s.a = ga.x;
   s.b = gb.x;
   s.length = (gb.x - ga.x).norm();
-  s.mass = (density(model.bulk(), r.mid) * r.area + r.nsm) * s.length * model.wtmass();
+  s.mass = (detail::density(model.bulk(), r.mid) * r.area + r.nsm) * s.length * model.wtmass();
   s.E = detail::young_modulus(model.bulk(), r.mid);
   auto mass_at = [&](std::int64_t id) { auto it = masses.find(id); return it == masses.end() ? 0.0 : it->second; };
   s.end_mass = std::min(mass_at(r.ga), mass_at(r.gb));

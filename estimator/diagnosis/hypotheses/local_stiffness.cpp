@@ -26,6 +26,7 @@
 
 #include "estimator/diagnosis/hypotheses/extension_util.hpp"
 #include "estimator/diagnosis/hypotheses/model_extension.hpp"
+#include "translators/constraints.hpp"
 
 namespace ssid::estimator::diagnosis::hypotheses {
 
@@ -166,9 +167,7 @@ class LocalStiffness : public ModelExtension {
     const formats::Pbar* prop = card;
     for (const auto& p : start.pbars)
       if (p.pid == card->pid) prop = &p;
-    double rho = 0;
-    for (const auto& x : start.mat1s)
-      if (x.mid == prop->mid) rho = x.rho;
+    const double rho = detail::density(start, prop->mid);
     NewParameter p;
     p.label = detail::label("XK", m.eid);
     p.prior_mean = 0.0;
@@ -192,8 +191,7 @@ class LocalStiffness : public ModelExtension {
                                   {"I12", 19, &formats::Pbar::i12, prop->i12}, {"NSM", 8, &formats::Pbar::nsm, -rho * prop->a}};
     formats::Pbar own = *card;
     own.pid = ed.new_property_id();
-    for (const auto& f : scaled) own.*(f.field) = (*prop).*(f.field);  // the starting section
-    for (const auto& f : scaled) own.*(f.field) += f.rate * x0;
+    for (const auto& f : scaled) own.*(f.field) = (*prop).*(f.field) + f.rate * x0;  // the starting section, scaled
     ed.append(formats::write_pbar(own));
     formats::Cbar moved = *bar;
     moved.pid = own.pid;
@@ -237,9 +235,7 @@ class LocalStiffness : public ModelExtension {
     for (auto& p : m_values.pbars)
       if (p.pid == els[k].pid) prop = &p;
     if (!prop) throw std::invalid_argument("local_stiffness: CBAR " + std::to_string(m.eid) + ": no PBAR");
-    double rho = 0;
-    for (const auto& x : m_values.mat1s)
-      if (x.mid == prop->mid) rho = x.rho;
+    const double rho = detail::density(m_values, prop->mid);
     const auto at0 = nominal.elements().block_of(k, m_values);
     const formats::Pbar kept = *prop;  // β = 1 in place (only this element is evaluated), then restored
     prop->a *= 2;
@@ -250,18 +246,12 @@ class LocalStiffness : public ModelExtension {
     prop->nsm -= rho * kept.a;
     const auto at1 = nominal.elements().block_of(k, m_values);
     *prop = kept;
-    auto aset = [&](const Eigen::MatrixXd& d) {
-      std::vector<Eigen::Triplet<double>> t;
-      for (Eigen::Index i = 0; i < d.rows(); ++i)
-        for (Eigen::Index j = 0; j < d.cols(); ++j)
-          if (d(i, j) != 0.0)
-            t.emplace_back(static_cast<int>(at0.dofs[static_cast<std::size_t>(i)]),
-                           static_cast<int>(at0.dofs[static_cast<std::size_t>(j)]), d(i, j));
-      return detail::to_aset(nominal, t);
-    };
-    ScreeningDerivative s;
-    s.dK.push_back(aset(at1.k - at0.k));
-    s.dM.push_back(aset(at1.m - at0.m));
+    translators::ElementBlock rate = at1;
+    rate.k -= at0.k;
+    rate.m -= at0.m;
+    ScreeningDerivative s;  // summed as the model sums its blocks (WTMASS on the mass), then reduced
+    s.dK.push_back(reduce(nominal.sum_blocks({rate}, false), nominal.reduction()));
+    s.dM.push_back(reduce(nominal.sum_blocks({rate}, true), nominal.reduction()));
     s.prior_std.push_back(m_options.stiffness_prior_fraction);
     return s;
   }

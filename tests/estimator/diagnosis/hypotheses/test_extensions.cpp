@@ -137,7 +137,7 @@ TEST_CASE("local_stiffness of a CBAR: a PBAR of its own, its section x (1 + beta
   }
   // Coupled mass: the rotary terms ρI move with the section; the screening's ∂M/∂β is the deck's.
   std::string coupled = text;
-  coupled.insert(coupled.find("ENDDATA"), "PARAM   COUPMASS1\n");
+  coupled.insert(coupled.find("ENDDATA"), "PARAM   COUPMASS1\nPARAM   WTMASS  .5\n");
   const Loaded cn = load(coupled);
   REQUIRE(cn.fe->coupled_mass());
   const auto s = kind->screening(*cn.fe, cands[5]);
