@@ -409,18 +409,27 @@ Eigen::VectorXd screen_column(const Screen& sc, const OperatorModel& model, cons
   return prior_std * Eigen::Map<const Eigen::VectorXd>(t.data(), static_cast<Eigen::Index>(t.size()));
 }
 
-/// For each unexplained test mode (the evidence's order), the g-set shape of
-/// the analysis mode of `sol` (the model's last solve) most like it at the
-/// sensors (highest MAC within ±30 % in frequency; any frequency when none).
-std::vector<Eigen::VectorXd> neighbours_of_unexplained(PreparedConfiguration& pb, const ModalSolution& sol, const Evidence& ev) {
-  std::vector<Eigen::VectorXd> out;
+/// The updated model's modes (`sol`, the model's last solve) and, for each
+/// unexplained test mode (the evidence's order), its sensor shape and the
+/// analysis mode most like it at the sensors (highest MAC within ±30 % in
+/// frequency; any frequency when none; the nearest in frequency when the test
+/// has no shapes).
+ext::UnexplainedModes unexplained_modes(PreparedConfiguration& pb, const ModalSolution& sol, const Evidence& ev) {
+  ext::UnexplainedModes out;
   const Eigen::MatrixXd& phi = pb.model->modes();
+  out.eigenvalues = sol.eigenvalues;
+  out.sensor_shapes = sol.sensor_shapes;
+  if (phi.cols() > 0) out.g_shapes = pb.fe->expand(phi);
   for (const auto& u : ev.unpaired_test) {
     const MeasuredMode* t = nullptr;
     for (const auto& m : pb.test)
       if (m.id == u.id) t = &m;
-    if (!t || !t->shape.size() || phi.cols() == 0) {
-      out.emplace_back();
+    if (!t || !t->shape.size() || phi.cols() == 0) {  // frequencies only: the analysis mode nearest in frequency
+      Eigen::Index nearest = -1;
+      if (sol.eigenvalues.size() > 0)
+        (sol.eigenvalues.array().abs().sqrt() / (2 * M_PI) - u.frequency_hz).abs().minCoeff(&nearest);
+      out.test_shapes.emplace_back();
+      out.neighbour.push_back(phi.cols() > 0 ? static_cast<int>(nearest) : -1);
       continue;
     }
     int best = -1;
@@ -434,7 +443,8 @@ std::vector<Eigen::VectorXd> neighbours_of_unexplained(PreparedConfiguration& pb
         const double mac = d > 0 ? std::pow(s.dot(t->shape), 2) / d : 0.0;
         if (mac > best_mac) { best_mac = mac; best = static_cast<int>(j); }
       }
-    out.push_back(best >= 0 ? Eigen::VectorXd(pb.fe->expand(phi.col(best))) : Eigen::VectorXd());
+    out.test_shapes.push_back(t->shape);
+    out.neighbour.push_back(best);
   }
   return out;
 }
@@ -841,7 +851,7 @@ class Diagnoser {
     m_screen = prepare_screen(m_base.configurations.front(), m_base.prior, m_base_res.r, m_base_res.history.back().pairs,
                               m_base.options);
     m_sol_star = m_base.configurations.front().model->solve(m_base_res.r);
-    m_eo.unexplained_neighbours = neighbours_of_unexplained(m_base.configurations.front(), m_sol_star, m_dg.evidence);
+    m_eo.unexplained = unexplained_modes(m_base.configurations.front(), m_sol_star, m_dg.evidence);
   }
 
   /// 2. Every kind's candidates first, so that the screening is counted over all of them.

@@ -7,6 +7,8 @@
 
 #include <Eigen/Eigenvalues>
 #include <Spectra/SymGEigsShiftSolver.h>
+#include <sstream>
+#include <stdexcept>
 #include <unistd.h>
 
 #include <algorithm>
@@ -123,7 +125,14 @@ LanczosRun run_lanczos(const CholmodFactor& factor, const MassOp& mass, double s
   factor.solve(Mr.data(), v0.data(), 1);
   if (!(v0.norm() > 0.0)) throw formats::InputError("EigenSolver: M is zero: the model has no mass on its analysis DOFs");
   eigs.init(v0.data());
-  eigs.compute(Spectra::SortRule::LargestMagn, o.maxit, o.tol, Spectra::SortRule::SmallestAlge);
+  try {
+    eigs.compute(Spectra::SortRule::LargestMagn, o.maxit, o.tol, Spectra::SortRule::SmallestAlge);
+  } catch (const std::runtime_error& e) {  // Spectra's own failures (a NaN in the Lanczos tridiagonal, ...)
+    std::ostringstream msg;
+    msg << "EigenSolver: the Lanczos iteration failed (" << e.what() << ") at the shift sigma = " << sigma
+        << " (rad/s)^2: the shift-invert solves gave no finite vector (K - sigma M singular or too ill-conditioned)";
+    throw formats::NumericalError(msg.str());
+  }
   LanczosRun run;
   run.converged = eigs.info() == Spectra::CompInfo::Successful;
   run.iterations = eigs.num_iterations();

@@ -1,5 +1,8 @@
 #include "estimator/diagnosis/hypotheses/extension_util.hpp"
 
+#include <Eigen/QR>
+#include <algorithm>
+#include <cmath>
 #include <stdexcept>
 
 #include "translators/constraints.hpp"
@@ -44,6 +47,21 @@ Location member_location(const std::string& type, std::int64_t eid, std::int64_t
   if (pid) l.properties = {pid};
   l.text = type + " " + std::to_string(eid) + " (grids " + std::to_string(ga) + "-" + std::to_string(gb) + ")";
   return l;
+}
+
+Eigen::VectorXd response_at_sensors(const UnexplainedModes& x, double hz, Eigen::VectorXd modal_force) {
+  const double lam = std::pow(2 * M_PI * hz, 2);
+  for (Eigen::Index j = 0; j < modal_force.size(); ++j) {
+    const double d = x.eigenvalues(j) - lam;  // a mode exactly at ω: its term dominates, as it should, but finitely
+    modal_force(j) /= std::abs(d) > 1e-12 * lam ? d : std::copysign(1e-12 * lam, d);
+  }
+  return x.sensor_shapes * modal_force;
+}
+
+double explained_share(const Eigen::MatrixXd& A, const Eigen::VectorXd& t) {
+  if (!(A.norm() > 0) || !(t.squaredNorm() > 0)) return 0.0;
+  const Eigen::VectorXd fit = A * A.colPivHouseholderQr().solve(t);
+  return std::clamp(fit.squaredNorm() / t.squaredNorm(), 0.0, 1.0);
 }
 
 }  // namespace ssid::estimator::diagnosis::hypotheses::detail

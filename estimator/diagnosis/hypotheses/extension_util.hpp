@@ -30,4 +30,16 @@ std::vector<double> start_frequencies(const ExtensionOptions& options);
 /// `pid` > 0) and "TYPE eid (grids a-b)".
 Location member_location(const std::string& type, std::int64_t eid, std::int64_t pid, std::int64_t ga, std::int64_t gb);
 
+/// The shape at the sensors with which the structure answers, at frequency
+/// `hz`, a force F whose modal components are `modal_force` (φ_jᵀF, one per
+/// analysis mode of `x`): u = Σ_j φ_j (φ_jᵀF) / (λ_j − ω²), over the updated
+/// model's mass-normalised modes. A kind that adds a local mode near ω ranks
+/// its places by how well this shape (its force on the structure) gives the
+/// unexplained test mode's.
+Eigen::VectorXd response_at_sensors(const UnexplainedModes& x, double hz, Eigen::VectorXd modal_force);
+
+/// The share of `t` that the columns of `A` span, ‖A A⁺ t‖² / ‖t‖² ∈ [0, 1]
+/// (least squares; for one column the MAC of the two); 0 when A or t is zero.
+double explained_share(const Eigen::MatrixXd& A, const Eigen::VectorXd& t);
+
 }  // namespace ssid::estimator::diagnosis::hypotheses::detail

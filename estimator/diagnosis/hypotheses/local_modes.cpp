@@ -3,41 +3,58 @@
 /// the real tube does; when its first bending frequency falls near a global
 /// mode the two mix and the test shows a mode the model lacks (the seed
 /// report's local strut modes). The change refines one rod (CROD or CONROD of
-/// length L between GA and GB) so that the local modes exist:
+/// length L between GA and GB) into a beam whose local modes exist:
 ///
-///  - a new grid GM at the middle of the strut;
-///  - the rod split in two rods GA–GM and GM–GB of the same property (the
-///    element keeps its id, a new one takes the second half): the axial rate
-///    EA/L and the mass are unchanged, and the property's design relations
-///    (DVPREL1 of the PROD) still apply;
-///  - two CBARs GA–GM, GM–GB carrying the bending only: a new PBAR of the rod's
-///    material with A = 0, I1 = I2 = β (a round tube), J = 0, pinned at the
-///    strut's ends in bending (PA/PB = 56; J = 0), so they add no stiffness between the end
-///    grids — the rod model's pinned joints stay — and neither mass nor axial
-///    stiffness; GM's displacement frame is a new CORD2R with x along the strut
-///    and its rotation about the strut (no stiffness) held by GRID PS 4.
+///  - three new inner grids G1, G2, G3 at the quarters of the strut, their
+///    displacement frame a new CORD2R with x along the strut, their rotation
+///    about the strut (no stiffness) held by GRID PS 4;
+///  - the rod split into four rods GA–G1, …, G3–GB of the same property (the
+///    element keeps its id for the first quarter, new ids take the others):
+///    the axial rate EA/L and the mass are unchanged, and the property's design
+///    relations (DVPREL1 of the PROD; a CONROD's own are copied) still apply;
+///  - four CBARs along the chain carrying the bending only: a new PBAR of the
+///    rod's material with A = 0, I1 = I2 = β (a round tube), J = 0, so neither
+///    mass nor axial stiffness is added. No pin flags: the bars are clamped into
+///    the end grids as the deck holds them. Where the deck holds an end grid's
+///    rotations (GRID PS 456, as the MPI rod model does) the strut is
+///    clamped–clamped, the joint of a tube screwed or bonded into a node and the
+///    one the beam model of the same truss (`ssid truss mpi --model beam`) gives its
+///    members; where nothing else holds them the end acts as a pin. Two bars
+///    pinned at the strut's ends with one middle grid (the form before) gave one
+///    local mode per plane and the pinned ratios; the test of a real tube shows
+///    its second bending too (2.76 × the first, clamped).
 ///
 /// β₁ = I [m⁴], the strut's bending inertia. A rod model often carries the
 /// strut's mass in the lumped masses of its end grids (the MPI truss rod model:
-/// no density, no NSM); then the tube's mass must move to the middle for a local
-/// mode to exist, and β₂ = μ [kg] is the mass moved: a CONM2 of μ at GM and
-/// CONM2s of −μ/2 at GA and GB (total mass and centre of gravity unchanged).
-/// With lumped mass the middle grid carries m_mid = m_s/2 + μ (m_s the rod's own
-/// mass) and the first bending frequency of the two-bar chain is
-///   f = √(48 E I / L³ / m_mid) / 2π   (pinned–pinned; exact for the two bars).
-/// With the stiff limit I → ∞ and μ = 0 the rod comes back exactly. Priors: μ ~ N(μ₀, μ₀²),
-/// μ₀ = ¼ of the lighter end grid's lumped mass, 0 ≤ μ ≤ that mass; I ~ N(I_h,
-/// I_h²) centred on the inertia that puts the local mode at 1.25 × the highest
-/// test frequency (local modes above the band: the rod model is the limit
-/// I → ∞), I above the value that puts it at half the lowest test frequency
-/// (I = 0 would be a mechanism). The start puts the local mode at an
-/// unexplained test frequency.
+/// no density, no NSM); then the tube's mass must move inwards for a local
+/// mode to exist, and β₂ = μ [kg] is the mass moved: a CONM2 of μ/3 at each
+/// inner grid and CONM2s of −μ/2 at GA and GB (total mass and centre of gravity
+/// unchanged). With lumped mass each inner grid carries m = m_s/4 + μ/3 (m_s the
+/// rod's own mass) and the first bending frequency of the clamped chain is
+///   f = √(c E I / (m h³)) / 2π,  h = L/4,  c = (39 − √1233)/2 ≈ 1.943
+/// (exact for the four bars; kChainEigenvalue). With I → 0 and μ = 0 on a
+/// massless rod the rod comes back exactly (the bars add nothing). Priors:
+/// μ ~ N(μ₀, μ₀²), μ₀ = ¼ of the lighter end grid's lumped mass, 0 ≤ μ ≤ that
+/// mass; I ~ N(I_h, I_h²) centred on the inertia that puts the local mode at
+/// 1.25 × the highest test frequency (local modes above the band), I above the
+/// value that puts it at half the lowest test frequency (I = 0 would be a
+/// mechanism). The start puts the local mode at an unexplained test frequency.
 ///
 /// Candidates are every two-grid rod, once per unexplained test frequency (up to
 /// `max_surge_starts`); none when every test mode has an analysis partner
-/// (unless `always_offer`). Their priority is how strongly the strut would couple to
-/// the analysis mode that resembles the unexplained test mode: the middle mass
-/// times the squared motion of its middle across the strut axis in that mode.
+/// (unless `always_offer`). Their priority is how well a local mode of that
+/// strut would give the unexplained test mode's shape at the sensors. A local
+/// mode at ω_u pushes the strut's ends across its axis (a force n/2 at each end,
+/// n in the plane of bending), and the structure answers that force at ω_u as
+///   u = Σ_j φ_j (φ_jᵀ F) / (λ_j − ω_u²),
+/// summed over the updated model's mass-normalised modes; at the sensors this
+/// gives one shape s_p per bending plane, and the priority is the share of the
+/// unit test shape t that the two span, ‖P t‖² ∈ [0, 1] (least squares). A
+/// strut whose ends do not move across its axis in any mode gives nothing (0).
+/// Without test shapes (frequencies only) the priority is the coupling to the
+/// analysis mode most like the test mode: an inner grid's mass times the
+/// squared motion of the strut's middle (the mean of its ends) across its axis
+/// in that mode.
 #include <algorithm>
 #include <cmath>
 #include <map>
@@ -50,6 +67,17 @@
 namespace ssid::estimator::diagnosis::hypotheses {
 
 namespace {
+
+/// The refined strut is a chain of this many bars (three inner grids).
+constexpr int kBars = 4;
+/// The lowest eigenvalue of the chain, clamped at both ends, in units of
+/// E I / (m h³) (m each inner grid's mass, h a bar's length): the three inner
+/// translations after the rotations are condensed out give, for the symmetric
+/// modes, x² − 39 x + 72 = 0, so x = (39 − √1233)/2 ≈ 1.94295 (the uniform
+/// clamped–clamped beam: 4.730⁴/4⁴ ≈ 1.9553 in the same units); the
+/// antisymmetric mode is 96/7, the second bending at 2.66 × the first frequency
+/// (the uniform beam: 2.76).
+const double kChainEigenvalue = (39.0 - std::sqrt(1233.0)) / 2.0;
 
 struct Rod {
   std::string type;  ///< CROD or CONROD
@@ -74,7 +102,8 @@ struct Strut {
   double length = 0, mass = 0, E = 0;
   double moved = 0;      ///< μ₀ when the rod has no mass of its own (mass moved from the ends), else 0
   double end_mass = 0;   ///< lumped translational mass of the lighter end grid [kg]
-  double mid_mass() const { return mass / 2 + moved; }
+  /// The mass each inner grid carries: a quarter of the rod's own (lumped rods) and a third of the moved mass.
+  double inner_mass() const { return mass / kBars + moved / (kBars - 1); }
 };
 
 /// Lumped translational mass at each grid (g-set diagonal of M, component 1).
@@ -102,10 +131,11 @@ Strut strut_of(const FeModel& model, const Rod& r, const std::map<std::int64_t, 
   return s;
 }
 
-/// I that puts the two-bar chain's first bending mode at f.
+/// I that puts the chain's first bending mode at f: ω² = c E I / (m h³), h = L/4,
+/// m the inner grids' mass (file comment).
 double inertia_for(const Strut& s, double f_hz) {
-  const double w = 2 * M_PI * f_hz;
-  return w * w * s.mid_mass() * std::pow(s.length, 3) / (48.0 * s.E);
+  const double w = 2 * M_PI * f_hz, h = s.length / kBars;
+  return w * w * s.inner_mass() * h * h * h / (kChainEigenvalue * s.E);
 }
 
 class LocalModes : public ModelExtension {
@@ -113,7 +143,8 @@ class LocalModes : public ModelExtension {
   explicit LocalModes(ExtensionOptions o) : m_options(std::move(o)) {}
   std::string kind() const override { return "local_modes"; }
   std::string describe() const override {
-    return "a rod refined into two halves with a bending bar each (a middle grid), so its local bending modes exist; "
+    return "a rod refined into four quarters with a bending bar each (three inner grids, clamped into its end grids), "
+           "so its local bending modes exist; "
            "parameter: the strut's bending inertia I [m^4]";
   }
 
@@ -132,7 +163,7 @@ class LocalModes : public ModelExtension {
     for (const auto& r : all) {
       if (!(r.area > 0) || r.ga == r.gb) continue;
       const Strut s = strut_of(nominal, r, masses);
-      if (!(s.mid_mass() > 0) || !(s.length > 0)) continue;  // no mass anywhere: no local mode
+      if (!(s.inner_mass() > 0) || !(s.length > 0)) continue;  // no mass anywhere: no local mode
       for (std::size_t u = 0; u < freqs.size(); ++u) {
         Candidate c;
         c.kind = kind();
@@ -140,8 +171,7 @@ class LocalModes : public ModelExtension {
         c.ids = {r.eid};
         c.start = {inertia_for(s, freqs[u])};
         if (s.moved > 0) c.start.push_back(s.moved);
-        if (guided && u < m_options.unexplained_neighbours.size())
-          c.priority = coupling(nominal, s, m_options.unexplained_neighbours[u]);
+        if (guided) c.priority = priority(nominal, s, u);
         out.push_back(c);
       }
     }
@@ -171,51 +201,62 @@ class LocalModes : public ModelExtension {
     const double x0 = std::isnan(p.start) ? p.prior_mean : p.start;
 
     ed.comment("ssid diagnose: " + r.type + " " + std::to_string(r.eid) + " refined (local bending modes)");
-    // GM's frame: x along the strut (GA to GB), so PS 4 holds its free torsion.
-    const Eigen::Vector3d xm = 0.5 * (s.a + s.b), axis = (s.b - s.a).normalized();
+    // The inner grids' frame: x along the strut (GA to GB), so PS 4 holds their free torsion.
+    const Eigen::Vector3d axis = (s.b - s.a).normalized();
     Eigen::Index k = 0;
     axis.cwiseAbs().minCoeff(&k);
     const Eigen::Vector3d z = axis.cross(Eigen::Vector3d::Unit(k)).normalized(), y = z.cross(axis);
     formats::Cord2 frame;
     frame.cid = ed.new_coord_id();
-    const Eigen::Vector3d zb = xm + z, xb = xm + axis;
-    frame.a = {xm(0), xm(1), xm(2)};
+    const Eigen::Vector3d zb = s.a + z, xb = s.a + axis;
+    frame.a = {s.a(0), s.a(1), s.a(2)};
     frame.b = {zb(0), zb(1), zb(2)};
     frame.c = {xb(0), xb(1), xb(2)};
     ed.append(formats::write_cord2(frame));
-    formats::Grid gm;
-    gm.id = ed.new_grid_id();
-    gm.x = {xm(0), xm(1), xm(2)};
-    gm.cd = frame.cid;
-    gm.cd_blank = false;
-    gm.ps = "4";
-    gm.ps_blank = false;
-    ed.append(formats::write_grid(gm));
-    const std::int64_t second = ed.new_element_id();
-    // The element becomes its first half (GA–GM) in place; a copy is the second (GM–GB).
+    // The chain GA, G1, G2, G3, GB at quarters of the strut.
+    std::array<std::int64_t, kBars + 1> chain{};
+    chain.front() = r.ga;
+    chain.back() = r.gb;
+    for (int n = 1; n < kBars; ++n) {
+      const Eigen::Vector3d xn = s.a + (static_cast<double>(n) / kBars) * (s.b - s.a);
+      formats::Grid g;
+      g.id = ed.new_grid_id();
+      g.x = {xn(0), xn(1), xn(2)};
+      g.cd = frame.cid;
+      g.cd_blank = false;
+      g.ps = "4";
+      g.ps_blank = false;
+      ed.append(formats::write_grid(g));
+      chain[static_cast<std::size_t>(n)] = g.id;
+    }
+    // The rod becomes four rods of the same property along the chain: the element keeps its id for the first quarter.
+    std::array<std::int64_t, kBars> rod_ids{};
+    rod_ids[0] = r.eid;
+    for (int n = 1; n < kBars; ++n) rod_ids[static_cast<std::size_t>(n)] = ed.new_element_id();
     auto split = [&](const auto& cards, auto write) {
       for (const auto& e : cards)
-        if (e.eid == r.eid) {
-          auto half = e;
-          half.g2 = gm.id;
-          ed.change(e.card, write(half));
-          half.eid = second;
-          half.g1 = gm.id;
-          half.g2 = e.g2;
-          ed.append(write(half));
-        }
+        if (e.eid == r.eid)
+          for (std::size_t n = 0; n < kBars; ++n) {
+            auto part = e;
+            part.eid = rod_ids[n];
+            part.g1 = chain[n];
+            part.g2 = chain[n + 1];
+            if (n == 0) ed.change(e.card, write(part));
+            else ed.append(write(part));
+          }
     };
     if (r.type == "CROD") {
       split(b.crods, formats::write_crod);
     } else {
       split(b.conrods, formats::write_conrod);
-      for (const auto& d : b.dvprel1s)  // the CONROD's own design relations follow its second half
-        if (d.type == "CONROD" && d.pid == r.eid) {
-          formats::Dvprel1 q = d;
-          q.id = ed.new_relation_id();
-          q.pid = second;
-          ed.append(formats::write_dvprel1(q));
-        }
+      for (const auto& d : b.dvprel1s)  // the CONROD's own design relations follow its other parts
+        if (d.type == "CONROD" && d.pid == r.eid)
+          for (std::size_t n = 1; n < kBars; ++n) {
+            formats::Dvprel1 q = d;
+            q.id = ed.new_relation_id();
+            q.pid = rod_ids[n];
+            ed.append(formats::write_dvprel1(q));
+          }
     }
     formats::Pbar pb;
     pb.pid = ed.new_property_id();
@@ -223,35 +264,36 @@ class LocalModes : public ModelExtension {
     pb.i1 = pb.i2 = x0;
     ed.append(formats::write_pbar(pb));
     // Orientation (I1 = I2: any vector off the axis gives the same element): the
-    // frame's y axis, given in each bar's GA displacement system.
+    // frame's y axis, given in each bar's GA displacement system (the inner
+    // grids' is the frame itself). No pin flags: the bars are clamped into the
+    // end grids as the deck holds them (file comment).
     const auto& ga = nominal.geometry().grid(r.ga, "local_modes");
     const Eigen::Vector3d y_in_ga = ga.frame.transpose() * y;
-    const std::array<std::array<double, 3>, 2> orient{{{y_in_ga(0), y_in_ga(1), y_in_ga(2)}, {0.0, 1.0, 0.0}}};
-    const std::array<std::pair<std::int64_t, std::int64_t>, 2> ends{{{r.ga, gm.id}, {gm.id, r.gb}}};
-    for (std::size_t n = 0; n < 2; ++n) {
+    for (std::size_t n = 0; n < kBars; ++n) {
       formats::Cbar bar;
       bar.eid = ed.new_element_id();
       bar.pid = pb.pid;
-      bar.ga = ends[n].first;
-      bar.gb = ends[n].second;
-      bar.x = orient[n];
-      (n == 0 ? bar.pa : bar.pb) = "56";  // pinned in bending at the strut's end (J = 0: torsion carries nothing)
+      bar.ga = chain[n];
+      bar.gb = chain[n + 1];
+      bar.x = n == 0 ? std::array<double, 3>{y_in_ga(0), y_in_ga(1), y_in_ga(2)} : std::array<double, 3>{0.0, 1.0, 0.0};
       ed.append(formats::write_cbar(bar));
     }
     const auto dv = ed.add_desvar(p, x0);
     ed.add_dvprel1("PBAR", pb.pid, "I1", dv, 1.0);
     ed.add_dvprel1("PBAR", pb.pid, "I2", dv, 1.0);
-    if (s.moved > 0) {  // the tube's mass, lumped at the ends in the deck, moved to the middle
+    if (s.moved > 0) {  // the tube's mass, lumped at the ends in the deck, moved to the inner grids
       NewParameter q;
       q.label = detail::label("XU", r.eid);
       q.prior_mean = q.prior_std = s.moved;
       q.lower = 0.0;
       q.upper = s.end_mass;
-      q.meaning = "mass moved from the ends of " + r.type + " " + std::to_string(r.eid) + " to its middle [kg]";
+      q.meaning = "mass moved from the ends of " + r.type + " " + std::to_string(r.eid) + " to its inner grids [kg]";
       if (c.start.size() > 1) q.start = std::clamp(c.start[1], q.lower, q.upper);
       const double m0 = std::isnan(q.start) ? q.prior_mean : q.start;
       const auto dm = ed.add_desvar(q, m0);
-      for (auto [g, share] : {std::pair{gm.id, 1.0}, std::pair{r.ga, -0.5}, std::pair{r.gb, -0.5}}) {
+      std::vector<std::pair<std::int64_t, double>> shares{{r.ga, -0.5}, {r.gb, -0.5}};
+      for (int n = 1; n < kBars; ++n) shares.emplace_back(chain[static_cast<std::size_t>(n)], 1.0 / (kBars - 1));
+      for (const auto& [g, share] : shares) {
         formats::Conm2 m;
         m.eid = ed.new_element_id();
         m.g = g;
@@ -264,21 +306,38 @@ class LocalModes : public ModelExtension {
   }
 
  private:
-  /// m_mid ‖w⊥‖² (m_mid the mass the middle grid would carry), w the mean translation of the strut's ends (basic) in the
-  /// g-set shape `phi`, ⊥ across the strut axis.
-  static double coupling(const FeModel& model, const Strut& s, const Eigen::VectorXd& phi) {
-    auto translation = [&](std::int64_t id) {
-      const auto& g = model.geometry().grid(id, "local_modes");
-      Eigen::Vector3d u;
-      for (int i = 0; i < 3; ++i) {
-        const auto dof = static_cast<Eigen::Index>(g.dofs[static_cast<std::size_t>(i)]);
-        u(i) = dof < phi.size() ? phi(dof) : 0.0;
-      }
-      return Eigen::Vector3d(g.frame * u);
-    };
-    const Eigen::Vector3d w = 0.5 * (translation(s.rod.ga) + translation(s.rod.gb));
-    const Eigen::Vector3d e = (s.b - s.a).normalized();
-    return s.mid_mass() * (w - e * e.dot(w)).squaredNorm();
+  /// The translations (basic) of grid `id` in each column of the g-set `shapes`, 3 × m.
+  static Eigen::Matrix3Xd translations(const FeModel& model, std::int64_t id, const Eigen::MatrixXd& shapes) {
+    const auto& g = model.geometry().grid(id, "local_modes");
+    Eigen::Matrix3Xd u = Eigen::Matrix3Xd::Zero(3, shapes.cols());
+    for (int i = 0; i < 3; ++i) {
+      const auto dof = static_cast<Eigen::Index>(g.dofs[static_cast<std::size_t>(i)]);
+      if (dof < shapes.rows()) u.row(i) = shapes.row(dof);
+    }
+    return g.frame * u;
+  }
+
+  /// The candidate's priority for unexplained test mode u (file comment).
+  double priority(const FeModel& model, const Strut& s, std::size_t u) const {
+    const auto& x = m_options.unexplained;
+    if (x.g_shapes.cols() == 0 || u >= x.neighbour.size()) return 0.0;
+    // The mean end translation across the axis, one column a mode: what the strut's middle does.
+    const Eigen::Matrix3Xd w = 0.5 * (translations(model, s.rod.ga, x.g_shapes) + translations(model, s.rod.gb, x.g_shapes));
+    const Eigen::Vector3d axis = (s.b - s.a).normalized();
+    const Eigen::Matrix3Xd across = w - axis * (axis.transpose() * w);
+    const Eigen::VectorXd& t = x.test_shapes[u];
+    if (t.size() == 0 || t.size() != x.sensor_shapes.rows() || !(t.squaredNorm() > 0)) {
+      const int j = x.neighbour[u];  // frequencies only: the coupling to the nearest-looking mode
+      return j < 0 ? 0.0 : s.inner_mass() * across.col(j).squaredNorm();
+    }
+    if (!(across.norm() > 1e-9 * w.norm())) return 0.0;  // no motion across the strut in any mode
+    Eigen::Index k = 0;
+    axis.cwiseAbs().minCoeff(&k);
+    const Eigen::Vector3d n1 = axis.cross(Eigen::Vector3d::Unit(k)).normalized(), n2 = axis.cross(n1);
+    Eigen::MatrixXd A(x.sensor_shapes.rows(), 2);
+    for (int p = 0; p < 2; ++p)  // φ_jᵀF for F = n/2 at each end: n · (mean end translation)
+      A.col(p) = detail::response_at_sensors(x, m_options.unexplained_hz.at(u), ((p == 0 ? n1 : n2).transpose() * w).transpose());
+    return detail::explained_share(A, t);
   }
 
   ExtensionOptions m_options;

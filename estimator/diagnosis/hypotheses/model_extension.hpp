@@ -124,6 +124,19 @@ struct ScreeningDerivative {
   std::vector<double> prior_std;  ///< σ of each new parameter (as apply() would give it)
 };
 
+/// What the diagnosis knows of the test modes the ordinary update leaves
+/// without an analysis partner, at the updated parameters (first configuration).
+struct UnexplainedModes {
+  Eigen::VectorXd eigenvalues;  ///< λ_j = ω_j² of the analysis modes [(rad/s)²]
+  Eigen::MatrixXd g_shapes;     ///< their g-set shapes, mass-normalised, one column a mode
+  Eigen::MatrixXd sensor_shapes;  ///< the same modes at the sensors (rows: the test's sensors)
+  /// Per unexplained test frequency (ExtensionOptions::unexplained_hz order):
+  /// the test mode's shape at the sensors (empty: not measured), and the
+  /// analysis mode most like it at the sensors (−1: none).
+  std::vector<Eigen::VectorXd> test_shapes;
+  std::vector<int> neighbour;
+};
+
 /// Settings shared by the kinds (priors), SI units as the deck's.
 struct ExtensionOptions {
   double mass_prior_fraction = 0.01;   ///< σ of a missing mass: this fraction of the model's total mass
@@ -132,10 +145,10 @@ struct ExtensionOptions {
   std::vector<double> unexplained_hz;  ///< test frequencies without an analysis partner (from the evidence)
   double lowest_test_hz = 1.0;         ///< scales the spring-mass prior
   double highest_test_hz = 0;          ///< centres the strut-inertia prior of local_modes (0: lowest_test_hz)
-  /// Per unexplained test frequency (same order): the g-set shape of the
-  /// analysis mode that resembles that test mode most at the sensors, at the
-  /// updated parameters (kinds that add local DOFs rank places by coupling to it).
-  std::vector<Eigen::VectorXd> unexplained_neighbours;
+  /// The updated model's modes and the unexplained test modes' shapes: kinds
+  /// that add local DOFs rank their places by the shape their new mode would
+  /// give at the sensors (local_modes.cpp).
+  UnexplainedModes unexplained;
   /// Kinds meant for unexplained test modes (local_modes) offer candidates even
   /// when there are none (tests of the kind itself).
   bool always_offer = false;

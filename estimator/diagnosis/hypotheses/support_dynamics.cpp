@@ -1,15 +1,33 @@
 /// \file support_dynamics.cpp
 /// support_dynamics: a suspension (grounded) spring that has mass of its own,
 /// so the test shows its surge modes. The spring of rate k between (grid, c)
-/// and ground becomes two springs of rate 2k in series with a mass m on a new
-/// grid between them (moving along c only): the static rate is still k and the
-/// spring's first fixed–fixed surge frequency is
-///   f = √(4k/m) / 2π   (the two-segment chain; a continuous spring: √(k/m)/2).
-/// β = m [kg]. Prior N(0, σ²) with σ = 4k/(2π f_low)² (the mass that puts the
-/// surge at the lowest test frequency), m ≥ 0; the start places the surge at an
-/// unexplained test frequency when there is one. The design relations of the
-/// spring (DVPREL1 of its PELAS or CELAS2) are carried to the new springs with
-/// doubled coefficients, so the spring rate stays a parameter.
+/// and ground becomes a chain grid –k₁– m₁ –k₂– m₂ –k₃– ground on two new grids
+/// moving along c only. Why this chain: a real coil spring is a continuous
+/// one, whose dynamic stiffness at the attachment, its far end held, is
+///   K(ω) = k x cot x = k − Σ_n 2kω² / (ω_n² − ω²),   x = π ω/ω₁, ω_n = n ω₁:
+/// the static rate k, surges at ω₁, 2ω₁, 3ω₁, …, each pulling on the structure
+/// with the same 2k. The two-mass chain has the static rate, two surges and
+/// their two pulls as parameters of its five values, and matching the
+/// continuous spring's first two (solved apart from this code, in scipy; the
+/// solution is unique) gives
+///   k₁ = 5k, k₂ = 7k/2, k₃ = 35k/18,  m₁ = β, m₂ = 49β/36,  ω₁² = 5k/(2β),
+/// so the chain surges at f₁ = √(5k/(2β))/2π and exactly 2f₁, and pulls as the
+/// real spring does. (The forms before: 2k – m – 2k, one surge with half the
+/// pull, then 3k – m – 3k/2, one surge with the right pull: a test that sees
+/// a spring's second surge, as the sweep's surging suspensions below 33 Hz
+/// do, had nothing to pair it with.)
+/// β = m₁ [kg]. Prior N(0, σ²) with σ = 5k/(2(2π f_low)²) (the mass that puts the
+/// first surge at the lowest test frequency), β ≥ 0; the start places the surge
+/// at an unexplained test frequency when there is one. A group of springs (the
+/// CELAS1s of one PELAS) starts with all at each unexplained frequency, spread
+/// over them in turn, and matched: each spring at the unexplained test mode
+/// whose shape its surge would give best (the structure's answer to a force
+/// at the spring's grid at that frequency, against the test shape). The design
+/// relations of the spring (DVPREL1 of its PELAS or CELAS2) are carried to the
+/// three springs with their coefficients × 5, × 7/2 and × 35/18, so the spring
+/// rate stays a parameter.
+#include <algorithm>
+#include <array>
 #include <cmath>
 #include <map>
 
@@ -19,6 +37,13 @@
 namespace ssid::estimator::diagnosis::hypotheses {
 
 namespace {
+
+/// The chain's three rates, grid side first, in units of the spring's k, and
+/// its two masses in units of β (file comment).
+constexpr std::array<double, 3> kRates{5.0, 3.5, 35.0 / 18.0};
+constexpr std::array<double, 2> kMasses{1.0, 49.0 / 36.0};
+/// ω₁² = kFirstSurge · k / β.
+constexpr double kFirstSurge = 2.5;
 
 struct Spring {
   std::string type;  ///< CELAS1 or CELAS2
@@ -54,8 +79,9 @@ class SupportDynamics : public ModelExtension {
   explicit SupportDynamics(ExtensionOptions o) : m_options(std::move(o)) {}
   std::string kind() const override { return "support_dynamics"; }
   std::string describe() const override {
-    return "a grounded (suspension) spring with its own mass: two springs of twice the rate with a mass between "
-           "them (surge modes); parameter: the mass [kg] of each spring";
+    return "a grounded (suspension) spring with its own mass: a chain 5k - m - 7k/2 - 49m/36 - 35k/18 to ground, "
+           "the static rate and the first two surges and pulls of a continuous spring (surge modes); "
+           "parameter: the first inner mass [kg] of each spring";
   }
 
   std::vector<Candidate> candidates(const FeModel& nominal) const override {
@@ -82,6 +108,10 @@ class SupportDynamics : public ModelExtension {
         std::vector<double> s;
         for (std::size_t i = 0; i < set.size(); ++i) s.push_back(mass_for(set[i].k, freqs[i % freqs.size()]));
         starts.push_back(s);
+        // Matched: each spring at the unexplained test mode its surge would give the shape of best.
+        std::vector<double> m;
+        for (const auto& sp : set) m.push_back(mass_for(sp.k, freqs[best_match(nominal, sp, freqs.size())]));
+        if (std::find(starts.begin(), starts.end(), m) == starts.end()) starts.push_back(m);
       }
       for (const auto& st : starts) {
         Candidate c;
@@ -108,7 +138,26 @@ class SupportDynamics : public ModelExtension {
     DeckEditor ed(text, name);
     const auto& b = ed.bulk();
     const auto springs = grounded_springs(b);
-    std::map<std::int64_t, std::int64_t> new_pid;  // old PELAS -> doubled PELAS
+    std::map<std::pair<std::int64_t, double>, std::int64_t> new_pid;  // (old PELAS, factor) -> its new PELAS
+    // A new PELAS of `factor` × the old one's rate, with the old one's design relations scaled alike.
+    auto scaled_pelas = [&](std::int64_t pid, double k, double factor) {
+      auto& id = new_pid[{pid, factor}];
+      if (id) return id;
+      formats::Pelas p;
+      p.pid = id = ed.new_property_id();
+      p.k = factor * k;
+      ed.append(formats::write_pelas(p));
+      for (const auto& r : b.dvprel1s)
+        if (r.type == "PELAS" && r.pid == pid) {
+          formats::Dvprel1 q = r;
+          q.id = ed.new_relation_id();
+          q.pid = p.pid;
+          q.c0 *= factor;
+          for (auto& t : q.terms) t.second *= factor;
+          ed.append(formats::write_dvprel1(q));
+        }
+      return id;
+    };
     for (std::size_t n = 0; n < c.ids.size(); ++n) {
       const Spring* sp = nullptr;
       for (const auto& s : springs)
@@ -116,73 +165,73 @@ class SupportDynamics : public ModelExtension {
       if (!sp) throw std::invalid_argument("support_dynamics: grounded spring " + std::to_string(c.ids[n]) + " not found");
       const auto& g = nominal.geometry().grid(sp->grid, "support_dynamics");
       ed.comment("ssid diagnose: spring " + std::to_string(sp->eid) + " with mass (surge)");
-      // The new grid: at the spring's grid, free only along the spring's component.
-      formats::Grid ng;
-      ng.id = ed.new_grid_id();
-      ng.x = {g.x(0), g.x(1), g.x(2)};
-      ng.cd = g.cd;
-      ng.cd_blank = g.cd == 0;
-      ng.cp_blank = true;
-      for (int k = 1; k <= 6; ++k)
-        if (k != sp->component) ng.ps += static_cast<char>('0' + k);
-      ng.ps_blank = false;
-      ed.append(formats::write_grid(ng));
+      // The two new grids: at the spring's grid, free only along the spring's component.
+      std::array<std::int64_t, 2> inner{};
+      for (auto& id : inner) {
+        formats::Grid ng;
+        ng.id = id = ed.new_grid_id();
+        ng.x = {g.x(0), g.x(1), g.x(2)};
+        ng.cd = g.cd;
+        ng.cd_blank = g.cd == 0;
+        ng.cp_blank = true;
+        for (int k = 1; k <= 6; ++k)
+          if (k != sp->component) ng.ps += static_cast<char>('0' + k);
+        ng.ps_blank = false;
+        ed.append(formats::write_grid(ng));
+      }
       const auto c_ = static_cast<std::int64_t>(sp->component);
+      // The chain grid –k₁– inner[0] –k₂– inner[1] –k₃– ground: the spring itself
+      // becomes k₁, ending at the first inner grid; k₂ and k₃ are new.
+      const std::array<std::pair<std::int64_t, std::int64_t>, 2> links{{{inner[0], inner[1]}, {inner[1], 0}}};
       if (sp->type == "CELAS1") {
-        if (!new_pid.count(sp->pid)) {
-          formats::Pelas p;
-          p.pid = ed.new_property_id();
-          p.k = 2.0 * sp->k;
-          ed.append(formats::write_pelas(p));
-          for (const auto& r : b.dvprel1s)
-            if (r.type == "PELAS" && r.pid == sp->pid) {
-              formats::Dvprel1 q = r;
-              q.id = ed.new_relation_id();
-              q.pid = p.pid;
-              q.c0 *= 2.0;
-              for (auto& t : q.terms) t.second *= 2.0;
-              ed.append(formats::write_dvprel1(q));
-            }
-          new_pid[sp->pid] = p.pid;
-        }
         for (const auto& e : b.celas1s)
           if (e.eid == sp->eid) {
             formats::Celas1 moved = e;
-            moved.pid = new_pid[sp->pid];
+            moved.pid = scaled_pelas(sp->pid, sp->k, kRates[0]);
             moved.pid_blank = false;
-            if (e.g1 == sp->grid) { moved.g2 = ng.id; moved.c2 = c_; }
-            else { moved.g1 = ng.id; moved.c1 = c_; }
+            if (e.g1 == sp->grid) { moved.g2 = inner[0]; moved.c2 = c_; }
+            else { moved.g1 = inner[0]; moved.c1 = c_; }
             ed.change(e.card, formats::write_celas1(moved));
           }
-        formats::Celas1 lower;
-        lower.eid = ed.new_element_id();
-        lower.pid = new_pid[sp->pid];
-        lower.g1 = ng.id;
-        lower.c1 = c_;
-        ed.append(formats::write_celas1(lower));
+        for (std::size_t l = 0; l < links.size(); ++l) {
+          formats::Celas1 e;
+          e.eid = ed.new_element_id();
+          e.pid = scaled_pelas(sp->pid, sp->k, kRates[l + 1]);
+          e.g1 = links[l].first;
+          e.c1 = c_;
+          e.g2 = links[l].second;
+          e.c2 = links[l].second ? c_ : 0;
+          ed.append(formats::write_celas1(e));
+        }
       } else {
+        std::vector<std::pair<std::int64_t, double>> designed{{sp->eid, kRates[0]}};
         for (const auto& e : b.celas2s)
           if (e.eid == sp->eid) {
             formats::Celas2 moved = e;
-            moved.k = 2.0 * e.k;
-            if (e.g1 == sp->grid) { moved.g2 = ng.id; moved.c2 = c_; }
-            else { moved.g1 = ng.id; moved.c1 = c_; }
+            moved.k = kRates[0] * e.k;
+            if (e.g1 == sp->grid) { moved.g2 = inner[0]; moved.c2 = c_; }
+            else { moved.g1 = inner[0]; moved.c1 = c_; }
             ed.change(e.card, formats::write_celas2(moved));
           }
-        formats::Celas2 lower;
-        lower.eid = ed.new_element_id();
-        lower.k = 2.0 * sp->k;
-        lower.g1 = ng.id;
-        lower.c1 = c_;
-        ed.append(formats::write_celas2(lower));
+        for (std::size_t l = 0; l < links.size(); ++l) {
+          formats::Celas2 e;
+          e.eid = ed.new_element_id();
+          e.k = kRates[l + 1] * sp->k;
+          e.g1 = links[l].first;
+          e.c1 = c_;
+          e.g2 = links[l].second;
+          e.c2 = links[l].second ? c_ : 0;
+          ed.append(formats::write_celas2(e));
+          designed.emplace_back(e.eid, kRates[l + 1]);
+        }
         for (const auto& r : b.dvprel1s)
           if (r.type == "CELAS2" && r.pid == sp->eid)
-            for (auto id : {sp->eid, lower.eid}) {
+            for (const auto& [id, factor] : designed) {
               formats::Dvprel1 q = r;
               q.id = ed.new_relation_id();
               q.pid = id;
-              q.c0 *= 2.0;
-              for (auto& t : q.terms) t.second *= 2.0;
+              q.c0 *= factor;
+              for (auto& t : q.terms) t.second *= factor;
               ed.append(formats::write_dvprel1(q));
             }
       }
@@ -191,25 +240,48 @@ class SupportDynamics : public ModelExtension {
       p.prior_mean = 0.0;
       p.prior_std = mass_for(sp->k, m_options.lowest_test_hz);
       p.lower = 0.0;
-      p.meaning = "mass of spring " + std::to_string(sp->eid) + " at grid " + std::to_string(sp->grid) + " [kg]";
+      p.meaning = "mass of spring " + std::to_string(sp->eid) + " at grid " + std::to_string(sp->grid) +
+                  ", its first inner mass [kg]";
       if (n < c.start.size()) p.start = c.start[n];
       const double x0 = std::isnan(p.start) ? p.prior_mean : p.start;
-      formats::Conm2 m;
-      m.eid = ed.new_element_id();
-      m.g = ng.id;
-      m.m = x0;
-      ed.append(formats::write_conm2(m));
       const auto dv = ed.add_desvar(p, x0);
-      ed.add_dvprel1("CONM2", m.eid, "M", dv, 1.0);
+      for (std::size_t i = 0; i < inner.size(); ++i) {
+        formats::Conm2 m;
+        m.eid = ed.new_element_id();
+        m.g = inner[i];
+        m.m = kMasses[i] * x0;
+        ed.append(formats::write_conm2(m));
+        ed.add_dvprel1("CONM2", m.eid, "M", dv, kMasses[i]);
+      }
     }
     return {ed.text(), ed.parameters, "suspension springs with mass at " + c.location.text};
   }
 
  private:
-  /// Two-segment chain: ω² = 4k/m at the surge frequency f.
+  /// Of the first `n` unexplained test modes, the one whose shape the surge of
+  /// `sp` would give best: the structure's answer at its frequency to a force
+  /// at the spring's grid and component (detail::response_at_sensors), against
+  /// the test shape (MAC); 0 when no test shapes are known.
+  std::size_t best_match(const FeModel& model, const Spring& sp, std::size_t n) const {
+    const auto& x = m_options.unexplained;
+    const auto& g = model.geometry().grid(sp.grid, "support_dynamics");
+    const auto dof = static_cast<Eigen::Index>(g.dofs[static_cast<std::size_t>(sp.component - 1)]);
+    std::size_t best = 0;
+    double best_share = -1;
+    for (std::size_t u = 0; u < n && u < x.test_shapes.size(); ++u) {
+      const Eigen::VectorXd& t = x.test_shapes[u];
+      if (x.g_shapes.cols() == 0 || dof >= x.g_shapes.rows() || t.size() != x.sensor_shapes.rows()) continue;
+      const double share = detail::explained_share(
+          detail::response_at_sensors(x, m_options.unexplained_hz.at(u), x.g_shapes.row(dof).transpose()), t);
+      if (share > best_share) { best_share = share; best = u; }
+    }
+    return best;
+  }
+
+  /// The first inner mass β that puts the first surge at f: ω₁² = 5k/(2β).
   static double mass_for(double k, double f_hz) {
     const double w = 2.0 * M_PI * f_hz;
-    return 4.0 * k / (w * w);
+    return kFirstSurge * k / (w * w);
   }
   ExtensionOptions m_options;
 };

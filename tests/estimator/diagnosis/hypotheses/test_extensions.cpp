@@ -4,6 +4,7 @@
 // from the written cards); the limits of the new parameters give back the
 // nominal model (a massless spring's surge at infinity, a rigid joint).
 #include <Eigen/Dense>
+#include <set>
 #include <catch2/catch.hpp>
 
 #include "formats/bulk_model.hpp"
@@ -148,7 +149,7 @@ TEST_CASE("local_stiffness of a CBAR: a PBAR of its own, its section x (1 + beta
   CHECK(max_abs(ops.dM.back() - s->dM[0]) <= 1e-9 * std::max(max_abs(ops.dM.back()), 1e-30));
 }
 
-TEST_CASE("support_dynamics: static rate kept, surge at sqrt(4k/m)/2pi, light spring gives the nominal modes",
+TEST_CASE("support_dynamics: static rate kept, first surge at sqrt(5k/2m)/2pi, light spring gives the nominal modes",
           "[translators][extensions]") {
   const Case c = rod_case();
   const std::string text = deck_text(c.t, c.fe);
@@ -168,19 +169,74 @@ TEST_CASE("support_dynamics: static rate kept, surge at sqrt(4k/m)/2pi, light sp
   const Loaded l = load(kind->apply(text, "x.bdf", *nominal.fe, light).text);
   const Eigen::VectorXd f1 = frequencies(*l.fe, l.fe->initial_parameters(), 20);
   for (int i = 0; i < 20; ++i) CHECK(f1(i) == Approx(f0(i)).epsilon(1e-6).margin(1e-6));
-  // The start places the isolated spring's surge (ball held) at 48 Hz: m = 4k/(2π·48)².
+  // The start places the isolated spring's first surge (ball held) at 48 Hz: m₁ = 5k/(2(2π·48)²).
   const ext::ExtendedDeck xd = kind->apply(text, "x.bdf", *nominal.fe, *vertical);
   const double k = 600.0;
-  CHECK(xd.parameters[0].start == Approx(4 * k / std::pow(2 * M_PI * 48.0, 2)));
-  // The spring's rate stays designed by KSUSP through the doubled PELAS.
+  CHECK(xd.parameters[0].start == Approx(2.5 * k / std::pow(2 * M_PI * 48.0, 2)));
+  // The spring's rate stays designed by KSUSP through the three new PELAS, × 5, × 7/2 and × 35/18.
   const Loaded x = load(xd.text);
-  bool doubled = false;
+  std::set<double> factors;
   for (const auto& r : x.fe->bulk().dvprel1s)
     if (r.type == "PELAS" && r.pid > 1000)
-      for (const auto& [dv, coef] : r.terms) doubled = doubled || (coef == Approx(2.0));
-  CHECK(doubled);
-  // Static rate unchanged: the rigid-body-like suspension modes do not move (checked above); the
-  // isolated chain ground–2k–m–2k–(ball held) has ω² = 4k/m.
+      for (const auto& [dv, coef] : r.terms) factors.insert(coef);
+  REQUIRE(factors.size() == 3);
+  CHECK(*factors.begin() == Approx(35.0 / 18.0));
+  CHECK(*std::next(factors.begin()) == Approx(3.5));
+  CHECK(*factors.rbegin() == Approx(5.0));
+  // Static rate unchanged: the rigid-body-like suspension modes do not move (checked above).
+}
+
+TEST_CASE("support_dynamics: a mass on the refined spring moves as on a continuous spring's two first surges",
+          "[translators][extensions]") {
+  // A 10 kg mass on a 600 N/m spring, free along z only. A continuous spring
+  // with its far end held pulls on the mass with K(ω) = k x cot x =
+  // k − Σ_n 2k s/(n² s₁ − s), s = ω² (the partial fractions of x cot x, worked
+  // by hand, not ssid's chain); the refined spring is built to have the first
+  // two terms exactly, so each mode of the extended deck solves
+  // M s = k − 2k s/(s₁ − s) − 2k s/(4 s₁ − s), s₁ = (2π·30)² the start's surge;
+  // and with the mass held the chain surges at 30 and 60 Hz.
+  const std::string text =
+      "SOL 103\nCEND\nBEGIN BULK\n"
+      "GRID    1               0.      0.      0.              12456\n"
+      "CONM2   5       1               10.\n"
+      "PELAS   11      600.\n"
+      "CELAS1  7       11      1       3\n"
+      "ENDDATA\n";
+  const Loaded nominal = load(text);
+  ext::ExtensionOptions o;
+  o.unexplained_hz = {30.0};
+  o.lowest_test_hz = 1.0;
+  const auto kind = ext::make_support_dynamics(o);
+  const auto cands = kind->candidates(*nominal.fe);
+  REQUIRE(cands.size() == 1);
+  const ext::ExtendedDeck xd = kind->apply(text, "x.bdf", *nominal.fe, cands[0]);
+  const Loaded x = load(xd.text);
+  // Every mode of the 3-DOF a-set, by a dense solve (the Lanczos solver stops short of n).
+  const auto ops = x.fe->operators(x.fe->initial_parameters(), false);
+  REQUIRE(ops.K.rows() == 3);
+  Eigen::GeneralizedSelfAdjointEigenSolver<Eigen::MatrixXd> es(Eigen::MatrixXd(ops.K), Eigen::MatrixXd(ops.M));
+  const double k = 600, M = 10, s1 = std::pow(2 * M_PI * 30.0, 2);
+  for (Eigen::Index i = 0; i < 3; ++i) {
+    const double s = es.eigenvalues()(i);
+    CAPTURE(i, std::sqrt(s) / (2 * M_PI));
+    CHECK(M * s - (k - 2 * k * s / (s1 - s) - 2 * k * s / (4 * s1 - s)) == Approx(0.0).margin(1e-8 * k));
+  }
+  // The mass held (its row and column out): the chain's own surges.
+  Eigen::MatrixXd K = Eigen::MatrixXd(ops.K), Mm = Eigen::MatrixXd(ops.M);
+  Eigen::Index held = 0;
+  Mm.diagonal().maxCoeff(&held);  // the 10 kg grid
+  std::vector<Eigen::Index> keep;
+  for (Eigen::Index i = 0; i < 3; ++i)
+    if (i != held) keep.push_back(i);
+  Eigen::Matrix2d Kc, Mc;
+  for (int r = 0; r < 2; ++r)
+    for (int c = 0; c < 2; ++c) {
+      Kc(r, c) = K(keep[static_cast<std::size_t>(r)], keep[static_cast<std::size_t>(c)]);
+      Mc(r, c) = Mm(keep[static_cast<std::size_t>(r)], keep[static_cast<std::size_t>(c)]);
+    }
+  Eigen::GeneralizedSelfAdjointEigenSolver<Eigen::Matrix2d> chain(Kc, Mc);
+  CHECK(std::sqrt(chain.eigenvalues()(0)) / (2 * M_PI) == Approx(30.0).epsilon(1e-12));
+  CHECK(std::sqrt(chain.eigenvalues()(1)) / (2 * M_PI) == Approx(60.0).epsilon(1e-12));
 }
 
 TEST_CASE("joint_flexibility: a stiff rotational spring gives the rigid joint back, a soft one lowers modes",
@@ -219,13 +275,17 @@ TEST_CASE("joint_flexibility: a stiff rotational spring gives the rigid joint ba
   for (int i = 6; i < 30; ++i) CHECK(f2(i) <= f0(i) * (1 + 1e-9));  // softening never stiffens
 }
 
-TEST_CASE("local_modes: the strut's bending mode at the start frequency; stiff and massless gives the rod back",
+TEST_CASE("local_modes: the strut's bending mode at the start frequency; soft and massless gives the rod back",
           "[translators][extensions]") {
   // One rod between two grids held in every DOF, each carrying a 2 kg CONM2
   // (the strut mass lumped at its ends, as in a rod model): refined, the only
-  // modes are those of the middle grid. With μ moved to the middle, the
-  // bending pair (two bars pinned at the strut's ends) sits at
-  // √(48 E I / L³ / μ)/2π; axially the middle sees two halves of rate 2EA/L.
+  // modes are those of the three inner grids. With μ moved inwards (μ/3 at each),
+  // the first bending pair of the chain of four bars clamped at both ends
+  // sits where the 3×3 problem of the inner translations puts it once the
+  // rotations are condensed out of the Euler–Bernoulli bar matrices (worked
+  // apart from the code, in numpy): its symmetric eigenvalues solve
+  // x² − 39x + 72 = 0 and the antisymmetric one is 96/7, in units of EI/(m h³).
+  // Axially each inner grid sees two quarters of rate 4EA/L.
   const std::string text =
       "SOL 103\nCEND\nBEGIN BULK\n"
       "GRID    1               0.      0.      0.              123456\n"
@@ -253,16 +313,28 @@ TEST_CASE("local_modes: the strut's bending mode at the start frequency; stiff a
   const Eigen::VectorXd f = frequencies(*x.fe, x.fe->initial_parameters(), 2);
   CAPTURE(f.transpose(), xd.text);
   REQUIRE(f.size() == 2);
-  const double E = 7e10, A = 1e-4, L = 1.0, I = cands[0].start[0];
+  const double E = 7e10, A = 1e-4, L = 1.0, I = cands[0].start[0], h = L / 4, m = mu / 3;
   CHECK(f(0) == Approx(40.0).epsilon(1e-9));
   CHECK(f(1) == Approx(40.0).epsilon(1e-9));
-  CHECK(48 * E * I / (L * L * L) / mu == Approx(std::pow(2 * M_PI * 40.0, 2)));
-  // The axial rate at the middle is the two halves' 2·2EA/L: the rod's EA/L in series.
+  const double x1 = (39 - std::sqrt(1233.0)) / 2;
+  CHECK(x1 * E * I / (m * h * h * h) == Approx(std::pow(2 * M_PI * 40.0, 2)));
+  // Every mode of the chain: per plane x1, 96/7, (39 + √1233)/2; axially the
+  // fixed–fixed chain of four springs 4EA/L with three masses m: (2 ∓ √2, 2)·4EA/(L m).
+  const Eigen::VectorXd all = frequencies(*x.fe, x.fe->initial_parameters(), 8);
+  REQUIRE(all.size() == 8);
+  std::vector<double> expected;
+  for (double xb : {x1, 96.0 / 7.0, (39 + std::sqrt(1233.0)) / 2})
+    for (int plane = 0; plane < 2; ++plane) expected.push_back(std::sqrt(xb * E * I / (m * h * h * h)) / (2 * M_PI));
+  for (double xa : {2 - std::sqrt(2.0), 2.0, 2 + std::sqrt(2.0)})
+    expected.push_back(std::sqrt(xa * 4 * E * A / (L * m)) / (2 * M_PI));
+  std::sort(expected.begin(), expected.end());
+  for (int i = 0; i < 8; ++i) CHECK(all(i) == Approx(expected[static_cast<std::size_t>(i)]).epsilon(1e-8));
+  // The axial rate at an inner grid is the two quarters' 2·4EA/L: the rod's EA/L in series.
   const auto ops = x.fe->operators(x.fe->initial_parameters(), false);
-  const auto& gm = x.fe->geometry().grid(1001, "test");
+  const auto& gm = x.fe->geometry().grid(1002, "test");
   const auto ax = static_cast<Eigen::Index>(gm.dofs[0]);
-  CHECK(ops.Kg.coeff(ax, ax) == Approx(4 * E * A / L));
-  CHECK(ops.Mg.coeff(ax, ax) == Approx(mu));
+  CHECK(ops.Kg.coeff(ax, ax) == Approx(8 * E * A / L));
+  CHECK(ops.Mg.coeff(ax, ax) == Approx(m));
   // Total mass unchanged: +μ in the middle, −μ/2 at each end.
   CHECK(ext::total_mass(*x.fe) == Approx(ext::total_mass(*nominal.fe)));
   // The written deck designs the new PBAR from the DESVAR: I1 = I2 = I.
@@ -272,7 +344,7 @@ TEST_CASE("local_modes: the strut's bending mode at the start frequency; stiff a
   CHECK(designed == 2);
 }
 
-TEST_CASE("local_modes on the rod truss: a stiff, massless refinement leaves the modes unchanged",
+TEST_CASE("local_modes on the rod truss: a soft, massless refinement leaves the modes unchanged",
           "[translators][extensions]") {
   const Case c = rod_case();
   const std::string text = deck_text(c.t, c.fe);
@@ -282,18 +354,25 @@ TEST_CASE("local_modes on the rod truss: a stiff, massless refinement leaves the
   o.highest_test_hz = 66.0;
   CHECK(ext::make_local_modes(o)->candidates(*nominal.fe).empty());  // nothing unexplained: nothing offered
   o.always_offer = true;
+  // The bound on I puts the local mode at half the lowest test frequency: a
+  // test band down to 2 µHz lets I go low enough (9e-25 m^4) that the bars'
+  // bending, clamped into the balls, no longer moves the suspension modes
+  // (0.33 Hz). With a band from 2 Hz (I ≥ 9e-13) they move by 1.7e-5: the bars
+  // resist the balls' relative motion across the strut by 12EI/L³ ≈ 0.7 N/m
+  // against suspension springs of 10³ N/m.
+  o.lowest_test_hz = 2e-6;
   const auto kind = ext::make_local_modes(o);
   const auto cands = kind->candidates(*nominal.fe);
   REQUIRE(cands.size() == 252);  // every CROD, one start each
   const Eigen::VectorXd f0 = frequencies(*nominal.fe, nominal.fe->initial_parameters(), 20);
-  ext::Candidate stiff = cands[100];
-  stiff.start = {1e-4, 0.0};  // bending inertia far above the real tube's, nothing moved
-  const Loaded l = load(kind->apply(text, "x.bdf", *nominal.fe, stiff).text);
+  ext::Candidate soft = cands[100];
+  soft.start = {0.0, 0.0};  // the lowest bending inertia the prior allows, nothing moved: the inner grids are massless
+  const Loaded l = load(kind->apply(text, "x.bdf", *nominal.fe, soft).text);
   const Eigen::VectorXd f1 = frequencies(*l.fe, l.fe->initial_parameters(), 20);
   for (int i = 0; i < 20; ++i) CHECK(f1(i) == Approx(f0(i)).epsilon(1e-6).margin(1e-6));
   // The lower bound on I is positive (no mechanism), and a soft strut adds modes below the nominal band top.
-  ext::Candidate soft = cands[100];
-  soft.start = {};
-  const ext::ExtendedDeck xd = kind->apply(text, "x.bdf", *nominal.fe, soft);
+  ext::Candidate prior = cands[100];
+  prior.start = {};
+  const ext::ExtendedDeck xd = kind->apply(text, "x.bdf", *nominal.fe, prior);
   CHECK(xd.parameters[0].lower > 0);
 }
