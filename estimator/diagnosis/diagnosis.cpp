@@ -426,8 +426,10 @@ ext::UnexplainedModes unexplained_modes(PreparedConfiguration& pb, const ModalSo
       if (m.id == u.id) t = &m;
     if (!t || !t->shape.size() || phi.cols() == 0) {  // frequencies only: the analysis mode nearest in frequency
       Eigen::Index nearest = -1;
-      if (sol.eigenvalues.size() > 0)
-        (sol.eigenvalues.array().abs().sqrt() / (2 * M_PI) - u.frequency_hz).abs().minCoeff(&nearest);
+      for (Eigen::Index j = 0; j < sol.eigenvalues.size(); ++j)
+        if (nearest < 0 || std::abs(eigenvalue_to_hz(sol.eigenvalues(j)) - u.frequency_hz) <
+                               std::abs(eigenvalue_to_hz(sol.eigenvalues(nearest)) - u.frequency_hz))
+          nearest = j;
       out.test_shapes.emplace_back();
       out.neighbour.push_back(phi.cols() > 0 ? static_cast<int>(nearest) : -1);
       continue;

@@ -3,12 +3,11 @@
 #include "estimator/eigen/block_lanczos.hpp"
 #include "estimator/eigen/method_choice.hpp"
 #include "estimator/eigen/multilevel/block_ops.hpp"
+#include "estimator/reporting/progress.hpp"
 #include "formats/parse_error.hpp"
 
 #include <Eigen/Eigenvalues>
 #include <Spectra/SymGEigsShiftSolver.h>
-#include <sstream>
-#include <stdexcept>
 #include <unistd.h>
 
 #include <algorithm>
@@ -16,6 +15,7 @@
 #include <chrono>
 #include <cmath>
 #include <random>
+#include <sstream>
 #include <stdexcept>
 
 namespace ssid::estimator {
@@ -127,6 +127,12 @@ LanczosRun run_lanczos(const CholmodFactor& factor, const MassOp& mass, double s
   eigs.init(v0.data());
   try {
     eigs.compute(Spectra::SortRule::LargestMagn, o.maxit, o.tol, Spectra::SortRule::SmallestAlge);
+  } catch (const Interrupted&) {  // the caller's stop (Ctrl-C), and errors of ours, pass as they are
+    throw;
+  } catch (const formats::InputError&) {
+    throw;
+  } catch (const formats::NumericalError&) {
+    throw;
   } catch (const std::runtime_error& e) {  // Spectra's own failures (a NaN in the Lanczos tridiagonal, ...)
     std::ostringstream msg;
     msg << "EigenSolver: the Lanczos iteration failed (" << e.what() << ") at the shift sigma = " << sigma

@@ -2,9 +2,11 @@
 
 #include <Eigen/QR>
 #include <algorithm>
+#include <cassert>
 #include <cmath>
 #include <stdexcept>
 
+#include "estimator/eigen/eigen_solver.hpp"
 #include "translators/constraints.hpp"
 
 namespace ssid::estimator::diagnosis::hypotheses::detail {
@@ -50,7 +52,8 @@ Location member_location(const std::string& type, std::int64_t eid, std::int64_t
 }
 
 Eigen::VectorXd response_at_sensors(const UnexplainedModes& x, double hz, Eigen::VectorXd modal_force) {
-  const double lam = std::pow(2 * M_PI * hz, 2);
+  assert(modal_force.size() == x.eigenvalues.size() && x.sensor_shapes.cols() == x.eigenvalues.size());
+  const double lam = hz_to_eigenvalue(hz);
   for (Eigen::Index j = 0; j < modal_force.size(); ++j) {
     const double d = x.eigenvalues(j) - lam;  // a mode exactly at ω: its term dominates, as it should, but finitely
     modal_force(j) /= std::abs(d) > 1e-12 * lam ? d : std::copysign(1e-12 * lam, d);

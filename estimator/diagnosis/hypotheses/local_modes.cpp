@@ -17,12 +17,20 @@
 ///    mass nor axial stiffness is added. No pin flags: the bars are clamped into
 ///    the end grids as the deck holds them. Where the deck holds an end grid's
 ///    rotations (GRID PS 456, as the MPI rod model does) the strut is
-///    clamped–clamped, the joint of a tube screwed or bonded into a node and the
-///    one the beam model of the same truss (`ssid truss mpi --model beam`) gives its
-///    members; where nothing else holds them the end acts as a pin. Two bars
-///    pinned at the strut's ends with one middle grid (the form before) gave one
-///    local mode per plane and the pinned ratios; the test of a real tube shows
-///    its second bending too (2.76 × the first, clamped).
+///    clamped–clamped, as a tube screwed or bonded into a node is at the
+///    frequencies of its local modes; where nothing else holds them the end acts
+///    as a pin (and the start's constant below, the clamped one, puts the first
+///    mode at 0.44 × the start: the pinned chain's is (96 − 66√2)/7 ≈ 0.380).
+///    KNOWN DEFECT: rotations held to ground (PS 456) do not turn with the
+///    structure, so the clamped bars also resist the truss's rigid rotation, by
+///    about 12EI/L³ per refined strut: the suspension modes (below the test
+///    band on the MPI truss) move. The right form clamps the ends to the chord's
+///    rotation (rigid links), not to the deck's rotations; the sweep's truths
+///    (`refine_rod`) clamp into the held rotations too, so its figures cannot
+///    show the difference. Two bars pinned at the strut's ends with one middle
+///    grid (the form before) gave one local mode per plane and the pinned
+///    ratios; the test of a real tube shows its second bending too (2.76 × the
+///    first, clamped).
 ///
 /// β₁ = I [m⁴], the strut's bending inertia. A rod model often carries the
 /// strut's mass in the lumped masses of its end grids (the MPI truss rod model:
@@ -32,8 +40,9 @@
 /// unchanged). With lumped mass each inner grid carries m = m_s/4 + μ/3 (m_s the
 /// rod's own mass) and the first bending frequency of the clamped chain is
 ///   f = √(c E I / (m h³)) / 2π,  h = L/4,  c = (39 − √1233)/2 ≈ 1.943
-/// (exact for the four bars; kChainEigenvalue). With I → 0 and μ = 0 on a
-/// massless rod the rod comes back exactly (the bars add nothing). Priors:
+/// (exact for the four bars clamped; kChainEigenvalue). With I → 0 and μ = 0 on
+/// a massless rod the rod comes back in the limit (I is bounded below, and
+/// clamped bars add 12EI/L³ across the strut). Priors:
 /// μ ~ N(μ₀, μ₀²), μ₀ = ¼ of the lighter end grid's lumped mass, 0 ≤ μ ≤ that
 /// mass; I ~ N(I_h, I_h²) centred on the inertia that puts the local mode at
 /// 1.25 × the highest test frequency (local modes above the band), I above the
@@ -52,10 +61,11 @@
 /// unit test shape t that the two span, ‖P t‖² ∈ [0, 1] (least squares). A
 /// strut whose ends do not move across its axis in any mode gives nothing (0).
 /// Without test shapes (frequencies only) the priority is the coupling to the
-/// analysis mode most like the test mode: an inner grid's mass times the
-/// squared motion of the strut's middle (the mean of its ends) across its axis
-/// in that mode.
+/// analysis mode nearest in frequency: the squared motion of the strut's middle
+/// (the mean of its ends) across its axis in that mode, against the mode's
+/// largest component squared (0 to 1).
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <map>
 
@@ -131,6 +141,15 @@ Strut strut_of(const FeModel& model, const Rod& r, const std::map<std::int64_t, 
   return s;
 }
 
+/// Two unit vectors across `axis` (a unit vector), orthogonal to each other:
+/// the inner grids' frame (y, z) and the planes of bending.
+std::pair<Eigen::Vector3d, Eigen::Vector3d> across_axis(const Eigen::Vector3d& axis) {
+  Eigen::Index k = 0;
+  axis.cwiseAbs().minCoeff(&k);
+  const Eigen::Vector3d z = axis.cross(Eigen::Vector3d::Unit(k)).normalized();
+  return {z.cross(axis), z};
+}
+
 /// I that puts the chain's first bending mode at f: ω² = c E I / (m h³), h = L/4,
 /// m the inner grids' mass (file comment).
 double inertia_for(const Strut& s, double f_hz) {
@@ -203,9 +222,7 @@ class LocalModes : public ModelExtension {
     ed.comment("ssid diagnose: " + r.type + " " + std::to_string(r.eid) + " refined (local bending modes)");
     // The inner grids' frame: x along the strut (GA to GB), so PS 4 holds their free torsion.
     const Eigen::Vector3d axis = (s.b - s.a).normalized();
-    Eigen::Index k = 0;
-    axis.cwiseAbs().minCoeff(&k);
-    const Eigen::Vector3d z = axis.cross(Eigen::Vector3d::Unit(k)).normalized(), y = z.cross(axis);
+    const auto [y, z] = across_axis(axis);
     formats::Cord2 frame;
     frame.cid = ed.new_coord_id();
     const Eigen::Vector3d zb = s.a + z, xb = s.a + axis;
@@ -327,13 +344,15 @@ class LocalModes : public ModelExtension {
     const Eigen::Matrix3Xd across = w - axis * (axis.transpose() * w);
     const Eigen::VectorXd& t = x.test_shapes[u];
     if (t.size() == 0 || t.size() != x.sensor_shapes.rows() || !(t.squaredNorm() > 0)) {
-      const int j = x.neighbour[u];  // frequencies only: the coupling to the nearest-looking mode
-      return j < 0 ? 0.0 : s.inner_mass() * across.col(j).squaredNorm();
+      // Frequencies only: how much the strut's middle moves across it in the
+      // analysis mode nearest in frequency, against the mode's largest
+      // component, squared (0 to 1, as the shape share is).
+      const int j = x.neighbour[u];
+      const double peak = j < 0 ? 0.0 : x.g_shapes.col(j).cwiseAbs().maxCoeff();
+      return peak > 0 ? std::min(1.0, across.col(j).squaredNorm() / (peak * peak)) : 0.0;
     }
     if (!(across.norm() > 1e-9 * w.norm())) return 0.0;  // no motion across the strut in any mode
-    Eigen::Index k = 0;
-    axis.cwiseAbs().minCoeff(&k);
-    const Eigen::Vector3d n1 = axis.cross(Eigen::Vector3d::Unit(k)).normalized(), n2 = axis.cross(n1);
+    const auto [n1, n2] = across_axis(axis);
     Eigen::MatrixXd A(x.sensor_shapes.rows(), 2);
     for (int p = 0; p < 2; ++p)  // φ_jᵀF for F = n/2 at each end: n · (mean end translation)
       A.col(p) = detail::response_at_sensors(x, m_options.unexplained_hz.at(u), ((p == 0 ? n1 : n2).transpose() * w).transpose());

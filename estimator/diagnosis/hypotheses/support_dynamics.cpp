@@ -74,6 +74,17 @@ std::vector<Spring> grounded_springs(const formats::BulkModel& b) {
   return out;
 }
 
+/// Whether a DVPREL1 of a PELAS or CELAS2 designs its rate K (PELAS field 3, CELAS2 field 3), not GE or S.
+bool designs_rate(const formats::Dvprel1& r) { return r.pname == "K" || (r.pname.empty() && r.fid == 3); }
+
+/// A relation of a rate scaled by `factor`: C0, the coefficients and the bounds.
+void scale_relation(formats::Dvprel1& q, double factor) {
+  q.c0 *= factor;
+  for (auto& t : q.terms) t.second *= factor;
+  if (q.pmin) *q.pmin *= factor;
+  if (q.pmax < 1.0e20) q.pmax *= factor;
+}
+
 class SupportDynamics : public ModelExtension {
  public:
   explicit SupportDynamics(ExtensionOptions o) : m_options(std::move(o)) {}
@@ -139,11 +150,15 @@ class SupportDynamics : public ModelExtension {
     const auto& b = ed.bulk();
     const auto springs = grounded_springs(b);
     std::map<std::pair<std::int64_t, double>, std::int64_t> new_pid;  // (old PELAS, factor) -> its new PELAS
-    // A new PELAS of `factor` × the old one's rate, with the old one's design relations scaled alike.
+    // A new PELAS of `factor` × the old one's rate (GE and S as they were), with
+    // the old one's design relations: of K scaled alike (C0, the coefficients
+    // and PMIN/PMAX), of GE or S as they are.
     auto scaled_pelas = [&](std::int64_t pid, double k, double factor) {
       auto& id = new_pid[{pid, factor}];
       if (id) return id;
       formats::Pelas p;
+      for (const auto& q : b.pelases)
+        if (q.pid == pid) p = q;
       p.pid = id = ed.new_property_id();
       p.k = factor * k;
       ed.append(formats::write_pelas(p));
@@ -152,8 +167,7 @@ class SupportDynamics : public ModelExtension {
           formats::Dvprel1 q = r;
           q.id = ed.new_relation_id();
           q.pid = p.pid;
-          q.c0 *= factor;
-          for (auto& t : q.terms) t.second *= factor;
+          if (designs_rate(r)) scale_relation(q, factor);
           ed.append(formats::write_dvprel1(q));
         }
       return id;
@@ -224,15 +238,20 @@ class SupportDynamics : public ModelExtension {
           ed.append(formats::write_celas2(e));
           designed.emplace_back(e.eid, kRates[l + 1]);
         }
+        // The spring's own relations design its grid-side rate (changed in place:
+        // one relation a field), copies the new springs'; GE and S relations as they are.
         for (const auto& r : b.dvprel1s)
           if (r.type == "CELAS2" && r.pid == sp->eid)
             for (const auto& [id, factor] : designed) {
               formats::Dvprel1 q = r;
-              q.id = ed.new_relation_id();
               q.pid = id;
-              q.c0 *= factor;
-              for (auto& t : q.terms) t.second *= factor;
-              ed.append(formats::write_dvprel1(q));
+              if (designs_rate(r)) scale_relation(q, factor);
+              if (id == sp->eid) {
+                ed.change(r.card, formats::write_dvprel1(q));
+              } else {
+                q.id = ed.new_relation_id();
+                ed.append(formats::write_dvprel1(q));
+              }
             }
       }
       NewParameter p;
