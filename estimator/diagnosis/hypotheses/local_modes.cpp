@@ -14,23 +14,21 @@
 ///    relations (DVPREL1 of the PROD; a CONROD's own are copied) still apply;
 ///  - four CBARs along the chain carrying the bending only: a new PBAR of the
 ///    rod's material with A = 0, I1 = I2 = β (a round tube), J = 0, so neither
-///    mass nor axial stiffness is added. No pin flags: the bars are clamped into
-///    the end grids as the deck holds them. Where the deck holds an end grid's
-///    rotations (GRID PS 456, as the MPI rod model does) the strut is
-///    clamped–clamped, as a tube screwed or bonded into a node is at the
-///    frequencies of its local modes; where nothing else holds them the end acts
-///    as a pin (and the start's constant below, the clamped one, puts the first
-///    mode at 0.44 × the start: the pinned chain's is (96 − 66√2)/7 ≈ 0.380).
-///    KNOWN DEFECT: rotations held to ground (PS 456) do not turn with the
-///    structure, so the clamped bars also resist the truss's rigid rotation, by
-///    about 12EI/L³ per refined strut: the suspension modes (below the test
-///    band on the MPI truss) move. The right form clamps the ends to the chord's
-///    rotation (rigid links), not to the deck's rotations; the sweep's truths
-///    (`refine_rod`) clamp into the held rotations too, so its figures cannot
-///    show the difference. Two bars pinned at the strut's ends with one middle
-///    grid (the form before) gave one local mode per plane and the pinned
-///    ratios; the test of a real tube shows its second bending too (2.76 × the
-///    first, clamped).
+///    mass nor axial stiffness is added, clamped at both ends to the strut's
+///    chord: two grids EA, EB at the end grids move with them (RBE2, 123) and
+///    turn across the strut as the chord does (RBAR, the rigid motion of the
+///    two ends' translations). So the strut is clamped–clamped for its local
+///    modes, as a tube screwed or bonded into a node is, but the bars resist no
+///    rigid motion of the structure and add no stiffness between the end
+///    grids: the rod model's pinned joints stay, and the refinement leaves the
+///    rod model's modes as they were both with I → ∞ and with I → 0 (μ = 0).
+///    (Clamped into the end grids' own rotations instead, as the form of
+///    2166f1c was, the bars resisted the truss's rigid rotation by ≈ 12EI/L³
+///    wherever the deck holds those rotations to ground, GRID PS 456 in the
+///    MPI rod model: the suspension modes moved.) Two bars pinned at the
+///    strut's ends with one middle grid (the form before) gave one local mode
+///    per plane and the pinned ratios; the test of a real tube shows its
+///    second bending too (2.76 × the first, clamped).
 ///
 /// β₁ = I [m⁴], the strut's bending inertia. A rod model often carries the
 /// strut's mass in the lumped masses of its end grids (the MPI truss rod model:
@@ -40,9 +38,7 @@
 /// unchanged). With lumped mass each inner grid carries m = m_s/4 + μ/3 (m_s the
 /// rod's own mass) and the first bending frequency of the clamped chain is
 ///   f = √(c E I / (m h³)) / 2π,  h = L/4,  c = (39 − √1233)/2 ≈ 1.943
-/// (exact for the four bars clamped; kChainEigenvalue). With I → 0 and μ = 0 on
-/// a massless rod the rod comes back in the limit (I is bounded below, and
-/// clamped bars add 12EI/L³ across the strut). Priors:
+/// (exact for the four bars clamped; kChainEigenvalue). Priors:
 /// μ ~ N(μ₀, μ₀²), μ₀ = ¼ of the lighter end grid's lumped mass, 0 ≤ μ ≤ that
 /// mass; I ~ N(I_h, I_h²) centred on the inertia that puts the local mode at
 /// 1.25 × the highest test frequency (local modes above the band), I above the
@@ -162,7 +158,7 @@ class LocalModes : public ModelExtension {
   explicit LocalModes(ExtensionOptions o) : m_options(std::move(o)) {}
   std::string kind() const override { return "local_modes"; }
   std::string describe() const override {
-    return "a rod refined into four quarters with a bending bar each (three inner grids, clamped into its end grids), "
+    return "a rod refined into four quarters with a bending bar each (three inner grids, clamped to its chord), "
            "so its local bending modes exist; "
            "parameter: the strut's bending inertia I [m^4]";
   }
@@ -222,7 +218,7 @@ class LocalModes : public ModelExtension {
     ed.comment("ssid diagnose: " + r.type + " " + std::to_string(r.eid) + " refined (local bending modes)");
     // The inner grids' frame: x along the strut (GA to GB), so PS 4 holds their free torsion.
     const Eigen::Vector3d axis = (s.b - s.a).normalized();
-    const auto [y, z] = across_axis(axis);
+    const auto z = across_axis(axis).second;
     formats::Cord2 frame;
     frame.cid = ed.new_coord_id();
     const Eigen::Vector3d zb = s.a + z, xb = s.a + axis;
@@ -280,19 +276,54 @@ class LocalModes : public ModelExtension {
     pb.mid = r.mid;
     pb.i1 = pb.i2 = x0;
     ed.append(formats::write_pbar(pb));
-    // Orientation (I1 = I2: any vector off the axis gives the same element): the
-    // frame's y axis, given in each bar's GA displacement system (the inner
-    // grids' is the frame itself). No pin flags: the bars are clamped into the
-    // end grids as the deck holds them (file comment).
-    const auto& ga = nominal.geometry().grid(r.ga, "local_modes");
-    const Eigen::Vector3d y_in_ga = ga.frame.transpose() * y;
+    // The bars' ends: grids EA, EB at the strut's end grids, in the inner grids'
+    // frame, their translations those of GA, GB (RBE2, 123) and their rotations
+    // across the strut (5, 6) those of the chord, the rigid motion of EA's and
+    // EB's translations (an RBAR each way: 1234 of its own grid and 23 of the
+    // other independent, 56 dependent); their twist (4) held by PS.
+    std::array<std::int64_t, 2> ends{};
+    for (std::size_t e = 0; e < 2; ++e) {
+      const Eigen::Vector3d xe = e == 0 ? s.a : s.b;
+      formats::Grid g;
+      g.id = ends[e] = ed.new_grid_id();
+      g.x = {xe(0), xe(1), xe(2)};
+      g.cd = frame.cid;
+      g.cd_blank = false;
+      g.ps = "4";
+      g.ps_blank = false;
+      ed.append(formats::write_grid(g));
+    }
+    for (std::size_t e = 0; e < 2; ++e) {
+      formats::Rbe2 link;
+      link.eid = ed.new_element_id();
+      link.gn = e == 0 ? r.ga : r.gb;
+      link.cm = "123";
+      link.gm = {ends[e]};
+      ed.append(formats::write_rbe2(link));
+    }
+    for (std::size_t e = 0; e < 2; ++e) {
+      formats::Rbar chord;
+      chord.eid = ed.new_element_id();
+      chord.ga = ends[e];
+      chord.gb = ends[1 - e];
+      chord.cna = "1234";
+      chord.cnb = "23";
+      chord.cma = "56";
+      ed.append(formats::write_rbar(chord));
+    }
+    // The bars along EA, G1, G2, G3, EB, clamped to the chord at both ends (no
+    // pin flags). Orientation (I1 = I2: any vector off the axis gives the same
+    // element): the frame's y axis, every bar's GA being in the frame.
+    std::array<std::int64_t, kBars + 1> bar_chain = chain;
+    bar_chain.front() = ends[0];
+    bar_chain.back() = ends[1];
     for (std::size_t n = 0; n < kBars; ++n) {
       formats::Cbar bar;
       bar.eid = ed.new_element_id();
       bar.pid = pb.pid;
-      bar.ga = chain[n];
-      bar.gb = chain[n + 1];
-      bar.x = n == 0 ? std::array<double, 3>{y_in_ga(0), y_in_ga(1), y_in_ga(2)} : std::array<double, 3>{0.0, 1.0, 0.0};
+      bar.ga = bar_chain[n];
+      bar.gb = bar_chain[n + 1];
+      bar.x = {0.0, 1.0, 0.0};
       ed.append(formats::write_cbar(bar));
     }
     const auto dv = ed.add_desvar(p, x0);
