@@ -378,3 +378,52 @@ TEST_CASE("local_modes on the rod truss: a stiff or a soft massless refinement l
   const ext::ExtendedDeck xd = kind->apply(text, "x.bdf", *nominal.fe, prior);
   CHECK(xd.parameters[0].lower > 0);
 }
+
+TEST_CASE("support_dynamics: a group of springs also starts matched, each at the mode its surge's shape gives",
+          "[translators][extensions]") {
+  // Two masses free along z, each on a spring of the same PELAS. Made-up
+  // analysis modes: mode 1 moves grid 1 only (10 Hz), mode 2 grid 2 only
+  // (20 Hz), seen by two sensors (grid 1 z, grid 2 z). Unexplained test modes at
+  // 15 Hz moving grid 2 and at 25 Hz moving grid 1: a force at grid 1's spring
+  // is answered at grid 1 only, so spring 1 matches the 25 Hz mode and spring 2
+  // the 15 Hz one, the reverse of the "spread" start (spring i at frequency i).
+  const std::string text =
+      "SOL 103\nCEND\nBEGIN BULK\n"
+      "GRID    1               0.      0.      0.              12456\n"
+      "GRID    2               1.      0.      0.              12456\n"
+      "CONM2   5       1               10.\n"
+      "CONM2   6       2               10.\n"
+      "PELAS   11      600.\n"
+      "CELAS1  7       11      1       3\n"
+      "CELAS1  8       11      2       3\n"
+      "ENDDATA\n";
+  const Loaded nominal = load(text);
+  const auto& g1 = nominal.fe->geometry().grid(1, "test");
+  const auto& g2 = nominal.fe->geometry().grid(2, "test");
+  const auto n = static_cast<Eigen::Index>(nominal.fe->geometry().gset().size());
+  ext::ExtensionOptions o;
+  o.unexplained_hz = {15.0, 25.0};
+  o.lowest_test_hz = 5.0;
+  auto& x = o.unexplained;
+  x.eigenvalues = Eigen::Vector2d(std::pow(2 * M_PI * 10, 2), std::pow(2 * M_PI * 20, 2));
+  x.g_shapes = Eigen::MatrixXd::Zero(n, 2);
+  x.g_shapes(static_cast<Eigen::Index>(g1.dofs[2]), 0) = 1.0;
+  x.g_shapes(static_cast<Eigen::Index>(g2.dofs[2]), 1) = 1.0;
+  x.sensor_shapes = Eigen::Matrix2d::Identity();
+  x.test_shapes = {Eigen::Vector2d(0.1, 1.0), Eigen::Vector2d(1.0, -0.1)};
+  x.neighbour = {1, 0};
+  const auto cands = ext::make_support_dynamics(o)->candidates(*nominal.fe);
+  const double k = 600;
+  auto mass = [&](double f) { return 2.5 * k / std::pow(2 * M_PI * f, 2); };
+  bool matched = false, spread = false;
+  for (const auto& c : cands) {
+    if (c.ids.size() != 2) continue;
+    REQUIRE(c.start.size() == 2);
+    const bool first_is_grid1 = c.location.grids.at(0) == 1;
+    const double m1 = first_is_grid1 ? c.start[0] : c.start[1], m2 = first_is_grid1 ? c.start[1] : c.start[0];
+    matched = matched || (m1 == Approx(mass(25.0)) && m2 == Approx(mass(15.0)));
+    spread = spread || (m1 == Approx(mass(15.0)) && m2 == Approx(mass(25.0)));
+  }
+  CHECK(matched);
+  CHECK(spread);
+}
