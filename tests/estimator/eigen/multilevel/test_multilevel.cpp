@@ -766,9 +766,9 @@ TEST_CASE("multilevel method: clear refusals", "[multilevel]") {
 TEST_CASE("multilevel method: a DOF with neither stiffness nor mass is reported, not thrown", "[multilevel]") {
   const Frame f = frame(5, 4, 4);
   // Remove every stiffness term of one rotational DOF (it has no mass): a mechanism.
-  const long bad = 6 * 17 + 4;
+  constexpr long bad = 6 * 17 + 4;
   Eigen::SparseMatrix<double> K = f.op.K;
-  K.prune([bad](Eigen::Index r, Eigen::Index c, double) { return r != bad && c != bad; });
+  K.prune([](Eigen::Index r, Eigen::Index c, double) { return r != bad && c != bad; });
   EigenOptions o;
   o.nd = 8;
   o.method = EigenMethod::Multilevel;
