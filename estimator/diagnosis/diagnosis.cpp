@@ -3,6 +3,7 @@
 #include <Eigen/Dense>
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <functional>
 #include <map>
 #include <optional>
@@ -426,10 +427,12 @@ ext::UnexplainedModes unexplained_modes(PreparedConfiguration& pb, const ModalSo
       if (m.id == u.id) t = &m;
     if (!t || !t->shape.size() || phi.cols() == 0) {  // frequencies only: the analysis mode nearest in frequency
       Eigen::Index nearest = -1;
+      double gap = std::numeric_limits<double>::infinity();
       for (Eigen::Index j = 0; j < sol.eigenvalues.size(); ++j)
-        if (nearest < 0 || std::abs(eigenvalue_to_hz(sol.eigenvalues(j)) - u.frequency_hz) <
-                               std::abs(eigenvalue_to_hz(sol.eigenvalues(nearest)) - u.frequency_hz))
+        if (const double d = std::abs(eigenvalue_to_hz(sol.eigenvalues(j)) - u.frequency_hz); d < gap) {
+          gap = d;
           nearest = j;
+        }
       out.test_shapes.emplace_back();
       out.neighbour.push_back(phi.cols() > 0 ? static_cast<int>(nearest) : -1);
       continue;

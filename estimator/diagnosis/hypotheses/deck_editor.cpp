@@ -68,6 +68,18 @@ void DeckEditor::change(std::size_t card, std::vector<formats::FieldValue> value
   m_deck->set_values(card, std::move(values));
 }
 
+std::int64_t DeckEditor::add_grid(const Eigen::Vector3d& x, std::int64_t cd, const std::string& ps) {
+  formats::Grid g;
+  g.id = new_grid_id();
+  g.x = {x(0), x(1), x(2)};
+  g.cd = cd;
+  g.cd_blank = cd == 0;
+  g.ps = ps;
+  g.ps_blank = ps.empty();
+  append(formats::write_grid(g));
+  return g.id;
+}
+
 std::int64_t DeckEditor::add_desvar(const NewParameter& p, double xinit) {
   formats::Desvar d;
   d.id = new_desvar_id();

@@ -230,18 +230,9 @@ class LocalModes : public ModelExtension {
     std::array<std::int64_t, kBars + 1> chain{};
     chain.front() = r.ga;
     chain.back() = r.gb;
-    for (int n = 1; n < kBars; ++n) {
-      const Eigen::Vector3d xn = s.a + (static_cast<double>(n) / kBars) * (s.b - s.a);
-      formats::Grid g;
-      g.id = ed.new_grid_id();
-      g.x = {xn(0), xn(1), xn(2)};
-      g.cd = frame.cid;
-      g.cd_blank = false;
-      g.ps = "4";
-      g.ps_blank = false;
-      ed.append(formats::write_grid(g));
-      chain[static_cast<std::size_t>(n)] = g.id;
-    }
+    for (int n = 1; n < kBars; ++n)
+      chain[static_cast<std::size_t>(n)] =
+          ed.add_grid(s.a + (static_cast<double>(n) / kBars) * (s.b - s.a), frame.cid, "4");
     // The rod becomes four rods of the same property along the chain: the element keeps its id for the first quarter.
     std::array<std::int64_t, kBars> rod_ids{};
     rod_ids[0] = r.eid;
@@ -281,18 +272,7 @@ class LocalModes : public ModelExtension {
     // across the strut (5, 6) those of the chord, the rigid motion of EA's and
     // EB's translations (an RBAR each way: 1234 of its own grid and 23 of the
     // other independent, 56 dependent); their twist (4) held by PS.
-    std::array<std::int64_t, 2> ends{};
-    for (std::size_t e = 0; e < 2; ++e) {
-      const Eigen::Vector3d xe = e == 0 ? s.a : s.b;
-      formats::Grid g;
-      g.id = ends[e] = ed.new_grid_id();
-      g.x = {xe(0), xe(1), xe(2)};
-      g.cd = frame.cid;
-      g.cd_blank = false;
-      g.ps = "4";
-      g.ps_blank = false;
-      ed.append(formats::write_grid(g));
-    }
+    const std::array<std::int64_t, 2> ends{ed.add_grid(s.a, frame.cid, "4"), ed.add_grid(s.b, frame.cid, "4")};
     for (std::size_t e = 0; e < 2; ++e) {
       formats::Rbe2 link;
       link.eid = ed.new_element_id();

@@ -93,6 +93,9 @@ class DeckEditor {
   void comment(const std::string& text);
   /// Replaces the values of an existing card (by card index in the deck).
   void change(std::size_t card, std::vector<formats::FieldValue> values);
+  /// Adds a GRID at `x` (basic), displacement frame `cd` (0: basic, written
+  /// blank), permanent constraints `ps`, and returns its id.
+  std::int64_t add_grid(const Eigen::Vector3d& x, std::int64_t cd, const std::string& ps);
   /// Adds a DESVAR and returns its id.
   std::int64_t add_desvar(const NewParameter& p, double xinit);
   /// Adds a DVPREL1: TYPE id PNAME = c0 + coef · DESVAR dvid.

@@ -77,12 +77,19 @@ std::vector<Spring> grounded_springs(const formats::BulkModel& b) {
 /// Whether a DVPREL1 of a PELAS or CELAS2 designs its rate K (PELAS field 3, CELAS2 field 3), not GE or S.
 bool designs_rate(const formats::Dvprel1& r) { return r.pname == "K" || (r.pname.empty() && r.fid == 3); }
 
-/// A relation of a rate scaled by `factor`: C0, the coefficients and the bounds.
-void scale_relation(formats::Dvprel1& q, double factor) {
-  q.c0 *= factor;
-  for (auto& t : q.terms) t.second *= factor;
-  if (q.pmin) *q.pmin *= factor;
-  if (q.pmax < 1.0e20) q.pmax *= factor;
+/// Relation `r` of a spring, for the spring or property `pid` whose rate is
+/// `factor` × the original's: a relation of the rate scaled (C0, the
+/// coefficients and the bounds), one of GE or S as it is. Its id is r's.
+formats::Dvprel1 relation_for(const formats::Dvprel1& r, std::int64_t pid, double factor) {
+  formats::Dvprel1 q = r;
+  q.pid = pid;
+  if (designs_rate(r)) {
+    q.c0 *= factor;
+    for (auto& t : q.terms) t.second *= factor;
+    if (q.pmin) *q.pmin *= factor;
+    if (q.pmax < 1.0e20) q.pmax *= factor;
+  }
+  return q;
 }
 
 class SupportDynamics : public ModelExtension {
@@ -164,10 +171,8 @@ class SupportDynamics : public ModelExtension {
       ed.append(formats::write_pelas(p));
       for (const auto& r : b.dvprel1s)
         if (r.type == "PELAS" && r.pid == pid) {
-          formats::Dvprel1 q = r;
+          formats::Dvprel1 q = relation_for(r, p.pid, factor);
           q.id = ed.new_relation_id();
-          q.pid = p.pid;
-          if (designs_rate(r)) scale_relation(q, factor);
           ed.append(formats::write_dvprel1(q));
         }
       return id;
@@ -180,19 +185,10 @@ class SupportDynamics : public ModelExtension {
       const auto& g = nominal.geometry().grid(sp->grid, "support_dynamics");
       ed.comment("ssid diagnose: spring " + std::to_string(sp->eid) + " with mass (surge)");
       // The two new grids: at the spring's grid, free only along the spring's component.
-      std::array<std::int64_t, 2> inner{};
-      for (auto& id : inner) {
-        formats::Grid ng;
-        ng.id = id = ed.new_grid_id();
-        ng.x = {g.x(0), g.x(1), g.x(2)};
-        ng.cd = g.cd;
-        ng.cd_blank = g.cd == 0;
-        ng.cp_blank = true;
-        for (int k = 1; k <= 6; ++k)
-          if (k != sp->component) ng.ps += static_cast<char>('0' + k);
-        ng.ps_blank = false;
-        ed.append(formats::write_grid(ng));
-      }
+      std::string held;
+      for (int k = 1; k <= 6; ++k)
+        if (k != sp->component) held += static_cast<char>('0' + k);
+      const std::array<std::int64_t, 2> inner{ed.add_grid(g.x, g.cd, held), ed.add_grid(g.x, g.cd, held)};
       const auto c_ = static_cast<std::int64_t>(sp->component);
       // The chain grid –k₁– inner[0] –k₂– inner[1] –k₃– ground: the spring itself
       // becomes k₁, ending at the first inner grid; k₂ and k₃ are new.
@@ -243,9 +239,7 @@ class SupportDynamics : public ModelExtension {
         for (const auto& r : b.dvprel1s)
           if (r.type == "CELAS2" && r.pid == sp->eid)
             for (const auto& [id, factor] : designed) {
-              formats::Dvprel1 q = r;
-              q.pid = id;
-              if (designs_rate(r)) scale_relation(q, factor);
+              formats::Dvprel1 q = relation_for(r, id, factor);
               if (id == sp->eid) {
                 ed.change(r.card, formats::write_dvprel1(q));
               } else {
