@@ -100,6 +100,11 @@ double chi2_upper_tail(double chi2, double dof) {
   return boost::math::gamma_q(0.5 * dof, 0.5 * std::max(chi2, 0.0));
 }
 
+double chi2_quantile_upper(double p, double dof) {
+  if (!(dof > 0) || !(p > 0 && p < 1)) throw std::invalid_argument("chi2_quantile_upper: needs dof > 0 and 0 < p < 1");
+  return 2.0 * boost::math::gamma_q_inv(0.5 * dof, p);
+}
+
 double tail_upper_bound(int exceed, int replicates, double confidence) {
   if (replicates <= 0 || exceed >= replicates) return 1.0;
   return boost::math::ibeta_inv(static_cast<double>(exceed + 1), static_cast<double>(replicates - exceed), confidence);

@@ -76,6 +76,9 @@ NoiseScale estimate_noise(const LinearUpdate& lu, const Eigen::Ref<const Eigen::
 /// χ² goodness of fit of one group against the assumed σ: P(χ²(ν) ≥ χ²).
 double chi2_upper_tail(double chi2, double dof);
 
+/// The χ²(ν) value exceeded with probability p: chi2_upper_tail(x, ν) = p.
+double chi2_quantile_upper(double p, double dof);
+
 /// Options of the calibrated decision.
 struct CalibrationOptions {
   bool estimate_noise = true;   ///< false: the assumed σ is the noise (study "noise": "given")

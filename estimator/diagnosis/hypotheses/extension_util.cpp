@@ -7,6 +7,7 @@
 #include <stdexcept>
 
 #include "estimator/eigen/eigen_solver.hpp"
+#include "formats/text_util.hpp"
 #include "translators/constraints.hpp"
 
 namespace ssid::estimator::diagnosis::hypotheses::detail {
@@ -28,6 +29,15 @@ double density(const formats::BulkModel& bulk, std::int64_t mid) {
   for (const auto& m : bulk.mat1s)
     if (m.mid == mid) return m.rho;
   return 0.0;
+}
+
+formats::BulkModel bulk_at_update(const FeModel& nominal, const ExtensionOptions& options) {
+  Eigen::VectorXd x = nominal.initial_parameters();
+  const auto& ps = nominal.parameters();
+  for (std::size_t j = 0; j < ps.size(); ++j)
+    if (const auto it = options.updated.find(formats::detail::upper(ps[j].label)); it != options.updated.end())
+      x(static_cast<Eigen::Index>(j)) = it->second;
+  return nominal.values_at(x);
 }
 
 std::string label(const std::string& prefix, std::int64_t id) {

@@ -19,6 +19,10 @@ double young_modulus(const formats::BulkModel& bulk, std::int64_t mid);
 /// Density of MAT1 `mid`, 0 when absent (a member without a MAT1 carries no mass of its own).
 double density(const formats::BulkModel& bulk, std::int64_t mid);
 
+/// The deck's cards at the parameters the hypotheses start from
+/// (ExtensionOptions::updated; the deck's own values for the others).
+formats::BulkModel bulk_at_update(const FeModel& nominal, const ExtensionOptions& options);
+
 /// Short DESVAR label (≤ 8 characters): prefix + id.
 std::string label(const std::string& prefix, std::int64_t id);
 

@@ -156,6 +156,11 @@ struct ExtensionOptions {
   /// when there are none (tests of the kind itself).
   bool always_offer = false;
   double total_mass = 0;               ///< kg; 0: computed from the nominal model when needed
+  /// Where the hypotheses start the deck's own parameters (the ordinary
+  /// update's estimate, by DESVAR label in upper case); empty: the deck's values.
+  /// Start values of new parameters that depend on the deck's (a surge
+  /// frequency on the spring's rate) are placed with these.
+  std::map<std::string, double> updated;
 };
 
 class ModelExtension {

@@ -182,3 +182,60 @@ TEST_CASE("p from few replicates: its smallest value and the upper bound on the 
   CHECK(tail_upper_bound(0, 199) == Approx(1.0 - std::pow(0.05, 1.0 / 199)).epsilon(1e-9));
   CHECK(tail_upper_bound(199, 199) == 1.0);
 }
+
+TEST_CASE("chi-square upper quantiles against the closed forms of 2 and 4 degrees of freedom",
+          "[estimator][diagnosis][calibration]") {
+  // ν = 2: P(χ² ≥ x) = e^{−x/2}, so x = −2 ln p; ν = 4: e^{−x/2}(1 + x/2) = p, checked at the value returned.
+  for (double p : {0.5, 0.05, 0.005, 1e-6}) {
+    CHECK(chi2_quantile_upper(p, 2) == Approx(-2.0 * std::log(p)).epsilon(1e-12));
+    const double x = chi2_quantile_upper(p, 4);
+    CHECK(std::exp(-x / 2) * (1 + x / 2) == Approx(p).epsilon(1e-10));
+    CHECK(chi2_upper_tail(chi2_quantile_upper(p, 7.5), 7.5) == Approx(p).epsilon(1e-10));
+  }
+  CHECK_THROWS_AS(chi2_quantile_upper(0.0, 3), std::invalid_argument);
+  CHECK_THROWS_AS(chi2_quantile_upper(0.1, 0), std::invalid_argument);
+}
+
+TEST_CASE("the common rows' chi-square rise when a right extension pairs new rows stays below chi-square of min(rows, parameters)",
+          "[estimator][diagnosis][calibration]") {
+  // worse_fit's allowance (diagnosis.cpp, allowed_rise): a linear, whitened,
+  // prior-scaled problem; H has p parameters, P the first p − q of them. H is
+  // true (θ from its prior N(0, I), unit noise). P is fitted to the n_c common
+  // rows, H to those and k new rows, each by the posterior mode; the rise
+  // Δ = ‖e_c − W_c θ_H‖² − ‖e_c − W_c,P θ_P‖² exceeds the (1 − α/2) point of
+  // χ²(min(k, p)) in at most α/2 of the draws (the bound is conservative: the
+  // count is checked against α/2 plus three binomial standard deviations).
+  std::mt19937_64 rng(20261128);
+  std::normal_distribution<double> n01(0.0, 1.0);
+  const double alpha = 0.02;
+  struct Shape { int nc, k, p, q; double scale; };
+  for (const Shape s : {Shape{24, 2, 5, 1, 1.0}, Shape{24, 6, 5, 2, 3.0}, Shape{12, 30, 8, 1, 5.0}, Shape{40, 1, 4, 1, 0.3}}) {
+    CAPTURE(s.nc, s.k, s.p, s.q, s.scale);
+    Eigen::MatrixXd Wc(s.nc, s.p), Wn(s.k, s.p);
+    for (Eigen::Index i = 0; i < Wc.size(); ++i) Wc.data()[i] = s.scale * n01(rng);
+    for (Eigen::Index i = 0; i < Wn.size(); ++i) Wn.data()[i] = s.scale * n01(rng);
+    Eigen::MatrixXd W(s.nc + s.k, s.p);
+    W << Wc, Wn;
+    const Eigen::MatrixXd WP = Wc.leftCols(s.p - s.q);
+    const Eigen::LDLT<Eigen::MatrixXd> fitP(WP.transpose() * WP + Eigen::MatrixXd::Identity(s.p - s.q, s.p - s.q));
+    const Eigen::LDLT<Eigen::MatrixXd> fitH(W.transpose() * W + Eigen::MatrixXd::Identity(s.p, s.p));
+    const double limit = std::max(1.0, chi2_quantile_upper(alpha / 2, std::min(s.k, s.p)));
+    const int draws = 3000;
+    int above = 0;
+    double largest = 0;
+    for (int d = 0; d < draws; ++d) {
+      Eigen::VectorXd theta(s.p), e(s.nc + s.k);
+      for (Eigen::Index i = 0; i < theta.size(); ++i) theta(i) = n01(rng);
+      for (Eigen::Index i = 0; i < e.size(); ++i) e(i) = n01(rng);
+      e += W * theta;
+      const Eigen::VectorXd ec = e.head(s.nc);
+      const Eigen::VectorXd tP = fitP.solve(WP.transpose() * ec), tH = fitH.solve(W.transpose() * e);
+      const double rise = (ec - Wc * tH).squaredNorm() - (ec - WP * tP).squaredNorm();
+      largest = std::max(largest, rise);
+      if (rise > limit) ++above;
+    }
+    CAPTURE(limit, largest);
+    const double q = alpha / 2;
+    CHECK(above <= q * draws + 3 * std::sqrt(q * (1 - q) * draws));
+  }
+}

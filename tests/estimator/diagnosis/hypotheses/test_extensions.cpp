@@ -184,6 +184,15 @@ TEST_CASE("support_dynamics: static rate kept, first surge at sqrt(5k/2m)/2pi, l
   CHECK(*std::next(factors.begin()) == Approx(3.5));
   CHECK(*factors.rbegin() == Approx(5.0));
   // Static rate unchanged: the rigid-body-like suspension modes do not move (checked above).
+  // Hypotheses start from the ordinary update: with KSUSP moved to 150 N/m the
+  // start keeps the surge at 48 Hz with that rate, m₁ = 5·150/(2(2π·48)²).
+  ext::ExtensionOptions moved = o;
+  moved.updated = {{"KSUSP", 150.0}};
+  for (const auto& cand : ext::make_support_dynamics(moved)->candidates(*nominal.fe))
+    if (cand.location.text == vertical->location.text) {
+      REQUIRE(cand.start.size() == 1);
+      CHECK(cand.start[0] == Approx(2.5 * 150.0 / std::pow(2 * M_PI * 48.0, 2)));
+    }
 }
 
 TEST_CASE("support_dynamics: a mass on the refined spring moves as on a continuous spring's two first surges",
@@ -192,9 +201,11 @@ TEST_CASE("support_dynamics: a mass on the refined spring moves as on a continuo
   // with its far end held pulls on the mass with K(ω) = k x cot x =
   // k − Σ_n 2k s/(n² s₁ − s), s = ω² (the partial fractions of x cot x, worked
   // by hand, not ssid's chain); the refined spring is built to have the first
-  // two terms exactly, so each mode of the extended deck solves
-  // M s = k − 2k s/(s₁ − s) − 2k s/(4 s₁ − s), s₁ = (2π·30)² the start's surge;
-  // and with the mass held the chain surges at 30 and 60 Hz.
+  // two terms exactly and the rest as their low-frequency limit, a mass
+  // Σ_{n≥3} 2k/(n² s₁) = (2k/s₁)(π²/6 − 5/4), so each mode of the extended deck solves
+  // M s = k − M_r s − 2k s/(s₁ − s) − 2k s/(4 s₁ − s), s₁ = (2π·30)² the start's surge;
+  // with the mass held the chain surges at 30 and 60 Hz; and as s → 0 the spring
+  // pulls with k − s m/3, m = π²k/s₁ the continuous spring's mass.
   const std::string text =
       "SOL 103\nCEND\nBEGIN BULK\n"
       "GRID    1               0.      0.      0.              12456\n"
@@ -216,11 +227,13 @@ TEST_CASE("support_dynamics: a mass on the refined spring moves as on a continuo
   REQUIRE(ops.K.rows() == 3);
   Eigen::GeneralizedSelfAdjointEigenSolver<Eigen::MatrixXd> es(Eigen::MatrixXd(ops.K), Eigen::MatrixXd(ops.M));
   const double k = 600, M = 10, s1 = std::pow(2 * M_PI * 30.0, 2);
+  const double Mr = 2 * k / s1 * (M_PI * M_PI / 6 - 1.25);
   for (Eigen::Index i = 0; i < 3; ++i) {
     const double s = es.eigenvalues()(i);
     CAPTURE(i, std::sqrt(s) / (2 * M_PI));
-    CHECK(M * s - (k - 2 * k * s / (s1 - s) - 2 * k * s / (4 * s1 - s)) == Approx(0.0).margin(1e-8 * k));
+    CHECK(M * s - (k - Mr * s - 2 * k * s / (s1 - s) - 2 * k * s / (4 * s1 - s)) == Approx(0.0).margin(1e-8 * k));
   }
+
   // The mass held (its row and column out): the chain's own surges.
   Eigen::MatrixXd K = Eigen::MatrixXd(ops.K), Mm = Eigen::MatrixXd(ops.M);
   Eigen::Index held = 0;
@@ -237,6 +250,13 @@ TEST_CASE("support_dynamics: a mass on the refined spring moves as on a continuo
   Eigen::GeneralizedSelfAdjointEigenSolver<Eigen::Matrix2d> chain(Kc, Mc);
   CHECK(std::sqrt(chain.eigenvalues()(0)) / (2 * M_PI) == Approx(30.0).epsilon(1e-12));
   CHECK(std::sqrt(chain.eigenvalues()(1)) / (2 * M_PI) == Approx(60.0).epsilon(1e-12));
+  // The low-frequency inertia on the mass, −dK(s)/ds at s = 0 of the condensed pull
+  // K(s) = K_gg − s M_gg − K_gi (K_ii − s M_ii)⁻¹ K_ig less the 10 kg:
+  // (M_gg − 10) + tᵀ M_ii t, t = K_ii⁻¹ K_ig, is the continuous spring's m/3.
+  Eigen::Vector2d kig;
+  for (int r = 0; r < 2; ++r) kig(r) = K(keep[static_cast<std::size_t>(r)], held);
+  const Eigen::Vector2d t = Kc.ldlt().solve(kig);
+  CHECK(Mm(held, held) - M + t.dot(Mc * t) == Approx(M_PI * M_PI * k / s1 / 3).epsilon(1e-10));
 }
 
 TEST_CASE("joint_flexibility: a stiff rotational spring gives the rigid joint back, a soft one lowers modes",
