@@ -1326,7 +1326,7 @@ Diagnosis diagnose(const std::vector<ConfigurationInput>& configurations, const 
     throw formats::InputError("diagnose: " + std::to_string(cal.replicates) +
                               " bootstrap replicates cannot show a false-alarm probability of " + significant(cal.false_alarm, 3) +
                               " or less (the smallest is 1/(replicates + 1)); use at least " +
-                              std::to_string(static_cast<int>(std::ceil(1.0 / cal.false_alarm - 1.0 - 1e-9))));
+                              significant(std::ceil(1.0 / cal.false_alarm - 1.0 - 1e-9), 6));
   return Diagnoser(configurations, options).run();
 }
 

@@ -82,6 +82,14 @@ TEST_CASE("ssid diagnose: hidden mass found, JSON layout, extended deck written"
   CHECK(few.code == 2);
   CHECK(few.err.find("diagnose: 50 bootstrap replicates cannot show a false-alarm probability of 0.01 or less (the smallest "
                      "is 1/(replicates + 1)); use at least 99") != std::string::npos);
+  // A false-alarm level that is not a probability: refused before any work.
+  const auto one = run_ssid("diagnose " + (dir / "rod.bdf").string() + " " + (dir / "test.unv").string() + " --false-alarm 1");
+  CHECK(one.code == 2);
+  CHECK(one.err.find("diagnose: the false-alarm target must lie between 0 and 1, got 1") != std::string::npos);
+  // One too small for any practical bootstrap: the replicates it would need, as a number.
+  const auto tiny = run_ssid("diagnose " + (dir / "rod.bdf").string() + " " + (dir / "test.unv").string() + " --false-alarm 1e-300");
+  CHECK(tiny.code == 2);
+  CHECK(tiny.err.find("use at least 1e+300") != std::string::npos);
   // The same file read for its frequencies only: no shape noise is implied or
   // tested (there are no shape rows), and none is printed.
   const auto fo = run_ssid("diagnose " + (dir / "rod.bdf").string() + " " + (dir / "test.unv").string() +
