@@ -483,12 +483,19 @@ struct FitNoise {
 /// the rise is stochastically below χ²(m). A right H rises above its (1 − α/2)
 /// point in a group with probability below α/2. With no new rows, 1 (a
 /// likelihood ratio of e^{−1/2}: within it the difference is the noise's).
-double allowed_rise(const Hypothesis& h, const Hypothesis& ref, const FitNoise& noise) {
+/// The pairs of `h` whose test mode `ref` leaves unpaired.
+std::vector<const UpdatePair*> new_pairs(const Hypothesis& h, const Hypothesis& ref) {
   std::set<std::pair<int, int>> theirs;
   for (const auto& p : ref.pairs) theirs.insert({p.config, p.test});
-  long new_rows = 0;
+  std::vector<const UpdatePair*> out;
   for (const auto& p : h.pairs)
-    if (!theirs.count({p.config, p.test})) new_rows += noise.rows_of(p.config, p.test);
+    if (!theirs.count({p.config, p.test})) out.push_back(&p);
+  return out;
+}
+
+double allowed_rise(const Hypothesis& h, const Hypothesis& ref, const FitNoise& noise) {
+  long new_rows = 0;
+  for (const UpdatePair* p : new_pairs(h, ref)) new_rows += noise.rows_of(p->config, p->test);
   const long m = std::min<long>(new_rows, h.estimate.size());
   return m > 0 ? std::max(1.0, chi2_quantile_upper(0.5 * noise.alpha, static_cast<double>(m))) : 1.0;
 }
@@ -535,15 +542,12 @@ std::string worse_fit(const Hypothesis& h, const Hypothesis& ref, const FitNoise
   // sensors, and what the test shows of it there is mostly its coupling to the
   // rest, which the extension's few values place only roughly; the sweep's
   // right local modes and surges miss the shape noise there by 5× in χ².)
-  std::set<std::pair<int, int>> theirs;
-  for (const auto& p : ref.pairs) theirs.insert({p.config, p.test});
   double k = 0, x = 0, worst = 0;
-  for (const auto& p : h.pairs) {
-    if (theirs.count({p.config, p.test})) continue;
-    const double sf = noise.of(p.config, p.test).first;
+  for (const UpdatePair* p : new_pairs(h, ref)) {
+    const double sf = noise.of(p->config, p->test).first;
     k += 1;
-    x += p.error_pct * p.error_pct / (sf * sf);
-    if (std::abs(p.error_pct) > std::abs(worst)) worst = p.error_pct;
+    x += p->error_pct * p->error_pct / (sf * sf);
+    if (std::abs(p->error_pct) > std::abs(worst)) worst = p->error_pct;
   }
   if (k > 0 && x > chi2_quantile_upper(0.5 * noise.alpha, k))
     return "pairs its new mode(s) outside the frequency noise (error up to " + fixed(worst, 3) + " %: chi^2 " +
