@@ -331,6 +331,14 @@ struct Screen {
   std::vector<Row> rows;
 };
 
+/// Which rows of a paired test mode the update fits: its frequency, its shape.
+struct FittedRows {
+  bool frequency = false, shape = false;
+};
+FittedRows fitted_rows(const MeasuredMode& t, const UpdateOptions& opt) {
+  return {t.use_frequency && t.frequency_std_hz > 0, opt.shape_derivatives && t.use_shape && t.shape.size() && t.shape_std > 0};
+}
+
 Screen prepare_screen(PreparedConfiguration& pb, const ParameterPrior& prior, const Eigen::VectorXd& r,
                       const std::vector<UpdatePair>& all_pairs, const UpdateOptions& opt) {
   Screen sc;
@@ -349,8 +357,9 @@ Screen prepare_screen(PreparedConfiguration& pb, const ParameterPrior& prior, co
     const Eigen::VectorXd phi_s = sol.sensor_shapes.col(p.fem);
     row.norm = phi_s.norm();
     row.u = phi_s / row.norm;
-    row.use_f = t.use_frequency && t.frequency_std_hz > 0;
-    row.use_s = opt.shape_derivatives && t.use_shape && t.shape.size() && t.shape_std > 0;
+    const FittedRows fitted = fitted_rows(t, opt);
+    row.use_f = fitted.frequency;
+    row.use_s = fitted.shape;
     row.sigma_f = t.frequency_std_hz;
     row.sigma_s = t.shape_std;
     sc.rows.push_back(row);
@@ -473,16 +482,6 @@ struct FitNoise {
   }
 };
 
-/// How far the χ² of one group of the modes both pair may rise when `h` pairs
-/// modes `ref` does not, before the rise says H is wrong rather than pulled.
-/// Why: linearised, whitened and prior-scaled, H fitted to the common rows alone
-/// fits them no worse than P (H holds P); the new rows then move its estimate by
-/// d ~ N(0, Σ_c − Σ_h) when H is right, a change of rank m ≤ min(new rows, H's
-/// parameters), and the common rows' χ² rises by ‖W_c d‖² — whose covariance
-/// W_c(Σ_c − Σ_h)W_cᵀ ≤ W_cΣ_cW_cᵀ < I has at most m eigenvalues, each below 1:
-/// the rise is stochastically below χ²(m). A right H rises above its (1 − α/2)
-/// point in a group with probability below α/2. With no new rows, 1 (a
-/// likelihood ratio of e^{−1/2}: within it the difference is the noise's).
 /// The pairs of `h` whose test mode `ref` leaves unpaired.
 std::vector<const UpdatePair*> new_pairs(const Hypothesis& h, const Hypothesis& ref) {
   std::set<std::pair<int, int>> theirs;
@@ -493,9 +492,21 @@ std::vector<const UpdatePair*> new_pairs(const Hypothesis& h, const Hypothesis& 
   return out;
 }
 
-double allowed_rise(const Hypothesis& h, const Hypothesis& ref, const FitNoise& noise) {
+/// How far the χ² of one group of the modes both pair may rise when h pairs the
+/// modes `fresh` that `ref` does not, before the rise says H is wrong rather
+/// than pulled by their rows. Why (docs/diagnosis.md, "Not worse"): linearised,
+/// whitened and prior-scaled, with H right and its new rows fitting to the
+/// noise, the new rows move H's estimate from its fit to the common rows by
+/// d ~ N(0, Σ_c − Σ_h), of rank m ≤ min(new rows, H's parameters), and the
+/// common rows' penalised misfit (χ² plus the prior's term) rises by dᵀΣ_c⁻¹d,
+/// stochastically below χ²(m). That bound is proven for all common rows and
+/// the penalised misfit; for each group's χ² alone, prior included, it was
+/// checked numerically (test_calibration.cpp). A right H exceeds the (1 − α/2)
+/// point in a group with probability at most α/2. With no new rows, 1 (a
+/// likelihood ratio of e^{−1/2}: within it the difference is the noise's).
+double allowed_rise(const Hypothesis& h, const std::vector<const UpdatePair*>& fresh, const FitNoise& noise) {
   long new_rows = 0;
-  for (const UpdatePair* p : new_pairs(h, ref)) new_rows += noise.rows_of(p->config, p->test);
+  for (const UpdatePair* p : fresh) new_rows += noise.rows_of(p->config, p->test);
   const long m = std::min<long>(new_rows, h.estimate.size());
   return m > 0 ? std::max(1.0, chi2_quantile_upper(0.5 * noise.alpha, static_cast<double>(m))) : 1.0;
 }
@@ -505,7 +516,9 @@ double allowed_rise(const Hypothesis& h, const Hypothesis& ref, const FitNoise& 
 /// Worse: the frequency or the shape χ² of the common pairs, in units of the
 /// noise, χ²_f = Σ (Δf %/σ_f)², χ²_s = Σ ‖z − u‖²/σ_s² = Σ (2 − 2√MAC)/σ_s²,
 /// grows by more than allowed_rise: 1 when h pairs the same modes, more when
-/// it pairs new ones, whose rows pull its estimate.
+/// it pairs new ones, whose rows pull its estimate; and the new modes'
+/// frequencies must fit within the noise. Each of the three checks vetoes a
+/// right hypothesis with probability at most α/2: at most 3α/2 in all.
 std::string worse_fit(const Hypothesis& h, const Hypothesis& ref, const FitNoise& noise) {
   if (h.after.paired < ref.after.paired)
     return "pairs fewer test modes (" + std::to_string(h.after.paired) + " vs " + std::to_string(ref.after.paired) + ")";
@@ -525,8 +538,9 @@ std::string worse_fit(const Hypothesis& h, const Hypothesis& ref, const FitNoise
     ds += (std::sqrt(std::clamp(p.mac, 0.0, 1.0)) - std::sqrt(std::clamp(it->second->mac, 0.0, 1.0))) * 2.0 / (ss * ss);
     ++n;
   }
+  const std::vector<const UpdatePair*> fresh = new_pairs(h, ref);
   if (n > 0) {
-    const double allowed = allowed_rise(h, ref, noise);
+    const double allowed = allowed_rise(h, fresh, noise);
     const std::string on = " on the " + std::to_string(n) + " modes both pair",
                       limit = allowed > 1.0 ? ", above the " + significant(allowed, 3) + " the new pairs' pull explains" : "";
     if (df > allowed)
@@ -542,17 +556,17 @@ std::string worse_fit(const Hypothesis& h, const Hypothesis& ref, const FitNoise
   // sensors, and what the test shows of it there is mostly its coupling to the
   // rest, which the extension's few values place only roughly; the sweep's
   // right local modes and surges miss the shape noise there by 5× in χ².)
-  double k = 0, x = 0, worst = 0;
-  for (const UpdatePair* p : new_pairs(h, ref)) {
+  int k = 0;
+  double x = 0, worst = 0;
+  for (const UpdatePair* p : fresh) {
     const double sf = noise.of(p->config, p->test).first;
-    k += 1;
+    ++k;
     x += p->error_pct * p->error_pct / (sf * sf);
     if (std::abs(p->error_pct) > std::abs(worst)) worst = p->error_pct;
   }
-  if (k > 0 && x > chi2_quantile_upper(0.5 * noise.alpha, k))
+  if (const double limit = k > 0 ? chi2_quantile_upper(0.5 * noise.alpha, k) : 0.0; k > 0 && x > limit)
     return "pairs its new mode(s) outside the frequency noise (error up to " + fixed(worst, 3) + " %: chi^2 " +
-           significant(x, 3) + " for " + std::to_string(static_cast<int>(k)) + " mode(s), above " +
-           significant(chi2_quantile_upper(0.5 * noise.alpha, k), 3) + ")";
+           significant(x, 3) + " for " + std::to_string(k) + " mode(s), above " + significant(limit, 3) + ")";
   if (h.prediction_rms_pct >= 0 && ref.prediction_rms_pct >= 0 && h.prediction_rms_pct > ref.prediction_rms_pct)
     return "predicts the held-back modes worse (RMS " + fixed(h.prediction_rms_pct, 3) + " % vs " +
            fixed(ref.prediction_rms_pct, 3) + " %)";
@@ -1092,9 +1106,10 @@ class Diagnoser {
     n.alpha = m_options.calibration.false_alarm;
     for (std::size_t c = 0; c < m_base.configurations.size(); ++c) {
       const auto& test = m_base.configurations[c].test;
-      for (std::size_t t = 0; t < test.size(); ++t) {  // the rows the update fits (row.use_s below)
-        const bool shape = m_base.options.shape_derivatives && test[t].use_shape && test[t].shape.size() && test[t].shape_std > 0;
-        n.rows[{static_cast<int>(c), static_cast<int>(t)}] = 1 + (shape ? static_cast<int>(test[t].shape.size()) : 0);
+      for (std::size_t t = 0; t < test.size(); ++t) {
+        const FittedRows fitted = fitted_rows(test[t], m_base.options);
+        n.rows[{static_cast<int>(c), static_cast<int>(t)}] =
+            (fitted.frequency ? 1 : 0) + (fitted.shape ? static_cast<int>(test[t].shape.size()) : 0);
       }
     }
     // Modes with the identification's σ: those the estimates used (scaled by
@@ -1322,6 +1337,17 @@ class Diagnoser {
 
 }  // namespace
 
+namespace {
+/// "use at least N": the replicates a false-alarm target p needs, 1/p − 1, or
+/// why no count will do (replicates is an int).
+std::string replicates_needed(double p) {
+  const double n = std::ceil(1.0 / p - 1.0 - 1e-9);
+  if (n > static_cast<double>(std::numeric_limits<int>::max()))
+    return "no replicate count can (it would need " + significant(n, 3) + ")";
+  return "use at least " + std::to_string(static_cast<long long>(n));
+}
+}  // namespace
+
 Diagnosis diagnose(const std::vector<ConfigurationInput>& configurations, const DiagnosisOptions& options) {
   const CalibrationOptions& cal = options.calibration;
   if (!(cal.false_alarm > 0 && cal.false_alarm < 1))
@@ -1329,8 +1355,7 @@ Diagnosis diagnose(const std::vector<ConfigurationInput>& configurations, const 
   if (smallest_p(cal.replicates) > cal.false_alarm)
     throw formats::InputError("diagnose: " + std::to_string(cal.replicates) +
                               " bootstrap replicates cannot show a false-alarm probability of " + significant(cal.false_alarm, 3) +
-                              " or less (the smallest is 1/(replicates + 1)); use at least " +
-                              significant(std::ceil(1.0 / cal.false_alarm - 1.0 - 1e-9), 6));
+                              " or less (the smallest is 1/(replicates + 1)); " + replicates_needed(cal.false_alarm));
   return Diagnoser(configurations, options).run();
 }
 

@@ -89,7 +89,8 @@ TEST_CASE("ssid diagnose: hidden mass found, JSON layout, extended deck written"
   // One too small for any practical bootstrap: the replicates it would need, as a number.
   const auto tiny = run_ssid("diagnose " + (dir / "rod.bdf").string() + " " + (dir / "test.unv").string() + " --false-alarm 1e-300");
   CHECK(tiny.code == 2);
-  CHECK(tiny.err.find("use at least 1e+300") != std::string::npos);
+  CHECK(tiny.err.find("or less (the smallest is 1/(replicates + 1)); no replicate count can (it would need 1e+300)") !=
+        std::string::npos);
   // The same file read for its frequencies only: no shape noise is implied or
   // tested (there are no shape rows), and none is printed.
   const auto fo = run_ssid("diagnose " + (dir / "rod.bdf").string() + " " + (dir / "test.unv").string() +

@@ -158,8 +158,10 @@ struct ExtensionOptions {
   double total_mass = 0;               ///< kg; 0: computed from the nominal model when needed
   /// Where the hypotheses start the deck's own parameters (the ordinary
   /// update's estimate, by DESVAR label in upper case); empty: the deck's values.
-  /// Start values of new parameters that depend on the deck's (a surge
-  /// frequency on the spring's rate) are placed with these.
+  /// support_dynamics places its start surges with the spring rates at these
+  /// (detail::bulk_at_update); the other kinds start from the deck's values
+  /// (local_modes' inertia from the deck's strut area, local_stiffness's
+  /// section scales from the model at its initial parameters).
   std::map<std::string, double> updated;
 };
 
@@ -186,10 +188,12 @@ std::unique_ptr<ModelExtension> make_missing_mass(const ExtensionOptions& option
 /// softens: a loosened joint), prior N(0, (f·A)²), ΔA ≥ −0.95 A.
 std::unique_ptr<ModelExtension> make_local_stiffness(const ExtensionOptions& options);
 /// support_dynamics: a grounded scalar spring (a suspension spring) given its
-/// own mass — split into two springs of twice the rate with a mass between them
-/// (a CONM2 on a new grid moving along the spring's component), so a surge mode
-/// exists; β = the spring's mass [kg]. One candidate per grounded spring and one
-/// per group of grounded springs sharing a property (one mass each).
+/// own mass — the chain grid – 5k – β – 7k/2 – 49β/36 – 35k/18 – ground on two new
+/// grids moving along the spring's component (CONM2s), with a scalar mass
+/// 0.316β at the grid (CMASS2): a continuous spring's static rate, first two
+/// surges and pulls, and low-frequency inertia; β = the first inner mass [kg].
+/// One candidate per grounded spring and one per group of grounded springs
+/// sharing a property (one β each).
 std::unique_ptr<ModelExtension> make_support_dynamics(const ExtensionOptions& options);
 /// joint_flexibility: the rigid RBE2 joining a ball to its strut ends keeps the
 /// translations only; rotational CELAS1 springs (components 4, 5, 6) join each

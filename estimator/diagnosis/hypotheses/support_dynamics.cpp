@@ -18,14 +18,17 @@
 /// low-frequency inertia to the continuous one's m/3 (m = π²k/ω₁², the spring's
 /// whole mass). Without it the chain was 0.08 m light at the grid, and below its
 /// surge the pull it gives was off by up to 20 % of k (k x cot x vanishes at
-/// half the surge, the chain alone gives 0.2k): the sweep's surging suspensions
-/// then fitted the modes the model already paired worse. (The forms before: 2k – m – 2k, one surge with half the
-/// pull, then 3k – m – 3k/2, one surge with the right pull: a test that sees
-/// a spring's second surge, as the sweep's surging suspensions below 33 Hz
-/// do, had nothing to pair it with.)
+/// half the surge, the chain alone gives 0.2k): the sweep's surging
+/// suspensions then fitted the modes the model already paired worse. (The
+/// forms before: 2k – m – 2k, one surge with half the pull, then 3k – m – 3k/2,
+/// one surge with the right pull: a test that sees a spring's second surge, as
+/// the sweep's surging suspensions below 33 Hz do, had nothing to pair it with.)
 /// β = m₁ [kg]. Prior N(0, σ²) with σ = 5k/(2(2π f_low)²) (the mass that puts the
-/// first surge at the lowest test frequency), β ≥ 0; the start places the surge
-/// at an unexplained test frequency when there is one. A group of springs (the
+/// first surge at the lowest test frequency), β ≥ 0, with the deck's rate k: a
+/// prior is fixed before the data. The start places the surge at an unexplained
+/// test frequency when there is one, with the rate where the hypotheses start
+/// (the ordinary update's: below the test band the suspension's rate is barely
+/// informed and may have moved far, and the surge with it). A group of springs (the
 /// CELAS1s of one PELAS) starts with all at each unexplained frequency, spread
 /// over them in turn, and matched: each spring at the unexplained test mode
 /// whose shape its surge would give best (the structure's answer to a force
@@ -51,7 +54,7 @@ constexpr std::array<double, 3> kRates{5.0, 3.5, 35.0 / 18.0};
 constexpr std::array<double, 2> kMasses{1.0, 49.0 / 36.0};
 /// The higher surges' pull as a mass at the spring's grid, in units of β:
 /// (2k/ω₁²)(π²/6 − 5/4) with 2k/ω₁² = 4β/5 (file comment).
-const double kResidualMass = 0.8 * (M_PI * M_PI / 6.0 - 1.25);
+constexpr double kResidualMass = 0.8 * (M_PI * M_PI / 6.0 - 1.25);
 /// ω₁² = kFirstSurge · k / β.
 constexpr double kFirstSurge = 2.5;
 
@@ -123,13 +126,15 @@ class SupportDynamics : public ModelExtension {
     for (const auto& [pid, v] : by_pid)
       if (v.size() > 1) sets.push_back(v);
     // Start values: the surge at each unexplained test frequency, or at the lowest
-    // test frequency, with the spring's rate where the hypotheses start (the
-    // ordinary update's: KSUSP may have moved far, and the surge with it).
+    // test frequency, with the spring's rate where the hypotheses start (file comment).
     std::vector<double> freqs = detail::start_frequencies(m_options);
     if (freqs.empty()) freqs.push_back(m_options.lowest_test_hz);
     std::map<std::int64_t, double> rate;
     for (const auto& s : grounded_springs(detail::bulk_at_update(nominal, m_options))) rate[s.eid] = s.k;
-    auto mass_at = [&](const Spring& sp, double f) { return mass_for(rate.count(sp.eid) ? rate[sp.eid] : sp.k, f); };
+    auto mass_at = [&](const Spring& sp, double f) {
+      const auto it = rate.find(sp.eid);
+      return mass_for(it != rate.end() ? it->second : sp.k, f);
+    };
     std::vector<Candidate> out;
     for (const auto& set : sets) {
       std::vector<std::vector<double>> starts;
